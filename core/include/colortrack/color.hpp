@@ -1,0 +1,61 @@
+// Colour spaces and per-pixel bin indices: the first step of colour indexing.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include <opencv2/core.hpp>
+
+namespace colortrack {
+
+// rgb: the original colour indexing (Swain & Ballard); hsv: the modified method (default), where the
+// V channel can be weighted down for robustness to lighting.
+enum class ColorSpace { Rgb, Hsv };
+
+// Standard RGB -> HSV. h in degrees [0, 360), s and v in [0, 1]; h = 0 when max == min, s = 0 when max == 0.
+struct Hsv {
+  double h = 0, s = 0, v = 0;
+};
+Hsv rgbToHsv(std::uint8_t r, std::uint8_t g, std::uint8_t b);
+
+// Number of bins of each of the three channels, in channel order (H,S,V) or (R,G,B). 1..256 each.
+struct BinLayout {
+  std::array<int, 3> bins{16, 16, 8};
+  int total() const { return bins[0] + bins[1] + bins[2]; }
+  int offset(int channel) const { return channel == 0 ? 0 : channel == 1 ? bins[0] : bins[0] + bins[1]; }
+  bool operator==(const BinLayout &o) const { return bins == o.bins; }
+};
+
+// Maps 8-bit BGR pixels to bin indices. Holds the lookup tables, so build one per (space, layout) and reuse.
+class BinMapper {
+ public:
+  BinMapper(ColorSpace space, const BinLayout &layout);
+
+  ColorSpace space() const { return space_; }
+  const BinLayout &layout() const { return layout_; }
+
+  // bgr: CV_8UC3 (any step). out: CV_8UC3 of the same size; out channel c holds the bin of colour
+  // channel c (H,S,V or R,G,B). The HSV path uses OpenCV's 8-bit HSV_FULL conversion (the same standard
+  // formulas in fixed point, vectorised), so a value within half a quantum of a bin border may land in the
+  // neighbouring bin compared with rgbToHsv().
+  void map(const cv::Mat &bgr, cv::Mat &out) const;
+
+  // The bin of one pixel through the exact rgbToHsv() (or raw RGB) path. Reference for the tests.
+  std::array<int, 3> binOf(std::uint8_t r, std::uint8_t g, std::uint8_t b) const;
+
+ private:
+  ColorSpace space_;
+  BinLayout layout_;
+  std::array<std::array<std::uint8_t, 256>, 3> lut_{};  // 8-bit channel value -> bin
+};
+
+// A bin image and where its top-left pixel lies in frame coordinates, so that core functions can work on
+// a search region without copying the frame. All rectangles given to core functions are in frame
+// coordinates.
+struct BinImage {
+  cv::Mat bins;        // CV_8UC3
+  cv::Point origin{};  // frame coordinates of bins(0,0)
+  cv::Rect frameRect() const { return cv::Rect(origin, bins.size()); }
+};
+
+}  // namespace colortrack

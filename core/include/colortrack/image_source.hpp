@@ -1,0 +1,28 @@
+// Where the tracker reads pixels from: lets the GStreamer layer convert only the regions the tracker
+// asks for (a search window while tracking) instead of whole frames.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+namespace colortrack {
+
+class ImageSource {
+ public:
+  virtual ~ImageSource() = default;
+  virtual cv::Size size() const = 0;
+  // Writes the pixels of `rect` (inside the frame) as CV_8UC3 BGR into `out` (reallocated if needed).
+  virtual void bgr(const cv::Rect &rect, cv::Mat &out) const = 0;
+};
+
+// An ImageSource over a BGR cv::Mat (tests, benchmarks, template files).
+class MatImageSource : public ImageSource {
+ public:
+  explicit MatImageSource(const cv::Mat &bgr) : bgr_(bgr) {}
+  cv::Size size() const override { return bgr_.size(); }
+  void bgr(const cv::Rect &rect, cv::Mat &out) const override { bgr_(rect).copyTo(out); }
+
+ private:
+  cv::Mat bgr_;
+};
+
+}  // namespace colortrack

@@ -1,0 +1,85 @@
+// The one entry point the element uses: settings in, frame in, track out.
+#pragma once
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+#include "colortrack/color.hpp"
+#include "colortrack/edges.hpp"
+#include "colortrack/histogram.hpp"
+#include "colortrack/image_source.hpp"
+#include "colortrack/kalman.hpp"
+#include "colortrack/scale.hpp"
+#include "colortrack/search.hpp"
+#include "colortrack/track.hpp"
+
+namespace colortrack {
+
+struct TrackerSettings {
+  ColorSpace colorSpace = ColorSpace::Hsv;
+  BinLayout bins;
+  ChannelWeights weights;
+  double matchThreshold = 0.5;  // minimum match value of a detection
+  ScaleParams scale;
+  double searchMargin = 2.0;  // search region = box grown by margin * size + 3 sigma of the prediction
+  KalmanParams kalman;
+  int maxCoastFrames = 10;  // frames without detection before the track is lost
+  VerifyMode verify = VerifyMode::Both;
+  double verifyTolerance = 0.5;
+};
+
+struct TrackOutput {
+  TrackState state = TrackState::Searching;
+  bool hasBox = false;   // a track exists (tracking or coasting)
+  int id = 0;            // track id, >= 1 once a track has existed; grows at every new acquisition
+  cv::Rect2d box;        // filtered box, frame coordinates
+  double score = 0;      // match value of this frame's detection (0 when coasting)
+  bool verified = false; // edge check passed (always true when verify = None)
+  double scale = 1.0;    // box size relative to the template
+  double vx = 0, vy = 0; // filtered velocity, px/frame
+  cv::Rect searchRegion; // where this frame was searched (empty if nothing was searched)
+};
+
+// Thrown for unusable input (a template larger than the frame, an empty box ...). The text names the problem.
+class TrackerError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Tracker {
+ public:
+  explicit Tracker(const TrackerSettings &settings = TrackerSettings());
+  ~Tracker();
+
+  // Settings may change at any time; the template model is rebuilt if the colour space or bins change.
+  void setSettings(const TrackerSettings &settings);
+  const TrackerSettings &settings() const { return settings_; }
+
+  // Template from an image (CV_8UC3 BGR); a non-empty mask (CV_8UC1) selects the object's pixels.
+  void setTemplate(const cv::Mat &bgr, const cv::Mat &mask = cv::Mat());
+  // Template from a box of a frame; tracking starts there (the first output is `tracking` at that box).
+  void setTemplateFromBox(const ImageSource &frame, const cv::Rect &box);
+  bool hasTemplate() const;
+  cv::Size templateSize() const;
+
+  // Processes one frame. dt: time since the previous frame in frames (1 unless timestamps say otherwise).
+  // Throws TrackerError when the template does not fit in the frame.
+  TrackOutput process(const ImageSource &frame, double dt = 1.0);
+
+  // Forget the track (keeps the template): the next frame searches the whole frame.
+  void reset();
+
+ private:
+  struct Impl;
+  TrackerSettings settings_;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Loads a template image (PNG or JPEG). A PNG alpha channel becomes the mask (alpha > 127 counts).
+// Throws TrackerError naming the file when it cannot be read.
+void loadTemplate(const std::string &path, cv::Mat &bgr, cv::Mat &mask);
+
+}  // namespace colortrack

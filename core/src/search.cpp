@@ -1,0 +1,250 @@
+#include "colortrack/search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace colortrack {
+
+namespace {
+
+// Cell-row ring buffers above this size are replaced by recounting the leaving pixels (slower, O(1) memory).
+constexpr std::size_t kMaxRingBytes = std::size_t(32) << 20;
+
+// The part of the region where a window can be placed: region clipped to the bin image, in bin-image
+// coordinates. Empty when the window does not fit.
+struct Placement {
+  cv::Rect area;          // clipped region, bin-image coordinates
+  int positionsX = 0;     // window positions per row
+  int positionsY = 0;     // window positions per column
+  bool fits() const { return positionsX > 0 && positionsY > 0; }
+};
+
+Placement placementOf(const BinImage &bins, const cv::Rect &region, cv::Size window) {
+  Placement p;
+  if (window.width <= 0 || window.height <= 0 || bins.bins.empty()) return p;
+  p.area = (region & bins.frameRect()) - bins.origin;
+  p.positionsX = std::max(0, p.area.width - window.width + 1);
+  p.positionsY = std::max(0, p.area.height - window.height + 1);
+  return p;
+}
+
+// Keeps the best (score, raster position) seen; ties go to the earlier raster position (smaller y, then
+// x) so that the fast search and the brute force agree whenever the best score is unique or tied.
+struct Best {
+  double score = -1;
+  cv::Point pos;
+  void offer(double s, cv::Point p) {
+    if (s > score || (s == score && (p.y < pos.y || (p.y == pos.y && p.x < pos.x)))) {
+      score = s;
+      pos = p;
+    }
+  }
+};
+
+// Per-channel bin offsets, so that counting a pixel is three increments with no branching.
+struct BinOffsets {
+  int c1, c2, total;
+  explicit BinOffsets(const BinLayout &l) : c1(l.offset(1)), c2(l.offset(2)), total(l.total()) {}
+};
+
+inline void addPixel(int *counts, const cv::Vec3b &p, const BinOffsets &o, int sign) {
+  counts[p[0]] += sign;
+  counts[o.c1 + p[1]] += sign;
+  counts[o.c2 + p[2]] += sign;
+}
+
+// Adds (sign = +1) or removes (-1) the pixel rows [y0, y1) of the area to the per-cell counts `cells`
+// (one block of `total` ints per cell column).
+void accumulateRows(const cv::Mat &binMat, const cv::Rect &area, int y0, int y1, const std::vector<int> &cellOfColumn,
+                    const BinOffsets &o, int sign, int *cells) {
+  for (int y = y0; y < y1; ++y) {
+    const cv::Vec3b *row = binMat.ptr<cv::Vec3b>(area.y + y) + area.x;
+    for (int x = 0; x < area.width; ++x) addPixel(cells + cellOfColumn[x], row[x], o, sign);
+  }
+}
+
+// Coarse pass: scores of the window approximated by whole cells of step x step pixels, at every grid
+// position (multiples of `step` from the area's corner). Returns the scores row-major, gridX x gridY.
+std::vector<float> coarseScores(const BinImage &bins, const Placement &pl, cv::Size window, int step,
+                                const Histogram &model, const ChannelWeights &weights, int gridX, int gridY) {
+  const BinOffsets o(model.layout);
+  const cv::Rect &area = pl.area;
+  const int cellsX = (area.width + step - 1) / step;
+  const int cellsY = (area.height + step - 1) / step;
+  // Window size in cells: the nearest whole number, at least one, never more than the area holds.
+  const int winCellsX = std::clamp(static_cast<int>(std::lround(double(window.width) / step)), 1, cellsX);
+  const int winCellsY = std::clamp(static_cast<int>(std::lround(double(window.height) / step)), 1, cellsY);
+
+  std::vector<int> cellOfColumn(area.width);
+  for (int x = 0; x < area.width; ++x) cellOfColumn[x] = (x / step) * o.total;
+
+  // columnSums: counts of the window's cell rows, per cell column. A ring of the last winCellsY cell rows
+  // lets a cell row leave the window without recounting its pixels.
+  std::vector<int> columnSums(std::size_t(cellsX) * o.total, 0);
+  const std::size_t rowInts = std::size_t(cellsX) * o.total;
+  const bool useRing = rowInts * winCellsY * sizeof(int) <= kMaxRingBytes;
+  std::vector<int> ring(useRing ? rowInts * winCellsY : 0);
+  auto pixelRowsOf = [&](int cellRow, int &y0, int &y1) {
+    y0 = cellRow * step;
+    y1 = std::min(area.height, y0 + step);
+  };
+  auto addCellRow = [&](int cellRow) {
+    int y0, y1;
+    if (useRing) {
+      int *slot = ring.data() + rowInts * (cellRow % winCellsY);
+      if (cellRow >= winCellsY)  // the slot holds the row leaving the window
+        for (std::size_t i = 0; i < rowInts; ++i) columnSums[i] -= slot[i];
+      std::fill(slot, slot + rowInts, 0);
+      pixelRowsOf(cellRow, y0, y1);
+      accumulateRows(bins.bins, area, y0, y1, cellOfColumn, o, +1, slot);
+      for (std::size_t i = 0; i < rowInts; ++i) columnSums[i] += slot[i];
+    } else {
+      if (cellRow >= winCellsY) {
+        pixelRowsOf(cellRow - winCellsY, y0, y1);
+        accumulateRows(bins.bins, area, y0, y1, cellOfColumn, o, -1, columnSums.data());
+      }
+      pixelRowsOf(cellRow, y0, y1);
+      accumulateRows(bins.bins, area, y0, y1, cellOfColumn, o, +1, columnSums.data());
+    }
+  };
+
+  std::vector<float> scores(std::size_t(gridX) * gridY);
+  std::vector<int> windowSums(o.total);
+  int nextCellRow = 0;  // first cell row not yet added
+  for (int gy = 0; gy < gridY; ++gy) {
+    // Grid positions near the bottom edge reuse the last full band of cells.
+    const int topCell = std::min(gy, cellsY - winCellsY);
+    while (nextCellRow < topCell + winCellsY) addCellRow(nextCellRow++);
+
+    std::fill(windowSums.begin(), windowSums.end(), 0);
+    int leftCell = 0;
+    for (int cx = 0; cx < winCellsX; ++cx)
+      for (int i = 0; i < o.total; ++i) windowSums[i] += columnSums[std::size_t(cx) * o.total + i];
+    for (int gx = 0; gx < gridX; ++gx) {
+      const int wantLeft = std::min(gx, cellsX - winCellsX);
+      while (leftCell < wantLeft) {  // slide right by one cell column
+        const int *leaving = &columnSums[std::size_t(leftCell) * o.total];
+        const int *entering = &columnSums[std::size_t(leftCell + winCellsX) * o.total];
+        for (int i = 0; i < o.total; ++i) windowSums[i] += entering[i] - leaving[i];
+        ++leftCell;
+      }
+      // Every pixel counts once per channel, so channel 0 sums to the pixel count (edge cells are partial).
+      int pixels = 0;
+      for (int i = 0; i < model.layout.bins[0]; ++i) pixels += windowSums[i];
+      scores[std::size_t(gy) * gridX + gx] =
+          static_cast<float>(matchCounts(windowSums.data(), pixels, model, weights));
+    }
+  }
+  return scores;
+}
+
+// Up to `count` best grid positions, each at least two grid steps (Chebyshev) from the others, so the
+// refinements look at different places instead of the shoulders of one peak.
+std::vector<cv::Point> bestSeparated(const std::vector<float> &scores, int gridX, int gridY, int count) {
+  std::vector<cv::Point> picked;
+  std::vector<std::uint8_t> suppressed(scores.size(), 0);
+  for (int k = 0; k < count; ++k) {
+    std::ptrdiff_t bestIndex = -1;
+    for (std::size_t i = 0; i < scores.size(); ++i)
+      if (!suppressed[i] && (bestIndex < 0 || scores[i] > scores[bestIndex])) bestIndex = std::ptrdiff_t(i);
+    if (bestIndex < 0) break;
+    const cv::Point g(int(bestIndex % gridX), int(bestIndex / gridX));
+    picked.push_back(g);
+    for (int y = std::max(0, g.y - 1); y <= std::min(gridY - 1, g.y + 1); ++y)
+      for (int x = std::max(0, g.x - 1); x <= std::min(gridX - 1, g.x + 1); ++x)
+        suppressed[std::size_t(y) * gridX + x] = 1;
+  }
+  return picked;
+}
+
+// Exact scores of every window position in `positions` (top-left corners, area coordinates): running
+// histograms, the first window of each row slid down from the previous row's, then slid right column by
+// column, so each step costs O(window side) rather than O(window area).
+void refine(const BinImage &bins, const Placement &pl, cv::Size window, const cv::Rect &positions,
+            const Histogram &model, const ChannelWeights &weights, Best &best) {
+  const BinOffsets o(model.layout);
+  const cv::Mat &binMat = bins.bins;
+  const cv::Point base = pl.area.tl();  // area -> bin-image coordinates
+  const double pixels = double(window.width) * window.height;
+  std::vector<int> rowStart(o.total, 0), counts(o.total);
+
+  const int x0 = base.x + positions.x;
+  for (int y = base.y + positions.y; y < base.y + positions.y + window.height; ++y) {
+    const cv::Vec3b *row = binMat.ptr<cv::Vec3b>(y);
+    for (int x = x0; x < x0 + window.width; ++x) addPixel(rowStart.data(), row[x], o, +1);
+  }
+  for (int py = positions.y; py < positions.br().y; ++py) {
+    const int top = base.y + py;
+    if (py > positions.y) {  // slide the row's first window down by one pixel row
+      const cv::Vec3b *leaving = binMat.ptr<cv::Vec3b>(top - 1);
+      const cv::Vec3b *entering = binMat.ptr<cv::Vec3b>(top + window.height - 1);
+      for (int x = x0; x < x0 + window.width; ++x) {
+        addPixel(rowStart.data(), leaving[x], o, -1);
+        addPixel(rowStart.data(), entering[x], o, +1);
+      }
+    }
+    counts = rowStart;
+    for (int px = positions.x; px < positions.br().x; ++px) {
+      if (px > positions.x) {  // slide right by one pixel column
+        const int leftX = base.x + px - 1, rightX = base.x + px + window.width - 1;
+        for (int y = top; y < top + window.height; ++y) {
+          const cv::Vec3b *row = binMat.ptr<cv::Vec3b>(y);
+          addPixel(counts.data(), row[leftX], o, -1);
+          addPixel(counts.data(), row[rightX], o, +1);
+        }
+      }
+      best.offer(matchCounts(counts.data(), pixels, model, weights), cv::Point(px, py));
+    }
+  }
+}
+
+SearchResult resultOf(const Best &best, const Placement &pl, const BinImage &bins, cv::Size window) {
+  SearchResult r;
+  r.found = true;
+  r.box = cv::Rect(best.pos + pl.area.tl() + bins.origin, window);
+  r.score = best.score;
+  return r;
+}
+
+}  // namespace
+
+SearchResult searchWindow(const BinImage &bins, const cv::Rect &region, cv::Size window, const Histogram &model,
+                          const ChannelWeights &weights, const SearchParams &params) {
+  const Placement pl = placementOf(bins, region, window);
+  if (!pl.fits()) return SearchResult();
+  CV_Assert(bins.bins.type() == CV_8UC3);
+
+  const int step = params.coarseStep > 0 ? params.coarseStep : std::max(1, std::min(window.width, window.height) / 6);
+  // Grid positions: multiples of step; the last real position lies less than one step past the last one.
+  const int gridX = (pl.positionsX - 1) / step + 1;
+  const int gridY = (pl.positionsY - 1) / step + 1;
+  const std::vector<float> scores = coarseScores(bins, pl, window, step, model, weights, gridX, gridY);
+  const std::vector<cv::Point> candidates = bestSeparated(scores, gridX, gridY, std::max(1, params.candidates));
+
+  Best best;
+  const cv::Rect allPositions(0, 0, pl.positionsX, pl.positionsY);
+  for (const cv::Point &g : candidates) {
+    const cv::Point center = g * step;
+    const cv::Rect around = cv::Rect(center.x - step, center.y - step, 2 * step + 1, 2 * step + 1) & allPositions;
+    refine(bins, pl, window, around, model, weights, best);
+  }
+  return resultOf(best, pl, bins, window);
+}
+
+SearchResult searchWindowBruteForce(const BinImage &bins, const cv::Rect &region, cv::Size window,
+                                    const Histogram &model, const ChannelWeights &weights) {
+  const Placement pl = placementOf(bins, region, window);
+  if (!pl.fits()) return SearchResult();
+  Best best;
+  for (int py = 0; py < pl.positionsY; ++py)
+    for (int px = 0; px < pl.positionsX; ++px) {
+      const cv::Rect frameWindow(pl.area.tl() + bins.origin + cv::Point(px, py), window);
+      best.offer(windowMatch(bins, frameWindow, model, weights), cv::Point(px, py));
+    }
+  return resultOf(best, pl, bins, window);
+}
+
+}  // namespace colortrack

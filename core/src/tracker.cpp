@@ -1,0 +1,344 @@
+#include "colortrack/tracker.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace colortrack {
+
+namespace {
+
+// Full-frame searches run on a frame reduced so that the window's smaller side is about this many pixels:
+// histograms need only a sample of the pixels, and this keeps a 1080p search within a few milliseconds.
+constexpr int kCoarseWindowSide = 16;
+// While the track is colour-only (unverified), look over the whole frame this often for a verified target.
+constexpr int kUnverifiedGlobalSearchPeriod = 5;
+
+cv::Rect roundRect(const cv::Rect2d &r) {
+  return cv::Rect(cvRound(r.x), cvRound(r.y), std::max(1, cvRound(r.width)), std::max(1, cvRound(r.height)));
+}
+
+cv::Rect2d centredBox(double cx, double cy, cv::Size2d size) {
+  return cv::Rect2d(cx - size.width / 2, cy - size.height / 2, size.width, size.height);
+}
+
+// Fill the pixels outside the mask with the mean of those inside, so that the edge check sees the object's
+// own edges and not the arbitrary colour of a transparent background.
+cv::Mat flattenOutsideMask(const cv::Mat &gray, const cv::Mat &mask) {
+  if (mask.empty()) return gray;
+  cv::Mat out = gray.clone();
+  const cv::Scalar inside = cv::mean(gray, mask);
+  cv::Mat outside;
+  cv::bitwise_not(mask, outside);
+  out.setTo(inside, outside);
+  return out;
+}
+
+}  // namespace
+
+struct Tracker::Impl {
+  // The model.
+  cv::Mat templateBgr, templateMask;
+  std::optional<BinMapper> mapper;
+  Histogram model;
+  EdgeVerifier verifier;
+
+  // The track.
+  KalmanFilter9 kalman;
+  TrackState state = TrackState::Searching;
+  int trackId = 0;
+  int coastFrames = 0;
+  int unverifiedFrames = 0;
+  double lastScale = 1.0;
+  bool lastVerified = false;
+
+  // Scratch buffers reused across frames.
+  cv::Mat bgr, small, gray;
+  BinImage bins, coarseBins;
+
+  bool hasTemplate() const { return !templateBgr.empty(); }
+  cv::Size2d windowSize(double scale) const {
+    return cv::Size2d(templateBgr.cols * scale, templateBgr.rows * scale);
+  }
+
+  void rebuildModel(const TrackerSettings &s) {
+    if (!mapper || mapper->space() != s.colorSpace || !(mapper->layout() == s.bins))
+      mapper.emplace(s.colorSpace, s.bins);
+    if (!hasTemplate()) return;
+    BinImage templateBins;
+    mapper->map(templateBgr, templateBins.bins);
+    model = histogramOf(templateBins, s.bins, cv::Rect(cv::Point(), templateBgr.size()), templateMask);
+    cv::Mat templateGray;
+    cv::cvtColor(templateBgr, templateGray, cv::COLOR_BGR2GRAY);
+    verifier.setTemplate(flattenOutsideMask(templateGray, templateMask));
+  }
+
+  // Bins of `rect` (clipped to the frame) at full resolution.
+  void mapRegion(const ImageSource &frame, const cv::Rect &rect, BinImage &out) {
+    const cv::Rect clipped = rect & cv::Rect(cv::Point(), frame.size());
+    frame.bgr(clipped, bgr);
+    mapper->map(bgr, out.bins);
+    out.origin = clipped.tl();
+  }
+
+  struct Detection {
+    cv::Rect2d box;
+    double score = 0;
+    bool verified = false;
+  };
+
+  // Window search over `region` at the given scale, then scale refinement and edge check.
+  std::optional<Detection> detectIn(const ImageSource &frame, const cv::Rect &region, double scale,
+                                    const TrackerSettings &s) {
+    const cv::Rect frameRect(cv::Point(), frame.size());
+    const cv::Size2d size = windowSize(scale);
+    const cv::Size window(std::max(1, cvRound(size.width)), std::max(1, cvRound(size.height)));
+    // Room for the scale refinement's largest window and its ring.
+    const int pad = cvRound(std::max(size.width, size.height) *
+                            (std::max(0.0, s.scale.maxFactor - 1.0) + s.scale.ringWidth * s.scale.maxFactor)) +
+                    2;
+    const cv::Rect searchRect = region & frameRect;
+    if (searchRect.width < window.width || searchRect.height < window.height) return std::nullopt;
+    const cv::Rect padded =
+        cv::Rect(searchRect.x - pad, searchRect.y - pad, searchRect.width + 2 * pad, searchRect.height + 2 * pad) &
+        frameRect;
+    mapRegion(frame, padded, bins);
+    const SearchResult found = searchWindow(bins, searchRect, window, model, s.weights);
+    if (!found.found || found.score < s.matchThreshold) return std::nullopt;
+    return finishDetection(frame, found.box, s);
+  }
+
+  // Full-frame search: a coarse pass on a reduced frame, then a full-resolution search around its best.
+  std::optional<Detection> detectEverywhere(const ImageSource &frame, double scale, const TrackerSettings &s) {
+    const cv::Size frameSize = frame.size();
+    const cv::Size2d size = windowSize(scale);
+    if (size.width > frameSize.width || size.height > frameSize.height) return std::nullopt;
+    const int factor = std::max(1, static_cast<int>(std::min(size.width, size.height) / kCoarseWindowSide));
+    if (factor == 1) return detectIn(frame, cv::Rect(cv::Point(), frameSize), scale, s);
+
+    frame.bgr(cv::Rect(cv::Point(), frameSize), bgr);
+    // Nearest-neighbour: a histogram only needs a fair sample of the pixels, not a filtered image.
+    cv::resize(bgr, small, cv::Size(frameSize.width / factor, frameSize.height / factor), 0, 0, cv::INTER_NEAREST);
+    mapper->map(small, coarseBins.bins);
+    coarseBins.origin = cv::Point();
+    const cv::Size coarseWindow(std::max(1, cvRound(size.width / factor)), std::max(1, cvRound(size.height / factor)));
+    const SearchResult coarse = searchWindow(coarseBins, cv::Rect(cv::Point(), small.size()), coarseWindow, model,
+                                             s.weights);
+    if (!coarse.found) return std::nullopt;
+    const cv::Rect around(coarse.box.x * factor - 2 * factor, coarse.box.y * factor - 2 * factor,
+                          cvRound(size.width) + 4 * factor, cvRound(size.height) + 4 * factor);
+    return detectIn(frame, around, scale, s);
+  }
+
+  Detection finishDetection(const ImageSource &frame, const cv::Rect &found, const TrackerSettings &s) {
+    Detection d;
+    const ScaleResult refined = refineScale(bins, found, model, s.weights, s.scale);
+    d.box = refined.box;
+    d.score = refined.match;
+    d.verified = verify(frame, roundRect(d.box), s);
+    return d;
+  }
+
+  bool verify(const ImageSource &frame, const cv::Rect &box, const TrackerSettings &s) {
+    if (s.verify == VerifyMode::None) return true;
+    const cv::Rect inside = box & cv::Rect(cv::Point(), frame.size());
+    if (inside.area() <= 0) return false;
+    frame.bgr(inside, bgr);
+    cv::cvtColor(bgr, gray, cv::COLOR_BGR2GRAY);
+    if (!templateMask.empty()) {
+      cv::Mat mask;
+      cv::resize(templateMask, mask, gray.size(), 0, 0, cv::INTER_NEAREST);
+      gray = flattenOutsideMask(gray, mask);
+    }
+    return verifier.verify(verifier.signature(gray), s.verify, s.verifyTolerance);
+  }
+
+  void startTrack(const Detection &d, const TrackerSettings &s) {
+    kalman.setParams(s.kalman);
+    kalman.init(d.box.x + d.box.width / 2, d.box.y + d.box.height / 2, d.box.width / templateBgr.cols);
+    ++trackId;
+    state = TrackState::Tracking;
+    coastFrames = 0;
+    unverifiedFrames = 0;
+  }
+
+  void updateTrack(const Detection &d) {
+    kalman.correct(d.box.x + d.box.width / 2, d.box.y + d.box.height / 2, d.box.width / templateBgr.cols);
+    state = TrackState::Tracking;
+    coastFrames = 0;
+  }
+
+  // The search region around the prediction: the window grown by the margin on each side and by three
+  // standard deviations of the predicted position.
+  cv::Rect predictionRegion(const TrackerSettings &s) const {
+    const cv::Size2d size = windowSize(kalman.scale());
+    const double growX = s.searchMargin * size.width / 2 + 3 * kalman.stdX();
+    const double growY = s.searchMargin * size.height / 2 + 3 * kalman.stdY();
+    return roundRect(cv::Rect2d(kalman.x() - size.width / 2 - growX, kalman.y() - size.height / 2 - growY,
+                                size.width + 2 * growX, size.height + 2 * growY));
+  }
+};
+
+Tracker::Tracker(const TrackerSettings &settings) : settings_(settings), impl_(std::make_unique<Impl>()) {
+  impl_->kalman.setParams(settings_.kalman);
+  impl_->rebuildModel(settings_);
+}
+
+Tracker::~Tracker() = default;
+
+void Tracker::setSettings(const TrackerSettings &settings) {
+  const bool modelChanged = settings.colorSpace != settings_.colorSpace || !(settings.bins == settings_.bins);
+  settings_ = settings;
+  impl_->kalman.setParams(settings_.kalman);
+  if (modelChanged) impl_->rebuildModel(settings_);
+}
+
+void Tracker::setTemplate(const cv::Mat &bgr, const cv::Mat &mask) {
+  if (bgr.empty() || bgr.type() != CV_8UC3) throw TrackerError("the template must be a non-empty 8-bit colour image");
+  if (!mask.empty() && (mask.size() != bgr.size() || mask.type() != CV_8UC1))
+    throw TrackerError("the template mask must be 8-bit, one channel, the template's size");
+  if (!mask.empty() && cv::countNonZero(mask) == 0) throw TrackerError("the template mask selects no pixel");
+  impl_->templateBgr = bgr.clone();
+  impl_->templateMask = mask.empty() ? cv::Mat() : mask.clone();
+  impl_->rebuildModel(settings_);
+  reset();
+  impl_->lastScale = 1.0;
+}
+
+void Tracker::setTemplateFromBox(const ImageSource &frame, const cv::Rect &box) {
+  const cv::Rect frameRect(cv::Point(), frame.size());
+  if (box.width <= 0 || box.height <= 0)
+    throw TrackerError("the box " + std::to_string(box.width) + "x" + std::to_string(box.height) + " is empty");
+  if ((box & frameRect) != box)
+    throw TrackerError("the box " + std::to_string(box.x) + "," + std::to_string(box.y) + "," +
+                       std::to_string(box.width) + "," + std::to_string(box.height) + " does not lie inside the " +
+                       std::to_string(frameRect.width) + "x" + std::to_string(frameRect.height) + " frame");
+  cv::Mat bgr;
+  frame.bgr(box, bgr);
+  setTemplate(bgr);
+  Impl::Detection start;
+  start.box = box;
+  start.verified = true;
+  impl_->startTrack(start, settings_);
+  // The first process() call predicts one frame ahead; start from zero motion at the box.
+}
+
+bool Tracker::hasTemplate() const { return impl_->hasTemplate(); }
+
+cv::Size Tracker::templateSize() const { return impl_->templateBgr.size(); }
+
+void Tracker::reset() {
+  impl_->state = TrackState::Searching;
+  impl_->coastFrames = 0;
+  impl_->unverifiedFrames = 0;
+  impl_->lastScale = impl_->kalman.initialised() ? impl_->kalman.scale() : 1.0;
+  impl_->kalman = KalmanFilter9(settings_.kalman);
+}
+
+TrackOutput Tracker::process(const ImageSource &frame, double dt) {
+  Impl &m = *impl_;
+  TrackOutput out;
+  if (!m.hasTemplate()) return out;
+  const cv::Size frameSize = frame.size();
+  if (m.templateBgr.cols > frameSize.width || m.templateBgr.rows > frameSize.height)
+    throw TrackerError("the template (" + std::to_string(m.templateBgr.cols) + "x" +
+                       std::to_string(m.templateBgr.rows) + ") is larger than the frame (" +
+                       std::to_string(frameSize.width) + "x" + std::to_string(frameSize.height) + ")");
+
+  const TrackerSettings &s = settings_;
+  // A lost track is reported for one frame; the frame after it searches again.
+  if (m.state == TrackState::Lost) m.state = TrackState::Searching;
+
+  std::optional<Impl::Detection> detection;
+  if (m.state == TrackState::Tracking || m.state == TrackState::Coasting) {
+    m.kalman.predict(dt);
+    // Keep the predicted scale sane: the window must fit in the frame.
+    const double maxScale = std::min(static_cast<double>(frameSize.width) / m.templateBgr.cols,
+                                     static_cast<double>(frameSize.height) / m.templateBgr.rows);
+    const double scale = std::clamp(m.kalman.scale(), 0.1, maxScale);
+    out.searchRegion = m.predictionRegion(s) & cv::Rect(cv::Point(), frameSize);
+    detection = m.detectIn(frame, out.searchRegion, scale, s);
+    // A colour-only track may be a same-colour decoy: look over the whole frame now and then for a verified
+    // target and move to it (a new track, since it is another object).
+    bool switched = false;
+    if (detection && !detection->verified && s.verify != VerifyMode::None &&
+        ++m.unverifiedFrames % kUnverifiedGlobalSearchPeriod == 0) {
+      const auto global = m.detectEverywhere(frame, scale, s);
+      if (global && global->verified) {
+        m.startTrack(*global, s);
+        out.searchRegion = cv::Rect(cv::Point(), frameSize);
+        out.score = global->score;
+        m.lastVerified = true;
+        switched = true;
+      }
+    }
+    if (!switched && detection) {
+      if (detection->verified) m.unverifiedFrames = 0;
+      m.updateTrack(*detection);
+      out.score = detection->score;
+      m.lastVerified = detection->verified;
+    } else if (!switched) {
+      ++m.coastFrames;
+      m.state = m.coastFrames > s.maxCoastFrames ? TrackState::Lost : TrackState::Coasting;
+    }
+  } else {
+    out.searchRegion = cv::Rect(cv::Point(), frameSize);
+    detection = m.detectEverywhere(frame, m.lastScale, s);
+    if (detection) {
+      m.startTrack(*detection, s);
+      out.score = detection->score;
+      m.lastVerified = detection->verified;
+    }
+  }
+
+  out.state = m.state;
+  out.id = m.trackId;
+  if (m.state == TrackState::Tracking || m.state == TrackState::Coasting) {
+    out.hasBox = true;
+    const double scale = m.kalman.scale();
+    out.box = centredBox(m.kalman.x(), m.kalman.y(), m.windowSize(scale));
+    out.scale = scale;
+    out.vx = m.kalman.vx();
+    out.vy = m.kalman.vy();
+    out.verified = m.state == TrackState::Tracking && m.lastVerified;
+    m.lastScale = scale;
+  } else if (m.state == TrackState::Lost) {
+    m.lastScale = std::clamp(m.kalman.scale(), 0.1, 10.0);
+  }
+  return out;
+}
+
+void loadTemplate(const std::string &path, cv::Mat &bgr, cv::Mat &mask) {
+  cv::Mat image;
+  try {
+    image = cv::imread(path, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception &e) {
+    throw TrackerError("cannot read the template image \"" + path + "\": " + e.what());
+  }
+  if (image.empty())
+    throw TrackerError("cannot read the template image \"" + path + "\" (missing, unreadable or not PNG/JPEG)");
+  if (image.depth() == CV_16U) image.convertTo(image, CV_8U, 1.0 / 257);
+  mask.release();
+  switch (image.channels()) {
+    case 1:
+      cv::cvtColor(image, bgr, cv::COLOR_GRAY2BGR);
+      break;
+    case 3:
+      bgr = image;
+      break;
+    case 4: {
+      cv::cvtColor(image, bgr, cv::COLOR_BGRA2BGR);
+      cv::extractChannel(image, mask, 3);
+      cv::threshold(mask, mask, 127, 255, cv::THRESH_BINARY);
+      if (cv::countNonZero(mask) == 0) throw TrackerError("the template image \"" + path + "\" is fully transparent");
+      break;
+    }
+    default:
+      throw TrackerError("the template image \"" + path + "\" has an unsupported number of channels");
+  }
+}
+
+}  // namespace colortrack

@@ -1,0 +1,54 @@
+// Read access to a mapped GstVideoFrame for the tracker: converts only the rectangles the tracker asks for.
+#pragma once
+
+#include <gst/video/video.h>
+
+#include <opencv2/core.hpp>
+
+#include "colortrack/image_source.hpp"
+
+namespace colortrack {
+
+// The caps formats the element accepts, as a caps-string list.
+#define COLORTRACK_VIDEO_FORMATS "{ BGR, RGB, BGRx, RGBx, xBGR, xRGB, BGRA, RGBA, ARGB, ABGR, I420, NV12, YUY2 }"
+
+// True for the formats FrameView and the overlay understand.
+bool isSupportedFormat(GstVideoFormat format);
+
+// Byte offsets of B, G, R (and the fourth, alpha/padding byte, or -1) inside one pixel of a packed RGB
+// format, and the pixel size. Taken from GstVideoFormatInfo, so one code path covers the whole family.
+struct PackedLayout {
+  int pixelBytes = 0;
+  int blue = 0, green = 0, red = 0;
+  int filler = -1;
+};
+PackedLayout packedLayout(const GstVideoFormatInfo *finfo);
+
+// A plane of the frame as a cv::Mat header over the mapped memory, with the plane's real stride.
+// `type` gives the element type (CV_8UC1, CV_8UC2 for NV12's UV, CV_8UC4 for YUY2 macro-pixels ...).
+cv::Mat planeMat(const GstVideoFrame *frame, int plane, cv::Size size, int type);
+
+// ImageSource over a mapped frame. YUV formats are converted with OpenCV's fixed BT.601 limited-range
+// matrix (what cv::cvtColor implements), whatever the caps' colorimetry says: the tracker compares colours
+// against a template taken through the same path, so a consistent matrix matters more than the exact one.
+// (A template loaded from a file is RGB, so a BT.709 stream shifts hues slightly; the V weight absorbs it.)
+class FrameView : public ImageSource {
+ public:
+  // `frame` must stay mapped for the lifetime of the view.
+  explicit FrameView(const GstVideoFrame *frame);
+
+  cv::Size size() const override { return size_; }
+  void bgr(const cv::Rect &rect, cv::Mat &out) const override;
+
+ private:
+  void packedToBgr(const cv::Rect &rect, cv::Mat &out) const;
+  void planarToBgr(const cv::Rect &rect, cv::Mat &out) const;  // I420 and NV12
+  void yuy2ToBgr(const cv::Rect &rect, cv::Mat &out) const;
+
+  const GstVideoFrame *frame_;
+  GstVideoFormat format_;
+  cv::Size size_;
+  PackedLayout packed_;
+};
+
+}  // namespace colortrack

@@ -1,0 +1,160 @@
+// The whole tracker on the synthetic scene, without GStreamer: accuracy under motion, rotation, scale and
+// lighting; decoys; loss and re-acquisition; bad input.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "colortrack/tracker.hpp"
+#include "scene.hpp"
+
+using namespace colortrack;
+using colortrack::scene::Scene;
+using colortrack::scene::SceneConfig;
+using colortrack::scene::SceneFrame;
+
+namespace {
+
+SceneConfig hardConfig() {
+  SceneConfig c;
+  c.frameSize = {640, 480};
+  c.frames = 200;
+  c.rotationDegrees = 90;
+  c.scaleMin = 0.7;
+  c.scaleMax = 1.4;
+  c.brightness = 0.4;
+  return c;
+}
+
+}  // namespace
+
+TEST(Tracker, FollowsMovingTurningScalingObjectUnderLightChanges) {
+  const Scene scene(hardConfig());
+  Tracker tracker;
+  const SceneFrame first = scene.render(0);
+  tracker.setTemplateFromBox(MatImageSource(first.bgr), scene.initBox());
+  double iouSum = 0;
+  int tracked = 0;
+  double widthAtSmall = 0, widthAtLarge = 0, gtSmall = 1e9, gtLarge = 0;
+  for (int i = 0; i < scene.config().frames; ++i) {
+    const SceneFrame f = scene.render(i);
+    const TrackOutput out = tracker.process(MatImageSource(f.bgr));
+    iouSum += out.hasBox ? scene::iou(out.box, f.box) : 0;
+    tracked += out.state == TrackState::Tracking;
+    if (out.hasBox && f.objectScale < gtSmall) gtSmall = f.objectScale, widthAtSmall = out.box.width;
+    if (out.hasBox && f.objectScale > gtLarge) gtLarge = f.objectScale, widthAtLarge = out.box.width;
+  }
+  const double meanIou = iouSum / scene.config().frames;
+  std::printf("mean IoU %.3f, tracked %d/%d, box width %.1f at scale %.2f, %.1f at scale %.2f\n", meanIou, tracked,
+              scene.config().frames, widthAtSmall, gtSmall, widthAtLarge, gtLarge);
+  EXPECT_GE(meanIou, 0.6);
+  EXPECT_GE(tracked, scene.config().frames * 9 / 10);
+  // Dynamic scale: the box is clearly larger where the object is (gtLarge/gtSmall = 2 here).
+  EXPECT_GT(widthAtLarge / widthAtSmall, 1.5);
+}
+
+TEST(Tracker, StartsTrackingAtTheInitBox) {
+  const Scene scene(hardConfig());
+  Tracker tracker;
+  const SceneFrame first = scene.render(0);
+  tracker.setTemplateFromBox(MatImageSource(first.bgr), scene.initBox());
+  const TrackOutput out = tracker.process(MatImageSource(first.bgr));
+  EXPECT_EQ(out.state, TrackState::Tracking);
+  EXPECT_EQ(out.id, 1);
+  EXPECT_GT(scene::iou(out.box, first.box), 0.8);
+  EXPECT_TRUE(out.verified);
+}
+
+TEST(Tracker, AcquiresFromTemplateImageAnywhere) {
+  SceneConfig c = hardConfig();
+  c.rotationDegrees = 0;
+  c.scaleMin = c.scaleMax = 1.0;
+  const Scene scene(c);
+  cv::Mat bgr, mask;
+  scene.objectTemplate(bgr, mask);
+  Tracker tracker;
+  tracker.setTemplate(bgr, mask);
+  TrackOutput out;
+  for (int i = 0; i < 3; ++i) out = tracker.process(MatImageSource(scene.render(i).bgr));
+  EXPECT_EQ(out.state, TrackState::Tracking);
+  EXPECT_GT(scene::iou(out.box, scene.render(2).box), 0.6);
+  EXPECT_TRUE(out.verified);
+}
+
+TEST(Tracker, DecoyIsReportedUnverified) {
+  SceneConfig c = hardConfig();
+  c.decoy = true;
+  c.leaveFrom = 0;  // the object is away: only the same-colour, untextured decoy is in view
+  c.leaveTo = 60;
+  const Scene scene(c);
+  cv::Mat bgr, mask;
+  scene.objectTemplate(bgr, mask);
+  Tracker tracker;
+  tracker.setTemplate(bgr, mask);
+  int onDecoy = 0, verifiedOnDecoy = 0;
+  for (int i = 0; i < 40; ++i) {
+    const SceneFrame f = scene.render(i);
+    const TrackOutput out = tracker.process(MatImageSource(f.bgr));
+    if (out.hasBox && out.state == TrackState::Tracking && scene::iou(out.box, f.decoyBox) > 0.3) {
+      ++onDecoy;
+      verifiedOnDecoy += out.verified;
+    }
+  }
+  EXPECT_GT(onDecoy, 0) << "the decoy has the object's colour; colour alone should find it";
+  EXPECT_EQ(verifiedOnDecoy, 0);
+}
+
+TEST(Tracker, LosesAndReacquiresElsewhere) {
+  SceneConfig c = hardConfig();
+  c.leaveFrom = 60;
+  c.leaveTo = 90;
+  const Scene scene(c);
+  Tracker tracker;
+  tracker.setTemplateFromBox(MatImageSource(scene.render(0).bgr), scene.initBox());
+  bool sawLost = false;
+  int reacquiredAt = -1;
+  for (int i = 0; i < 130 && reacquiredAt < 0; ++i) {
+    const SceneFrame f = scene.render(i);
+    const TrackOutput out = tracker.process(MatImageSource(f.bgr));
+    if (i >= 60 && i < 90) {
+      EXPECT_FALSE(out.state == TrackState::Tracking) << "frame " << i << ": tracking an object that is not there";
+      sawLost |= out.state == TrackState::Lost || out.state == TrackState::Searching;
+    }
+    if (i >= 90 && out.state == TrackState::Tracking && scene::iou(out.box, f.box) > 0.5) reacquiredAt = i;
+  }
+  EXPECT_TRUE(sawLost);
+  ASSERT_GE(reacquiredAt, 90);
+  EXPECT_LE(reacquiredAt, 95);
+}
+
+TEST(Tracker, RejectsTemplateLargerThanFrame) {
+  Tracker tracker;
+  tracker.setTemplate(cv::Mat(100, 100, CV_8UC3, cv::Scalar(0, 0, 255)));
+  const cv::Mat small(80, 120, CV_8UC3, cv::Scalar(0, 0, 0));
+  EXPECT_THROW(tracker.process(MatImageSource(small)), TrackerError);
+}
+
+TEST(Tracker, RejectsBadBoxes) {
+  Tracker tracker;
+  const cv::Mat frame(120, 160, CV_8UC3, cv::Scalar(0, 0, 255));
+  EXPECT_THROW(tracker.setTemplateFromBox(MatImageSource(frame), cv::Rect(150, 10, 20, 20)), TrackerError);
+  EXPECT_THROW(tracker.setTemplateFromBox(MatImageSource(frame), cv::Rect(10, 10, 0, 20)), TrackerError);
+  EXPECT_FALSE(tracker.hasTemplate());
+}
+
+TEST(Tracker, NoTemplateMeansNoTrack) {
+  Tracker tracker;
+  const cv::Mat frame(120, 160, CV_8UC3, cv::Scalar(0, 0, 255));
+  const TrackOutput out = tracker.process(MatImageSource(frame));
+  EXPECT_FALSE(out.hasBox);
+  EXPECT_EQ(out.state, TrackState::Searching);
+}
+
+TEST(Tracker, MissingTemplateFileNamesThePath) {
+  cv::Mat bgr, mask;
+  try {
+    loadTemplate("/nonexistent/dir/ball.png", bgr, mask);
+    FAIL() << "no error";
+  } catch (const TrackerError &e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/dir/ball.png"), std::string::npos);
+  }
+}
