@@ -1,1 +1,145 @@
-// (being written)
+#include "frame-view.h"
+
+#include <opencv2/imgproc.hpp>
+
+namespace colortrack {
+
+bool isSupportedFormat(GstVideoFormat format) {
+  switch (format) {
+    case GST_VIDEO_FORMAT_BGR:
+    case GST_VIDEO_FORMAT_RGB:
+    case GST_VIDEO_FORMAT_BGRx:
+    case GST_VIDEO_FORMAT_RGBx:
+    case GST_VIDEO_FORMAT_xBGR:
+    case GST_VIDEO_FORMAT_xRGB:
+    case GST_VIDEO_FORMAT_BGRA:
+    case GST_VIDEO_FORMAT_RGBA:
+    case GST_VIDEO_FORMAT_ARGB:
+    case GST_VIDEO_FORMAT_ABGR:
+    case GST_VIDEO_FORMAT_I420:
+    case GST_VIDEO_FORMAT_NV12:
+    case GST_VIDEO_FORMAT_YUY2:
+      return true;
+    default:
+      return false;
+  }
+}
+
+PackedLayout packedLayout(const GstVideoFormatInfo *finfo) {
+  PackedLayout layout;
+  layout.pixelBytes = GST_VIDEO_FORMAT_INFO_PSTRIDE(finfo, 0);
+  layout.red = GST_VIDEO_FORMAT_INFO_POFFSET(finfo, GST_VIDEO_COMP_R);
+  layout.green = GST_VIDEO_FORMAT_INFO_POFFSET(finfo, GST_VIDEO_COMP_G);
+  layout.blue = GST_VIDEO_FORMAT_INFO_POFFSET(finfo, GST_VIDEO_COMP_B);
+  // Byte offsets of a 4-byte pixel sum to 0+1+2+3: the one left over is the alpha or padding byte.
+  if (layout.pixelBytes == 4) layout.filler = 6 - layout.red - layout.green - layout.blue;
+  return layout;
+}
+
+cv::Mat planeMat(const GstVideoFrame *frame, int plane, cv::Size size, int type) {
+  return cv::Mat(size, type, GST_VIDEO_FRAME_PLANE_DATA(frame, plane),
+                 static_cast<size_t>(GST_VIDEO_FRAME_PLANE_STRIDE(frame, plane)));
+}
+
+FrameView::FrameView(const GstVideoFrame *frame)
+    : frame_(frame),
+      format_(GST_VIDEO_FRAME_FORMAT(frame)),
+      size_(GST_VIDEO_FRAME_WIDTH(frame), GST_VIDEO_FRAME_HEIGHT(frame)) {
+  if (GST_VIDEO_FORMAT_INFO_IS_RGB(frame->info.finfo)) packed_ = packedLayout(frame->info.finfo);
+}
+
+void FrameView::bgr(const cv::Rect &rect, cv::Mat &out) const {
+  CV_Assert((rect & cv::Rect(cv::Point(), size_)) == rect && !rect.empty());
+  switch (format_) {
+    case GST_VIDEO_FORMAT_I420:
+    case GST_VIDEO_FORMAT_NV12:
+      planarToBgr(rect, out);
+      break;
+    case GST_VIDEO_FORMAT_YUY2:
+      yuy2ToBgr(rect, out);
+      break;
+    default:
+      packedToBgr(rect, out);
+      break;
+  }
+}
+
+void FrameView::packedToBgr(const cv::Rect &rect, cv::Mat &out) const {
+  const PackedLayout &p = packed_;
+  const cv::Mat roi = planeMat(frame_, 0, size_, CV_8UC(p.pixelBytes))(rect);
+  const bool bgrOrder = p.blue == 0 && p.green == 1 && p.red == 2;
+  const bool rgbOrder = p.red == 0 && p.green == 1 && p.blue == 2;
+  if (p.pixelBytes == 3 && bgrOrder) {
+    roi.copyTo(out);
+  } else if (p.pixelBytes == 3 && rgbOrder) {
+    cv::cvtColor(roi, out, cv::COLOR_RGB2BGR);
+  } else if (bgrOrder) {
+    cv::cvtColor(roi, out, cv::COLOR_BGRA2BGR);
+  } else if (rgbOrder) {
+    cv::cvtColor(roi, out, cv::COLOR_RGBA2BGR);
+  } else {
+    // xRGB, ARGB, xBGR, ABGR: the padding byte comes first, which cvtColor has no code for.
+    out.create(rect.size(), CV_8UC3);
+    const int fromTo[] = {p.blue, 0, p.green, 1, p.red, 2};
+    cv::mixChannels(&roi, 1, &out, 1, fromTo, 3);
+  }
+}
+
+void FrameView::planarToBgr(const cv::Rect &rect, cv::Mat &out) const {
+  // One chroma sample covers 2x2 luma pixels: convert the rect grown to even coordinates, then crop.
+  const int x0 = rect.x & ~1, y0 = rect.y & ~1;
+  const int x1 = (rect.x + rect.width + 1) & ~1, y1 = (rect.y + rect.height + 1) & ~1;
+  const int w = x1 - x0, h = y1 - y0;
+  const cv::Size chromaSize((size_.width + 1) / 2, (size_.height + 1) / 2);
+
+  // cvtColor wants the planes back to back: h luma rows, then the chroma (U then V, or interleaved UV).
+  cv::Mat yuv(h + h / 2, w, CV_8UC1);
+  cv::Mat lumaOut = yuv.rowRange(0, h);
+  // With an odd frame width or height the grown rect can run one pixel past the luma plane (never past
+  // the chroma plane, which is ceil(size / 2)): replicate the last row/column into it.
+  const cv::Rect lumaInside = cv::Rect(x0, y0, w, h) & cv::Rect(cv::Point(), size_);
+  const cv::Mat luma = planeMat(frame_, 0, size_, CV_8UC1);
+  cv::copyMakeBorder(luma(lumaInside), lumaOut, 0, h - lumaInside.height, 0, w - lumaInside.width,
+                     cv::BORDER_REPLICATE);
+
+  const cv::Rect chromaRect(x0 / 2, y0 / 2, w / 2, h / 2);
+  uchar *chromaOut = yuv.ptr(h);
+  int code;
+  if (format_ == GST_VIDEO_FORMAT_I420) {
+    const size_t planeBytes = chromaRect.area();
+    cv::Mat uOut(chromaRect.size(), CV_8UC1, chromaOut);
+    cv::Mat vOut(chromaRect.size(), CV_8UC1, chromaOut + planeBytes);
+    planeMat(frame_, 1, chromaSize, CV_8UC1)(chromaRect).copyTo(uOut);
+    planeMat(frame_, 2, chromaSize, CV_8UC1)(chromaRect).copyTo(vOut);
+    code = cv::COLOR_YUV2BGR_I420;
+  } else {
+    cv::Mat uvOut(chromaRect.size(), CV_8UC2, chromaOut);
+    planeMat(frame_, 1, chromaSize, CV_8UC2)(chromaRect).copyTo(uvOut);
+    code = cv::COLOR_YUV2BGR_NV12;
+  }
+
+  if (w == rect.width && h == rect.height) {
+    cv::cvtColor(yuv, out, code);
+  } else {
+    cv::Mat full;
+    cv::cvtColor(yuv, full, code);
+    full(cv::Rect(rect.x - x0, rect.y - y0, rect.width, rect.height)).copyTo(out);
+  }
+}
+
+void FrameView::yuy2ToBgr(const cv::Rect &rect, cv::Mat &out) const {
+  // Y0 U Y1 V macro-pixels: only x needs aligning. The plane always holds ceil(width / 2) macro-pixels,
+  // so the grown rect stays inside the mapped memory even for an odd width.
+  const int x0 = rect.x & ~1, x1 = (rect.x + rect.width + 1) & ~1;
+  const cv::Size planeSize(2 * ((size_.width + 1) / 2), size_.height);
+  const cv::Mat roi = planeMat(frame_, 0, planeSize, CV_8UC2)(cv::Rect(x0, rect.y, x1 - x0, rect.height));
+  if (x0 == rect.x && x1 - x0 == rect.width) {
+    cv::cvtColor(roi, out, cv::COLOR_YUV2BGR_YUY2);
+  } else {
+    cv::Mat full;
+    cv::cvtColor(roi, full, cv::COLOR_YUV2BGR_YUY2);
+    full(cv::Rect(rect.x - x0, 0, rect.width, rect.height)).copyTo(out);
+  }
+}
+
+}  // namespace colortrack

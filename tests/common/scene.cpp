@@ -1,1 +1,331 @@
-// (being written)
+#include "scene.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <opencv2/imgproc.hpp>
+
+namespace colortrack::scene {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr int kEdgeGap = 4;           // px kept free between the object's reach, the decoy and the frame edge
+// Uniform rather than Gaussian noise: filling a 1080p frame with normal deviates takes ~30 ms, uniform ~3 ms.
+// Both ranges are powers of two, which OpenCV's byte RNG fills ~10x faster than other ranges.
+constexpr int kFrameNoise = 4;       // per-frame sensor noise, +- grey levels
+constexpr int kBackgroundGrain = 8;  // fixed fine grain of the background, +- grey levels
+
+// Enlarge a coarse random grid smoothly: bicubic by a small factor, then bilinear to full size (a bicubic
+// enlargement straight to 1080p is ~30x slower and looks the same).
+cv::Mat smoothEnlarge(const cv::Mat &coarse, int cell, cv::Size size) {
+  const int cubicFactor = std::min(cell, 8);
+  cv::Mat intermediate, full;
+  cv::resize(coarse, intermediate, cv::Size(), cubicFactor, cubicFactor, cv::INTER_CUBIC);
+  cv::resize(intermediate, full, cv::Size(coarse.cols * cell, coarse.rows * cell), 0, 0, cv::INTER_LINEAR);
+  // Skip the first cell, where the interpolation is one-sided.
+  return full(cv::Rect(cv::Point(cell, cell), size)).clone();
+}
+
+cv::Mat gridFor(cv::Size size, int cell, int type) {
+  return cv::Mat(cv::Size(size.width / cell + 3, size.height / cell + 3), type);
+}
+
+// Greens, blues and greys only: nothing in the orange/red family of the object.
+cv::Mat makeBackground(cv::Size size, cv::RNG &rng) {
+  constexpr int kCoarseCell = 80, kMediumCell = 20;
+  cv::Mat hsv = gridFor(size, kCoarseCell, CV_8UC3);
+  for (int y = 0; y < hsv.rows; ++y) {
+    for (int x = 0; x < hsv.cols; ++x) {
+      const int family = rng.uniform(0, 3);  // 0 green, 1 blue, 2 grey
+      const int hue = family == 0 ? rng.uniform(35, 80) : family == 1 ? rng.uniform(90, 120) : rng.uniform(0, 180);
+      const int sat = family == 2 ? rng.uniform(0, 25) : rng.uniform(50, 150);
+      hsv.at<cv::Vec3b>(y, x) = cv::Vec3b(hue, sat, rng.uniform(80, 190));
+    }
+  }
+  cv::Mat coarseBgr;
+  cv::cvtColor(hsv, coarseBgr, cv::COLOR_HSV2BGR);
+  // Everything stays in bytes: fresh frame-sized buffers are costly to touch, and float ones are 4x larger.
+  cv::Mat background = smoothEnlarge(coarseBgr, kCoarseCell, size);
+
+  // Medium-scale light/dark mottling (same on all channels, so it keeps the hue) plus fine grain, both
+  // stored offset by 128 and removed again in the weighted sums.
+  constexpr int kMottling = 25;
+  cv::Mat mottlingGrid = gridFor(size, kMediumCell, CV_8UC1);
+  rng.fill(mottlingGrid, cv::RNG::UNIFORM, 128 - kMottling, 128 + kMottling + 1);
+  const cv::Mat mottling = smoothEnlarge(mottlingGrid, kMediumCell, size);
+  cv::Mat mottling3;
+  cv::merge(std::array<cv::Mat, 3>{mottling, mottling, mottling}.data(), 3, mottling3);
+  cv::addWeighted(background, 1.0, mottling3, 1.0, -128, background);
+  cv::Mat grain(size, CV_8UC3);
+  rng.fill(grain, cv::RNG::UNIFORM, 0, 2 * kBackgroundGrain);
+  cv::addWeighted(background, 1.0, grain, 1.0, -(kBackgroundGrain - 0.5), background);
+  return background;
+}
+
+// Orange/red object: diagonal stripes in two tones plus blobs in two more, all in one hue family, so the
+// colour histogram is distinctive and the texture has many clear internal edges.
+void makeObject(cv::Size size, cv::RNG &rng, cv::Mat &texture, cv::Mat &mask) {
+  const cv::Scalar darkRed(25, 35, 150), lightOrange(45, 140, 235), deepRed(20, 20, 110),
+      paleOrange(80, 175, 245);
+  texture.create(size, CV_8UC3);
+  const double period = std::max(8.0, std::min(size.width, size.height) / 5.0);
+  const double angle = rng.uniform(0.0, kPi);
+  const double cosA = std::cos(angle), sinA = std::sin(angle);
+  for (int y = 0; y < size.height; ++y) {
+    auto *row = texture.ptr<cv::Vec3b>(y);
+    for (int x = 0; x < size.width; ++x) {
+      const double along = x * cosA + y * sinA;
+      const bool dark = std::fmod(along / period + 100.0, 1.0) < 0.5;
+      const cv::Scalar &c = dark ? darkRed : lightOrange;
+      row[x] = cv::Vec3b(static_cast<uchar>(c[0]), static_cast<uchar>(c[1]), static_cast<uchar>(c[2]));
+    }
+  }
+  const int minSide = std::min(size.width, size.height);
+  const int blobs = 5;
+  for (int i = 0; i < blobs; ++i) {
+    const cv::Point centre(rng.uniform(minSide / 6, size.width - minSide / 6),
+                           rng.uniform(minSide / 6, size.height - minSide / 6));
+    const cv::Size axes(rng.uniform(minSide / 14 + 1, minSide / 7 + 2), rng.uniform(minSide / 14 + 1, minSide / 7 + 2));
+    cv::ellipse(texture, centre, axes, rng.uniform(0.0, 180.0), 0, 360, i % 2 ? deepRed : paleOrange, cv::FILLED,
+                cv::LINE_AA);
+  }
+
+  // An ellipse inscribed in the box; drawn with 4 fractional bits so it is centred on the pixel grid exactly.
+  constexpr int kShift = 4, kOne = 1 << kShift;
+  mask = cv::Mat::zeros(size, CV_8UC1);
+  const cv::Point centre((size.width - 1) * kOne / 2, (size.height - 1) * kOne / 2);
+  const cv::Size axes(size.width * kOne / 2, size.height * kOne / 2);
+  cv::ellipse(mask, centre, axes, 0, 0, 360, cv::Scalar(255), cv::FILLED, cv::LINE_8, kShift);
+}
+
+// The motion script: everything about the object that depends on the frame index, but not on pixels.
+struct Pose {
+  bool visible = true;
+  cv::Point2d centre;
+  double scale = 1.0;
+  double angleDeg = 0;
+  double brightness = 1.0;
+};
+
+// Where the object may go and where the decoy sits; derived from the configuration only.
+struct Layout {
+  cv::Point2d pathCentre;   // centre of the Lissajous figure
+  cv::Point2d amplitude;    // its half extent in x and y
+  cv::Rect2d centreRange;   // allowed object centres (keeps the object inside and clear of the decoy)
+  cv::Rect2d decoyBox;      // empty when there is no decoy
+};
+
+Layout makeLayout(const SceneConfig &cfg) {
+  Layout layout;
+  const double frameW = cfg.frameSize.width, frameH = cfg.frameSize.height;
+  const double decoySide = std::max(cfg.objectSize.width, cfg.objectSize.height);
+  double usableW = frameW, usableH = frameH;
+  if (cfg.decoy) {
+    // The decoy takes the far corner of a strip along the longer side; the object never enters that strip.
+    layout.decoyBox = cv::Rect2d(frameW - kEdgeGap - decoySide, frameH - kEdgeGap - decoySide, decoySide, decoySide);
+    if (frameW >= frameH)
+      usableW -= decoySide + 2 * kEdgeGap;
+    else
+      usableH -= decoySide + 2 * kEdgeGap;
+  }
+  // A rotated ellipse never reaches further from its centre than its larger semi-axis.
+  const double reach = decoySide / 2 * std::max(cfg.scaleMax, cfg.scaleMin) + kEdgeGap;
+  double x0 = reach, x1 = usableW - reach, y0 = reach, y1 = usableH - reach;
+  // Too small a frame to keep the object inside: pin it to the middle of the usable area.
+  if (x1 < x0) x0 = x1 = usableW / 2;
+  if (y1 < y0) y0 = y1 = usableH / 2;
+  layout.centreRange = cv::Rect2d(x0, y0, x1 - x0, y1 - y0);
+  layout.pathCentre = cv::Point2d((x0 + x1) / 2, (y0 + y1) / 2);
+  // speed 1 sweeps 60% of the room; larger speeds are capped at the room available.
+  constexpr double kBaseAmplitude = 0.6;
+  layout.amplitude = cv::Point2d(std::min(1.0, kBaseAmplitude * cfg.speed) * (x1 - x0) / 2,
+                                 std::min(1.0, kBaseAmplitude * cfg.speed) * (y1 - y0) / 2);
+  return layout;
+}
+
+double phaseOf(const SceneConfig &cfg, double index) {
+  const int frames = std::max(1, cfg.frames);
+  return 2 * kPi * index / frames;
+}
+
+// Figure-of-eight offset from the path centre at frame `index`.
+cv::Point2d lissajous(const SceneConfig &cfg, const Layout &layout, double index) {
+  const double phase = phaseOf(cfg, index);
+  return cv::Point2d(layout.amplitude.x * std::sin(phase), layout.amplitude.y * std::sin(2 * phase));
+}
+
+bool hasLeft(const SceneConfig &cfg) { return cfg.leaveFrom >= 0; }
+bool hasReturned(const SceneConfig &cfg, int index) {
+  return hasLeft(cfg) && cfg.leaveTo > cfg.leaveFrom && index >= cfg.leaveTo;
+}
+
+// After its absence the object follows a displaced copy of the path: a different path centre, a time shift
+// and/or a point reflection, picked to make it come back as far as possible from where it left.
+struct ReturnPath {
+  cv::Point2d centre;
+  double timeShift = 0;
+  double mirror = 1;
+};
+
+ReturnPath chooseReturnPath(const SceneConfig &cfg, const Layout &layout) {
+  const int lastSeen = std::max(0, cfg.leaveFrom - 1);
+  const cv::Point2d leftAt = layout.pathCentre + lissajous(cfg, layout, lastSeen);
+  const cv::Rect2d &r = layout.centreRange;
+  const double cx0 = r.x + layout.amplitude.x, cx1 = r.x + r.width - layout.amplitude.x;
+  const double cy0 = r.y + layout.amplitude.y, cy1 = r.y + r.height - layout.amplitude.y;
+  const std::array<cv::Point2d, 5> centres = {layout.pathCentre, cv::Point2d(cx0, cy0), cv::Point2d(cx1, cy0),
+                                              cv::Point2d(cx0, cy1), cv::Point2d(cx1, cy1)};
+  const int frames = std::max(1, cfg.frames);
+  ReturnPath best;
+  double bestDistance = -1;
+  for (const cv::Point2d &centre : centres) {
+    for (int eighth = 0; eighth < 8; ++eighth) {
+      for (double mirror : {1.0, -1.0}) {
+        const double shift = frames * eighth / 8.0;
+        const cv::Point2d back = centre + mirror * lissajous(cfg, layout, cfg.leaveTo + shift);
+        const double distance = cv::norm(back - leftAt);
+        if (distance > bestDistance + 1e-9) {
+          bestDistance = distance;
+          best = ReturnPath{centre, shift, mirror};
+        }
+      }
+    }
+  }
+  return best;
+}
+
+Pose poseAt(const SceneConfig &cfg, const Layout &layout, int index) {
+  Pose pose;
+  const double phase = phaseOf(cfg, index);
+  pose.visible = !(hasLeft(cfg) && index >= cfg.leaveFrom && !hasReturned(cfg, index));
+  if (hasReturned(cfg, index)) {
+    const ReturnPath path = chooseReturnPath(cfg, layout);
+    pose.centre = path.centre + path.mirror * lissajous(cfg, layout, index + path.timeShift);
+  } else {
+    pose.centre = layout.pathCentre + lissajous(cfg, layout, index);
+  }
+
+  // Scale: a sine between scaleMin and scaleMax, phased so frame 0 is at scale 1 whenever 1 is in range.
+  const double lo = std::min(cfg.scaleMin, cfg.scaleMax), hi = std::max(cfg.scaleMin, cfg.scaleMax);
+  const double mid = (lo + hi) / 2, half = (hi - lo) / 2;
+  const double startOffset = half > 0 ? std::asin(std::clamp((std::clamp(1.0, lo, hi) - mid) / half, -1.0, 1.0)) : 0;
+  pose.scale = mid + half * std::sin(phase + startOffset);
+  pose.angleDeg = cfg.rotationDegrees * (1 - std::cos(phase)) / 2;  // 0 -> rotationDegrees -> 0
+  pose.brightness = 1 + cfg.brightness * std::sin(2 * phase);
+  return pose;
+}
+
+// The object warped into the frame: the pixels it covers (ROI) with its texture and binary mask.
+struct Placement {
+  cv::Rect roi;
+  cv::Mat texture, mask;
+  cv::Rect2d box;
+};
+
+Placement placeObject(const cv::Mat &texture, const cv::Mat &mask, const Pose &pose, cv::Size frameSize) {
+  Placement out;
+  const cv::Point2f templateCentre((texture.cols - 1) / 2.0f, (texture.rows - 1) / 2.0f);
+  cv::Mat affine = cv::getRotationMatrix2D(templateCentre, pose.angleDeg, pose.scale);
+  affine.at<double>(0, 2) += pose.centre.x - templateCentre.x;
+  affine.at<double>(1, 2) += pose.centre.y - templateCentre.y;
+
+  // Only the pixels the warped template can reach are computed.
+  std::vector<cv::Point2f> corners = {{-0.5f, -0.5f},
+                                      {texture.cols - 0.5f, -0.5f},
+                                      {-0.5f, texture.rows - 0.5f},
+                                      {texture.cols - 0.5f, texture.rows - 0.5f}};
+  cv::transform(corners, corners, affine);
+  const cv::Rect reach = cv::boundingRect(corners) + cv::Size(2, 2) - cv::Point(1, 1);
+  out.roi = reach & cv::Rect(cv::Point(0, 0), frameSize);
+  if (out.roi.empty()) return out;
+
+  affine.at<double>(0, 2) -= out.roi.x;
+  affine.at<double>(1, 2) -= out.roi.y;
+  cv::warpAffine(texture, out.texture, affine, out.roi.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+  cv::Mat softMask;
+  cv::warpAffine(mask, softMask, affine, out.roi.size(), cv::INTER_LINEAR, cv::BORDER_CONSTANT, cv::Scalar(0));
+  cv::threshold(softMask, out.mask, 127, 255, cv::THRESH_BINARY);
+  const cv::Rect pixels = cv::boundingRect(out.mask);
+  if (!pixels.empty()) out.box = cv::Rect2d(pixels + out.roi.tl());
+  return out;
+}
+
+}  // namespace
+
+Scene::Scene(const SceneConfig &config) : config_(config) {
+  config_.frameSize.width = std::max(1, config_.frameSize.width);
+  config_.frameSize.height = std::max(1, config_.frameSize.height);
+  config_.objectSize.width = std::max(4, config_.objectSize.width);
+  config_.objectSize.height = std::max(4, config_.objectSize.height);
+
+  cv::RNG backgroundRng(config_.seed * 2654435761u + 1);
+  background_ = makeBackground(config_.frameSize, backgroundRng);
+  cv::RNG objectRng(config_.seed * 2246822519u + 7);
+  makeObject(config_.objectSize, objectRng, objectTexture_, objectMask_);
+  meanColor_ = cv::mean(objectTexture_, objectMask_);
+}
+
+SceneFrame Scene::render(int index) const {
+  const Layout layout = makeLayout(config_);
+  const Pose pose = poseAt(config_, layout, index);
+
+  SceneFrame frame;
+  frame.objectScale = pose.scale;
+  frame.decoyBox = layout.decoyBox;
+  cv::Mat canvas = background_.clone();
+
+  if (config_.decoy) {
+    const cv::Point2d c = (layout.decoyBox.tl() + layout.decoyBox.br()) / 2 - cv::Point2d(0.5, 0.5);
+    constexpr int kShift = 4;
+    constexpr double kOne = 1 << kShift;
+    cv::circle(canvas, cv::Point(cvRound(c.x * kOne), cvRound(c.y * kOne)), cvRound(layout.decoyBox.width / 2 * kOne),
+               meanColor_, cv::FILLED, cv::LINE_AA, kShift);
+  }
+
+  frame.objectVisible = false;
+  if (pose.visible) {
+    const Placement placed = placeObject(objectTexture_, objectMask_, pose, config_.frameSize);
+    if (!placed.box.empty()) {
+      placed.texture.copyTo(canvas(placed.roi), placed.mask);
+      frame.box = placed.box;
+      frame.objectVisible = true;
+    }
+  }
+
+  // Lighting and sensor noise in one pass: out = canvas * brightness + noise, saturated,
+  // with the noise centred on zero.
+  cv::RNG noiseRng(config_.seed * 2654435761u ^ (static_cast<std::uint32_t>(index) * 40503u + 12345u));
+  cv::Mat noise(config_.frameSize, CV_8UC3);
+  noiseRng.fill(noise, cv::RNG::UNIFORM, 0, 2 * kFrameNoise);
+  cv::addWeighted(canvas, pose.brightness, noise, 1.0, -(kFrameNoise - 0.5), frame.bgr);
+  return frame;
+}
+
+void Scene::objectTemplate(cv::Mat &bgr, cv::Mat &mask) const {
+  bgr = cv::Mat::zeros(objectTexture_.size(), CV_8UC3);
+  objectTexture_.copyTo(bgr, objectMask_);
+  mask = objectMask_.clone();
+}
+
+cv::Rect Scene::initBox() const {
+  const Layout layout = makeLayout(config_);
+  const Placement placed = placeObject(objectTexture_, objectMask_, poseAt(config_, layout, 0), config_.frameSize);
+  const cv::Rect2d &b = placed.box;
+  return cv::Rect(cvRound(b.x), cvRound(b.y), cvRound(b.width), cvRound(b.height));
+}
+
+double iou(const cv::Rect2d &a, const cv::Rect2d &b) {
+  if (a.empty() || b.empty()) return 0;
+  const double inter = (a & b).area();
+  const double uni = a.area() + b.area() - inter;
+  return uni > 0 ? inter / uni : 0;
+}
+
+double centreError(const cv::Rect2d &a, const cv::Rect2d &b) {
+  const cv::Point2d ca(a.x + a.width / 2, a.y + a.height / 2), cb(b.x + b.width / 2, b.y + b.height / 2);
+  return cv::norm(ca - cb);
+}
+
+}  // namespace colortrack::scene

@@ -22,7 +22,7 @@ struct TrackerSettings {
   ColorSpace colorSpace = ColorSpace::Hsv;
   BinLayout bins;
   ChannelWeights weights;
-  double matchThreshold = 0.5;  // minimum match value of a detection
+  double matchThreshold = 0.25;  // minimum match value of a detection (a product of three intersections)
   ScaleParams scale;
   double searchMargin = 2.0;  // search region = box grown by margin * size + 3 sigma of the prediction
   KalmanParams kalman;

@@ -1,0 +1,63 @@
+// Drawing the track on a mapped frame, in place, in every supported format.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <gst/video/video.h>
+
+#include <opencv2/core.hpp>
+
+namespace colortrack {
+
+struct Rgb {
+  std::uint8_t r = 0, g = 0, b = 0;
+};
+
+namespace colors {
+constexpr Rgb kRed{255, 0, 0};        // colour-only match; the trail
+constexpr Rgb kGreen{0, 255, 0};      // match confirmed by the edge check
+constexpr Rgb kOrange{255, 160, 0};   // coasting on the prediction
+constexpr Rgb kBlue{0, 96, 255};      // search window
+}  // namespace colors
+
+// BT.601 limited range ("studio swing"), the matrix of SD video and of OpenCV's YUV conversions.
+struct Yuv {
+  std::uint8_t y = 16, u = 128, v = 128;
+};
+Yuv rgbToYuv601(const Rgb &rgb);
+
+// Draws on every plane of a frame with the colour translated to each plane's layout. Coordinates are luma
+// (frame) pixels; subsampled planes get them divided by their subsampling.
+class FrameCanvas {
+ public:
+  // `frame` must be mapped for writing and stay mapped while the canvas is used.
+  explicit FrameCanvas(GstVideoFrame *frame);
+
+  // Outline of `box` drawn inside it, `thickness` pixels wide. On chroma-subsampled formats the box is
+  // first grown to even coordinates and the thickness to an even number, so that every chroma sample
+  // under the outline is entirely covered and the colour is exact, not blended with the background.
+  void boxOutline(const cv::Rect &box, const Rgb &colour, int thickness);
+  void polyline(const std::vector<cv::Point> &points, const Rgb &colour, int thickness);
+  // Light text with a dark outline, readable on any background. Luma only on YUV formats.
+  void label(const std::string &text, cv::Point origin);
+
+ private:
+  enum class PlaneKind { Packed, Luma, ChromaU, ChromaV, ChromaUV, Yuy2 };
+  struct Plane {
+    cv::Mat mat;
+    PlaneKind kind;
+    int xDiv, yDiv;  // frame coordinates / plane coordinates
+  };
+  cv::Scalar colourFor(const Plane &plane, const Rgb &colour) const;
+  void fillRect(const cv::Rect &rect, const Rgb &colour);
+
+  std::vector<Plane> planes_;
+  cv::Mat textTarget_;         // packed plane, luma plane, or YUY2 viewed as (Y, chroma) pairs
+  bool textOnYuv_ = false;
+  int align_ = 1;              // coordinate alignment that keeps chroma samples whole
+  cv::Size size_;
+  int packedBytes_ = 0, red_ = 0, green_ = 0, blue_ = 0, filler_ = -1;
+};
+
+}  // namespace colortrack

@@ -1,0 +1,172 @@
+// RGB -> HSV, bin lookup tables and the vectorised whole-image mapping against the exact per-pixel path.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include <opencv2/core.hpp>
+
+#include "colortrack/color.hpp"
+
+using namespace colortrack;
+
+namespace {
+
+void expectHsv(std::uint8_t r, std::uint8_t g, std::uint8_t b, double h, double s, double v) {
+  const Hsv hsv = rgbToHsv(r, g, b);
+  SCOPED_TRACE(testing::Message() << "rgb " << int(r) << "," << int(g) << "," << int(b));
+  EXPECT_NEAR(hsv.h, h, 1e-9);
+  EXPECT_NEAR(hsv.s, s, 1e-9);
+  EXPECT_NEAR(hsv.v, v, 1e-9);
+}
+
+// Bin distance; hue is circular, so its last and first bins are neighbours.
+int binDistance(int a, int b, int n, bool circular) {
+  const int d = std::abs(a - b);
+  return circular ? std::min(d, n - d) : d;
+}
+
+}  // namespace
+
+TEST(RgbToHsv, PrimaryAndGreyColours) {
+  expectHsv(255, 0, 0, 0, 1, 1);
+  expectHsv(0, 255, 0, 120, 1, 1);
+  expectHsv(0, 0, 255, 240, 1, 1);
+  expectHsv(255, 255, 0, 60, 1, 1);
+  expectHsv(0, 255, 255, 180, 1, 1);
+  expectHsv(255, 0, 255, 300, 1, 1);
+  expectHsv(0, 0, 0, 0, 0, 0);
+  expectHsv(255, 255, 255, 0, 0, 1);
+  expectHsv(128, 128, 128, 0, 0, 128 / 255.0);
+}
+
+TEST(RgbToHsv, MidColoursByHand) {
+  // (200,100,50): max r=200, min b=50, diff 150; h = 60*(100-50)/150 = 20; s = 150/200; v = 200/255.
+  expectHsv(200, 100, 50, 20, 0.75, 200 / 255.0);
+  // (50,100,200): max b, h = 60*((50-100)/150 + 4) = 220.
+  expectHsv(50, 100, 200, 220, 0.75, 200 / 255.0);
+  // (200,50,100): max r, g < b: h = 60*(50-100)/150 + 360 = 340.
+  expectHsv(200, 50, 100, 340, 0.75, 200 / 255.0);
+  // (100,200,50): max g, h = 60*((50-100)/150 + 2) = 100.
+  expectHsv(100, 200, 50, 100, 0.75, 200 / 255.0);
+}
+
+TEST(RgbToHsv, HueAlwaysBelow360) {
+  // The largest hue comes from r max, b just above g.
+  const Hsv hsv = rgbToHsv(255, 0, 1);
+  EXPECT_LT(hsv.h, 360.0);
+  EXPECT_GT(hsv.h, 359.0);
+}
+
+TEST(BinMapper, BinOfFollowsTheFormulas) {
+  const BinMapper hsv(ColorSpace::Hsv, BinLayout{{16, 16, 8}});
+  // Red: h 0 -> bin 0; s 1 and v 1 clamp into the last bins.
+  EXPECT_EQ(hsv.binOf(255, 0, 0), (std::array<int, 3>{0, 15, 7}));
+  // Blue: h 240 -> floor(240/360*16) = 10.
+  EXPECT_EQ(hsv.binOf(0, 0, 255), (std::array<int, 3>{10, 15, 7}));
+  // (200,100,50): h 20 -> floor(0.888) = 0; s 0.75 -> 12; v 200/255 -> floor(6.27) = 6.
+  EXPECT_EQ(hsv.binOf(200, 100, 50), (std::array<int, 3>{0, 12, 6}));
+  // (200,50,100): h 340 -> floor(15.11) = 15.
+  EXPECT_EQ(hsv.binOf(200, 50, 100)[0], 15);
+  EXPECT_EQ(hsv.binOf(0, 0, 0), (std::array<int, 3>{0, 0, 0}));
+
+  const BinMapper rgb(ColorSpace::Rgb, BinLayout{{4, 2, 256}});
+  // r 64/255*4 = 1.004 -> 1; g 127/255*2 = 0.996 -> 0; b: 256 bins, one per value.
+  EXPECT_EQ(rgb.binOf(64, 127, 77), (std::array<int, 3>{1, 0, 77}));
+  EXPECT_EQ(rgb.binOf(255, 255, 255), (std::array<int, 3>{3, 1, 255}));
+  EXPECT_EQ(rgb.binOf(63, 128, 0), (std::array<int, 3>{0, 1, 0}));
+}
+
+TEST(BinMapper, RejectsBadLayouts) {
+  EXPECT_THROW(BinMapper(ColorSpace::Hsv, BinLayout{{0, 16, 8}}), std::invalid_argument);
+  EXPECT_THROW(BinMapper(ColorSpace::Rgb, BinLayout{{16, 257, 8}}), std::invalid_argument);
+}
+
+TEST(BinMapper, RgbMapIsExactAndInRgbOrder) {
+  cv::RNG rng(7);
+  cv::Mat bgr(37, 53, CV_8UC3);
+  rng.fill(bgr, cv::RNG::UNIFORM, 0, 256);
+  const BinMapper mapper(ColorSpace::Rgb, BinLayout{{5, 16, 3}});
+  cv::Mat out;
+  mapper.map(bgr, out);
+  ASSERT_EQ(out.type(), CV_8UC3);
+  ASSERT_EQ(out.size(), bgr.size());
+  for (int y = 0; y < bgr.rows; ++y)
+    for (int x = 0; x < bgr.cols; ++x) {
+      const cv::Vec3b p = bgr.at<cv::Vec3b>(y, x);
+      const auto expected = mapper.binOf(p[2], p[1], p[0]);
+      const cv::Vec3b got = out.at<cv::Vec3b>(y, x);
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(got[c], expected[c]) << "at " << x << "," << y << " channel " << c;
+    }
+}
+
+// The 8-bit HSV_FULL path quantises hue to 256 steps and saturation to 255, so a pixel right at a bin
+// border can land in the neighbouring bin; the exact V channel must always agree.
+TEST(BinMapper, HsvMapAgreesWithExactBins) {
+  for (const BinLayout layout : {BinLayout{{16, 16, 8}}, BinLayout{{36, 10, 4}}, BinLayout{{256, 256, 256}}}) {
+    cv::RNG rng(11);
+    cv::Mat bgr(200, 301, CV_8UC3);  // odd width: no reliance on aligned rows
+    rng.fill(bgr, cv::RNG::UNIFORM, 0, 256);
+    const BinMapper mapper(ColorSpace::Hsv, layout);
+    cv::Mat out;
+    mapper.map(bgr, out);
+    ASSERT_EQ(out.size(), bgr.size());
+    long pixels = 0, allAgree = 0, worst = 0;
+    std::array<long, 3> agree{};
+    for (int y = 0; y < bgr.rows; ++y)
+      for (int x = 0; x < bgr.cols; ++x) {
+        const cv::Vec3b p = bgr.at<cv::Vec3b>(y, x);
+        const auto exact = mapper.binOf(p[2], p[1], p[0]);
+        const cv::Vec3b got = out.at<cv::Vec3b>(y, x);
+        bool same = true;
+        for (int c = 0; c < 3; ++c) {
+          const int d = binDistance(got[c], exact[c], layout.bins[c], c == 0);
+          worst = std::max<long>(worst, d);
+          agree[c] += d == 0;
+          same = same && d == 0;
+        }
+        allAgree += same;
+        ++pixels;
+      }
+    std::printf("bins %d,%d,%d: all three bins agree on %.3f%% of pixels (H %.3f%%, S %.3f%%, V %.3f%%)\n",
+                layout.bins[0], layout.bins[1], layout.bins[2], 100.0 * allAgree / pixels, 100.0 * agree[0] / pixels,
+                100.0 * agree[1] / pixels, 100.0 * agree[2] / pixels);
+    EXPECT_EQ(agree[2], pixels);
+    EXPECT_LE(worst, 1);
+    if (layout.bins[0] <= 36) EXPECT_GE(double(allAgree) / pixels, 0.99);
+  }
+}
+
+TEST(BinMapper, HsvMapHandlesGreysAndRoiViews) {
+  const BinMapper mapper(ColorSpace::Hsv, BinLayout{{16, 16, 8}});
+  cv::Mat big(10, 20, CV_8UC3, cv::Scalar(0, 0, 255));  // red, BGR
+  cv::Mat roi = big(cv::Rect(3, 2, 7, 5));              // non-continuous view
+  roi.setTo(cv::Scalar(90, 90, 90));                    // grey
+  cv::Mat out;
+  mapper.map(roi, out);
+  ASSERT_EQ(out.size(), roi.size());
+  const auto grey = mapper.binOf(90, 90, 90);
+  for (int y = 0; y < out.rows; ++y)
+    for (int x = 0; x < out.cols; ++x)
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(out.at<cv::Vec3b>(y, x)[c], grey[c]);
+}
+
+TEST(BinMapper, FullHdTiming) {
+  cv::RNG rng(3);
+  cv::Mat bgr(1080, 1920, CV_8UC3);
+  rng.fill(bgr, cv::RNG::UNIFORM, 0, 256);
+  const BinMapper mapper(ColorSpace::Hsv, BinLayout{{16, 16, 8}});
+  const int threads = cv::getNumThreads();
+  cv::setNumThreads(1);
+  cv::Mat out;
+  mapper.map(bgr, out);  // warm-up (allocation)
+  const int runs = 20;
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < runs; ++i) mapper.map(bgr, out);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / runs;
+  cv::setNumThreads(threads);
+  std::printf("BinMapper::map (HSV) on 1920x1080, one thread: %.2f ms per frame\n", ms);
+  EXPECT_EQ(out.size(), bgr.size());
+}
