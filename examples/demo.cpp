@@ -37,7 +37,7 @@ class DemoError : public std::runtime_error {
 struct Options {
   std::string input;  // empty: the synthetic scene
   std::string output = "colortrack-demo.avi";
-  int frames = -1;    // -1: kSceneFrames for the scene, until EOS for real inputs
+  int frames = -1;  // -1: kSceneFrames for the scene, until EOS for real inputs
   std::string initBox;
   std::string templatePath;
 };
@@ -71,7 +71,8 @@ Options parseOptions(int &argc, char **&argv) {
   gchar **positional = nullptr;
   gint frames = -1;
   const GOptionEntry entries[] = {
-      {"output", 'o', 0, G_OPTION_ARG_FILENAME, &output, "Output AVI file (default colortrack-demo.avi)", "FILE"},
+      {"output", 'o', 0, G_OPTION_ARG_FILENAME, &output, "Output AVI file (default colortrack-demo.avi)",
+       "FILE"},
       {"frames", 'n', 0, G_OPTION_ARG_INT, &frames,
        "Frames to process (default 300 for the scene, until end of stream otherwise)", "N"},
       {"init-box", 'b', 0, G_OPTION_ARG_STRING, &initBox, "Object box in the first frame", "X,Y,W,H"},
@@ -81,10 +82,11 @@ Options parseOptions(int &argc, char **&argv) {
       {nullptr, 0, 0, G_OPTION_ARG_NONE, nullptr, nullptr, nullptr}};
 
   GOptionContext *context = g_option_context_new("[/dev/videoN | FILE | URI]");
-  g_option_context_set_summary(context,
-                               "Tracks a coloured object with the colortrack element and writes the annotated "
-                               "video.\nWithout an input, runs the built-in synthetic scene and reports the "
-                               "accuracy against its ground truth.");
+  g_option_context_set_summary(
+      context,
+      "Tracks a coloured object with the colortrack element and writes the annotated "
+      "video.\nWithout an input, runs the built-in synthetic scene and reports the "
+      "accuracy against its ground truth.");
   g_option_context_add_main_entries(context, entries, nullptr);
   g_option_context_add_group(context, gst_init_get_option_group());  // also initialises GStreamer
   GError *error = nullptr;
@@ -112,8 +114,9 @@ Options parseOptions(int &argc, char **&argv) {
   if (options.frames == 0 || options.frames < -1) throw DemoError("--frames must be a positive number");
   if (options.output.empty()) throw DemoError("--output must name a file");
   if (inputKind(options.input) != InputKind::Scene && options.initBox.empty() && options.templatePath.empty())
-    throw DemoError("a camera, file or stream input needs --init-box X,Y,W,H or --template FILE to know what "
-                    "to track");
+    throw DemoError(
+        "a camera, file or stream input needs --init-box X,Y,W,H or --template FILE to know what "
+        "to track");
   return options;
 }
 
@@ -121,17 +124,20 @@ GstElement *makeElement(const char *factory) {
   GstElement *element = gst_element_factory_make(factory, nullptr);
   if (element) return element;
   if (std::string(factory) == kElementName)
-    throw DemoError("the colortrack plugin was not found. Set GST_PLUGIN_PATH to the build's gst/ directory "
-                    "(e.g. GST_PLUGIN_PATH=$PWD/build/gst) or run the demo through `meson devenv -C build`.");
+    throw DemoError(
+        "the colortrack plugin was not found. Set GST_PLUGIN_PATH to the build's gst/ directory "
+        "(e.g. GST_PLUGIN_PATH=$PWD/build/gst) or run the demo through `meson devenv -C build`.");
   throw DemoError(std::string("GStreamer element '") + factory +
-                  "' not found: install the plugin package that provides it (gst-inspect-1.0 " + factory + ")");
+                  "' not found: install the plugin package that provides it (gst-inspect-1.0 " + factory +
+                  ")");
 }
 
 // Sets a property from its string form (flags like "box+trail", boxes like "1,2,3,4"), checking that the
 // element has it, so a mismatching plugin build is reported instead of silently ignored.
 void setProperty(GstElement *element, const char *name, const std::string &value) {
   if (!g_object_class_find_property(G_OBJECT_GET_CLASS(element), name))
-    throw DemoError(std::string("element '") + GST_ELEMENT_NAME(element) + "' has no property '" + name + "'");
+    throw DemoError(std::string("element '") + GST_ELEMENT_NAME(element) + "' has no property '" + name +
+                    "'");
   gst_util_set_object_arg(G_OBJECT(element), name, value.c_str());
 }
 
@@ -249,7 +255,8 @@ GstPadProbeReturn onTrackedBuffer(GstPad * /*pad*/, GstPadProbeInfo *info, gpoin
   FrameResult result;
   gpointer iter = nullptr;
   const GQuark roiType = g_quark_from_static_string(kElementName);
-  while (GstMeta *meta = gst_buffer_iterate_meta_filtered(buffer, &iter, GST_VIDEO_REGION_OF_INTEREST_META_API_TYPE)) {
+  while (GstMeta *meta =
+             gst_buffer_iterate_meta_filtered(buffer, &iter, GST_VIDEO_REGION_OF_INTEREST_META_API_TYPE)) {
     auto *roi = reinterpret_cast<GstVideoRegionOfInterestMeta *>(meta);
     if (roi->roi_type != roiType) continue;
     result.hasBox = true;
@@ -261,7 +268,8 @@ GstPadProbeReturn onTrackedBuffer(GstPad * /*pad*/, GstPadProbeInfo *info, gpoin
   // The scene's frames carry their index in the timestamp; real inputs are numbered in arrival order.
   int frameIndex = index;
   if (run.kind == InputKind::Scene && GST_BUFFER_PTS_IS_VALID(buffer))
-    frameIndex = static_cast<int>(gst_util_uint64_scale_round(GST_BUFFER_PTS(buffer), kFpsNum, GST_SECOND * kFpsDen));
+    frameIndex =
+        static_cast<int>(gst_util_uint64_scale_round(GST_BUFFER_PTS(buffer), kFpsNum, GST_SECOND * kFpsDen));
   run.results[frameIndex] = result;
   return GST_PAD_PROBE_OK;
 }
@@ -306,9 +314,9 @@ void onNoMorePads(GstElement * /*decodebin*/, gpointer userData) {
     linked = run.videoLinked;
   }
   if (!linked)
-    gst_element_post_message(run.pipeline,
-                             gst_message_new_application(GST_OBJECT(run.pipeline),
-                                                         gst_structure_new_empty("colortrack-demo-no-video")));
+    gst_element_post_message(
+        run.pipeline, gst_message_new_application(GST_OBJECT(run.pipeline),
+                                                  gst_structure_new_empty("colortrack-demo-no-video")));
 }
 
 gboolean onBusMessage(GstBus * /*bus*/, GstMessage *message, gpointer userData) {
@@ -351,6 +359,11 @@ gboolean onBusMessage(GstBus * /*bus*/, GstMessage *message, gpointer userData) 
     case GST_MESSAGE_ELEMENT: {
       const GstStructure *s = gst_message_get_structure(message);
       if (GST_MESSAGE_SRC(message) == GST_OBJECT(run.tracker) && gst_structure_has_name(s, kElementName)) {
+        // Frames past --frames still go through the element while EOS travels: they are not counted.
+        guint64 frame = 0;
+        if (run.frameLimit > 0 && gst_structure_get_uint64(s, "frame", &frame) &&
+            frame >= static_cast<guint64>(run.frameLimit))
+          break;
         ++run.messagesOnBus;
         if (stateOf(s) == "tracking") ++run.framesTrackedOnBus;
       }
@@ -488,9 +501,10 @@ int run(const Options &options) {
   gst_object_unref(bus);
   const guint sigintWatch = g_unix_signal_add(SIGINT, onInterrupt, &run);
 
-  g_print("input : %s\n", run.kind == InputKind::Scene ? "synthetic scene (640x480, turning, scaling, lighting "
-                                                        "+-40%, decoy)"
-                                                      : options.input.c_str());
+  g_print("input : %s\n", run.kind == InputKind::Scene
+                              ? "synthetic scene (640x480, turning, scaling, lighting "
+                                "+-40%, decoy)"
+                              : options.input.c_str());
   if (gst_element_set_state(pipeline, GST_STATE_PLAYING) == GST_STATE_CHANGE_FAILURE) {
     // The reason is on the bus as an error message; let the watch collect it.
     run.failed = true;
@@ -515,7 +529,8 @@ int run(const Options &options) {
   std::lock_guard<std::mutex> lock(run.mutex);
   g_print("frames processed : %d\n", run.framesProcessed);
   if (run.messagesOnBus == 0) g_printerr("warning: the element posted no \"colortrack\" messages\n");
-  g_print("frames tracked   : %d (state tracking, from the element's bus messages)\n", run.framesTrackedOnBus);
+  g_print("frames tracked   : %d (state tracking, from the element's bus messages)\n",
+          run.framesTrackedOnBus);
   if (run.kind == InputKind::Scene) {
     // IoU over the frames where the object is in view; a frame without a box counts as 0.
     double iouSum = 0;
@@ -528,7 +543,8 @@ int run(const Options &options) {
       if (found->second.hasBox) iouSum += scene::iou(found->second.box, truth.box);
     }
     if (visible > 0)
-      g_print("mean IoU         : %.3f (over %d frames with the object in view)\n", iouSum / visible, visible);
+      g_print("mean IoU         : %.3f (over %d frames with the object in view)\n", iouSum / visible,
+              visible);
     else
       g_print("mean IoU         : n/a (no frame with the object in view was processed)\n");
   } else {

@@ -1,1 +1,970 @@
-// (being written)
+/**
+ * SECTION:element-colortrack
+ * @title: colortrack
+ *
+ * Tracks one coloured object through a video by modified colour indexing: a template gives per-channel
+ * histograms (HSV by default), a window slides over a search region around the Kalman prediction and the
+ * best histogram intersection wins; its size is refined between #GstColorTrack:scale-min and
+ * #GstColorTrack:scale-max, and an edge density/energy check marks same-coloured but untextured look-alikes
+ * as unverified.
+ *
+ * The template comes from an image file (#GstColorTrack:template-location, PNG alpha selects the object's
+ * pixels) or from a box of the next frame (#GstColorTrack:init-box). Without either, buffers pass through
+ * untouched and a warning is posted once.
+ *
+ * Every buffer with a track carries a #GstVideoRegionOfInterestMeta of type "colortrack" whose id is the
+ * track id and whose "colortrack" parameter structure holds state (string), score, scale, vx, vy (double)
+ * and verified (boolean). The meta follows the frame through videoconvert and videoscale, which scales its
+ * box (GStreamer 1.22's transform of this meta keeps type, id and box but drops the parameter structure,
+ * so read the parameters before converting, or use the messages). With
+ * #GstColorTrack:post-messages, an element message "colortrack" is posted for every frame with timestamp,
+ * stream-time, running-time, duration, frame, state, x, y, width, height, score, verified and scale.
+ *
+ * The overlay (#GstColorTrack:draw) shows the box in red for a colour-only match, green when verified and
+ * orange while coasting on the prediction, the path of the box centre in red, the search window in blue
+ * and an "id score state" label. YUV input is read and drawn with the BT.601 matrix.
+ *
+ * ## Example launch lines
+ * |[
+ * gst-launch-1.0 v4l2src ! videoconvert ! colortrack template-location=ball.png ! videoconvert ! autovideosink
+ * ]| Tracks the object of ball.png in a camera stream and shows the overlay.
+ * |[
+ * gst-launch-1.0 filesrc location=clip.mp4 ! decodebin ! videoconvert ! \
+ *     colortrack init-box=120,80,64,64 post-messages=true draw=box+search-window ! \
+ *     videoconvert ! autovideosink
+ * ]| Takes the template from the box 120,80 64x64 of the first frame and posts one message per frame.
+ */
+
+#include "gstcolortrack.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "colortrack/settings.hpp"
+#include "colortrack/tracker.hpp"
+#include "frame-view.h"
+#include "overlay.h"
+
+GST_DEBUG_CATEGORY_STATIC(gst_color_track_debug);
+#define GST_CAT_DEFAULT gst_color_track_debug
+
+namespace {
+
+constexpr guint kDefaultDraw = GST_COLOR_TRACK_DRAW_BOX | GST_COLOR_TRACK_DRAW_TRAIL | GST_COLOR_TRACK_DRAW_LABEL;
+constexpr guint kDefaultTrailLength = 30;
+constexpr gboolean kDefaultPostMessages = FALSE;
+constexpr int kBoxThickness = 2;
+constexpr int kTrailThickness = 2;
+
+// A setting given as text: what the user wrote and, when it could not be parsed before streaming started,
+// why (reported as an element error at start).
+struct TextSetting {
+  std::string text;
+  std::string error;
+};
+
+// What the properties say. Written by set_property, read by the streaming thread as a snapshot; both under
+// GST_OBJECT_LOCK. Never touches the tracker.
+struct Settings {
+  GstColorTrackMode mode = GST_COLOR_TRACK_MODE_TEMPLATE;
+  colortrack::TrackerSettings tracker;
+  guint64 trackerGeneration = 0;  // bumped on every change of `tracker`
+  TextSetting bins, weights, initBox;
+  std::string templateLocation;
+  guint64 templateGeneration = 0;  // bumped when template-location changes
+  // A parsed init-box waiting for the next frame, and whether it was set while streaming (then a box that
+  // does not fit the frame is a warning, not an error).
+  std::optional<cv::Rect> pendingInitBox;
+  bool initBoxSetWhileStreaming = false;
+  guint draw = kDefaultDraw;
+  guint trailLength = kDefaultTrailLength;
+  bool postMessages = kDefaultPostMessages;
+  bool streaming = false;  // between start() and stop(): a bad value is then a warning and is not applied
+};
+
+// What the streaming thread owns (and start()/stop(), which never run concurrently with it).
+struct State {
+  std::unique_ptr<colortrack::Tracker> tracker;
+  guint64 appliedTrackerGeneration = 0;
+  guint64 appliedTemplateGeneration = 0;
+  std::string templateOrigin;  // "template-location 'x.png'" or "init-box '1,2,3,4'", for error messages
+  std::deque<cv::Point2d> trail;
+  int trailTrackId = 0;
+  guint64 frameCount = 0;
+  bool warnedNoTemplate = false;
+  bool capsChanged = false;
+  GstClockTime lastPts = GST_CLOCK_TIME_NONE;
+};
+
+}  // namespace
+
+struct _GstColorTrackPrivate {
+  Settings settings;
+  State state;
+  std::atomic<bool> resetRequested{false};
+};
+
+enum {
+  PROP_0,
+  PROP_MODE,
+  PROP_TEMPLATE_LOCATION,
+  PROP_INIT_BOX,
+  PROP_COLOR_SPACE,
+  PROP_BINS,
+  PROP_CHANNEL_WEIGHTS,
+  PROP_MATCH_THRESHOLD,
+  PROP_SCALE_MIN,
+  PROP_SCALE_MAX,
+  PROP_SCALE_STEP,
+  PROP_SEARCH_MARGIN,
+  PROP_PROCESS_NOISE,
+  PROP_MEASUREMENT_NOISE,
+  PROP_MAX_COAST_FRAMES,
+  PROP_VERIFY,
+  PROP_VERIFY_TOLERANCE,
+  PROP_DRAW,
+  PROP_TRAIL_LENGTH,
+  PROP_POST_MESSAGES,
+};
+
+enum { SIGNAL_RESET, LAST_SIGNAL };
+static guint gst_color_track_signals[LAST_SIGNAL] = {0};
+
+#define VIDEO_CAPS GST_VIDEO_CAPS_MAKE(COLORTRACK_VIDEO_FORMATS)
+
+static GstStaticPadTemplate sink_template =
+    GST_STATIC_PAD_TEMPLATE("sink", GST_PAD_SINK, GST_PAD_ALWAYS, GST_STATIC_CAPS(VIDEO_CAPS));
+static GstStaticPadTemplate src_template =
+    GST_STATIC_PAD_TEMPLATE("src", GST_PAD_SRC, GST_PAD_ALWAYS, GST_STATIC_CAPS(VIDEO_CAPS));
+
+#define gst_color_track_parent_class parent_class
+G_DEFINE_TYPE(GstColorTrack, gst_color_track, GST_TYPE_VIDEO_FILTER);
+GST_ELEMENT_REGISTER_DEFINE(colortrack, "colortrack", GST_RANK_NONE, GST_TYPE_COLOR_TRACK);
+
+// ---------------------------------------------------------------------------------------------------------
+// Enum and flags types
+
+GType gst_color_track_mode_get_type(void) {
+  static gsize type = 0;
+  static const GEnumValue values[] = {
+      {GST_COLOR_TRACK_MODE_TEMPLATE, "Track the object of a template (template-location or init-box)",
+       "template"},
+      {0, nullptr, nullptr},
+  };
+  if (g_once_init_enter(&type)) g_once_init_leave(&type, g_enum_register_static("GstColorTrackMode", values));
+  return type;
+}
+
+GType gst_color_track_color_space_get_type(void) {
+  static gsize type = 0;
+  static const GEnumValue values[] = {
+      {GST_COLOR_TRACK_COLOR_SPACE_RGB, "RGB histograms (original colour indexing)", "rgb"},
+      {GST_COLOR_TRACK_COLOR_SPACE_HSV, "HSV histograms (modified colour indexing, lighting-robust)", "hsv"},
+      {0, nullptr, nullptr},
+  };
+  if (g_once_init_enter(&type))
+    g_once_init_leave(&type, g_enum_register_static("GstColorTrackColorSpace", values));
+  return type;
+}
+
+GType gst_color_track_verify_get_type(void) {
+  static gsize type = 0;
+  static const GEnumValue values[] = {
+      {GST_COLOR_TRACK_VERIFY_NONE, "No check: every colour match is verified", "none"},
+      {GST_COLOR_TRACK_VERIFY_EDGE_DENSITY, "Edge density close to the template's", "edge-density"},
+      {GST_COLOR_TRACK_VERIFY_EDGE_ENERGY, "Edge energy close to the template's", "edge-energy"},
+      {GST_COLOR_TRACK_VERIFY_BOTH, "Edge density and energy both close to the template's", "both"},
+      {0, nullptr, nullptr},
+  };
+  if (g_once_init_enter(&type)) g_once_init_leave(&type, g_enum_register_static("GstColorTrackVerify", values));
+  return type;
+}
+
+GType gst_color_track_draw_get_type(void) {
+  static gsize type = 0;
+  static const GFlagsValue values[] = {
+      {GST_COLOR_TRACK_DRAW_BOX, "Box (red: colour match, green: verified, orange: coasting)", "box"},
+      {GST_COLOR_TRACK_DRAW_TRAIL, "Trail of the box centre (red)", "trail"},
+      {GST_COLOR_TRACK_DRAW_SEARCH_WINDOW, "Region searched this frame (blue)", "search-window"},
+      {GST_COLOR_TRACK_DRAW_LABEL, "Label \"id score state\"", "label"},
+      {0, nullptr, nullptr},
+  };
+  if (g_once_init_enter(&type)) g_once_init_leave(&type, g_flags_register_static("GstColorTrackDraw", values));
+  return type;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Helpers
+
+namespace {
+
+colortrack::ColorSpace toColorSpace(gint value) {
+  return value == GST_COLOR_TRACK_COLOR_SPACE_RGB ? colortrack::ColorSpace::Rgb : colortrack::ColorSpace::Hsv;
+}
+GstColorTrackColorSpace fromColorSpace(colortrack::ColorSpace space) {
+  return space == colortrack::ColorSpace::Rgb ? GST_COLOR_TRACK_COLOR_SPACE_RGB : GST_COLOR_TRACK_COLOR_SPACE_HSV;
+}
+
+colortrack::VerifyMode toVerifyMode(gint value) {
+  switch (value) {
+    case GST_COLOR_TRACK_VERIFY_NONE:
+      return colortrack::VerifyMode::None;
+    case GST_COLOR_TRACK_VERIFY_EDGE_DENSITY:
+      return colortrack::VerifyMode::EdgeDensity;
+    case GST_COLOR_TRACK_VERIFY_EDGE_ENERGY:
+      return colortrack::VerifyMode::EdgeEnergy;
+    default:
+      return colortrack::VerifyMode::Both;
+  }
+}
+GstColorTrackVerify fromVerifyMode(colortrack::VerifyMode mode) {
+  switch (mode) {
+    case colortrack::VerifyMode::None:
+      return GST_COLOR_TRACK_VERIFY_NONE;
+    case colortrack::VerifyMode::EdgeDensity:
+      return GST_COLOR_TRACK_VERIFY_EDGE_DENSITY;
+    case colortrack::VerifyMode::EdgeEnergy:
+      return GST_COLOR_TRACK_VERIFY_EDGE_ENERGY;
+    case colortrack::VerifyMode::Both:
+      break;
+  }
+  return GST_COLOR_TRACK_VERIFY_BOTH;
+}
+
+Settings &settingsOf(GstColorTrack *self) { return self->priv->settings; }
+State &stateOf(GstColorTrack *self) { return self->priv->state; }
+
+// Sets a text property. A value that does not parse is kept (and reported at start) before streaming; while
+// streaming it is rejected with a warning and the previous value stays. Posts outside the object lock, since
+// posting takes it.
+template <typename Parsed, typename Parse, typename Apply>
+void setTextProperty(GstColorTrack *self, const char *property, TextSetting Settings::*member, const GValue *value,
+                     Parse parse, Apply apply) {
+  const char *raw = g_value_get_string(value);
+  const std::string text = raw ? raw : "";
+  std::string error;
+  const std::optional<Parsed> parsed = parse(text, &error);
+
+  std::string kept;
+  bool rejected = false;
+  GST_OBJECT_LOCK(self);
+  Settings &s = settingsOf(self);
+  TextSetting &setting = s.*member;
+  if (parsed) {
+    setting.text = text;
+    setting.error.clear();
+    apply(s, *parsed);
+  } else if (!s.streaming) {
+    setting.text = text;
+    setting.error = error;
+  } else {
+    rejected = true;
+    kept = setting.text;
+  }
+  GST_OBJECT_UNLOCK(self);
+
+  if (rejected) {
+    GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS,
+                        ("Invalid value '%s' for property '%s': %s. Keeping '%s'.", text.c_str(), property,
+                         error.c_str(), kept.c_str()),
+                        (nullptr));
+  } else if (!parsed) {
+    GST_WARNING_OBJECT(self, "invalid %s '%s' (%s): the element will fail to start", property, text.c_str(),
+                       error.c_str());
+  }
+}
+
+// Reads a template file; on failure fills `why` and reports whether the file exists at all.
+bool loadTemplateFile(const std::string &path, cv::Mat &bgr, cv::Mat &mask, std::string &why, bool &missing) {
+  missing = !g_file_test(path.c_str(), G_FILE_TEST_EXISTS);
+  try {
+    colortrack::loadTemplate(path, bgr, mask);
+    return true;
+  } catch (const std::exception &e) {
+    why = e.what();
+    return false;
+  }
+}
+
+// Frame duration in nanoseconds, from the caps' frame rate or the buffer's duration (0 when unknown).
+GstClockTime frameDuration(const GstVideoInfo *info, GstBuffer *buffer) {
+  if (GST_VIDEO_INFO_FPS_N(info) > 0 && GST_VIDEO_INFO_FPS_D(info) > 0)
+    return gst_util_uint64_scale_int(GST_SECOND, GST_VIDEO_INFO_FPS_D(info), GST_VIDEO_INFO_FPS_N(info));
+  if (GST_BUFFER_DURATION_IS_VALID(buffer)) return GST_BUFFER_DURATION(buffer);
+  return 0;
+}
+
+// The filtered box rounded to whole pixels and clipped to the frame (empty when it lies outside).
+cv::Rect roundedClippedBox(const cv::Rect2d &box, cv::Size frame) {
+  const int x0 = static_cast<int>(std::lround(box.x)), y0 = static_cast<int>(std::lround(box.y));
+  const int x1 = static_cast<int>(std::lround(box.x + box.width));
+  const int y1 = static_cast<int>(std::lround(box.y + box.height));
+  return cv::Rect(cv::Point(x0, y0), cv::Point(x1, y1)) & cv::Rect(cv::Point(), frame);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------------------
+// GObject
+
+static void gst_color_track_reset_action(GstColorTrack *self) {
+  GST_DEBUG_OBJECT(self, "reset requested");
+  self->priv->resetRequested = true;
+}
+
+static void gst_color_track_set_property(GObject *object, guint prop_id, const GValue *value, GParamSpec *pspec) {
+  GstColorTrack *self = GST_COLOR_TRACK(object);
+
+  switch (prop_id) {
+    case PROP_BINS:
+      setTextProperty<colortrack::BinLayout>(
+          self, "bins", &Settings::bins, value,
+          [](const std::string &t, std::string *e) { return colortrack::parseBins(t, e); },
+          [](Settings &s, const colortrack::BinLayout &v) {
+            s.tracker.bins = v;
+            ++s.trackerGeneration;
+          });
+      return;
+    case PROP_CHANNEL_WEIGHTS:
+      setTextProperty<colortrack::ChannelWeights>(
+          self, "channel-weights", &Settings::weights, value,
+          [](const std::string &t, std::string *e) { return colortrack::parseWeights(t, e); },
+          [](Settings &s, const colortrack::ChannelWeights &v) {
+            s.tracker.weights = v;
+            ++s.trackerGeneration;
+          });
+      return;
+    case PROP_INIT_BOX: {
+      bool streaming;
+      GST_OBJECT_LOCK(self);
+      streaming = settingsOf(self).streaming;
+      GST_OBJECT_UNLOCK(self);
+      // An empty string only clears a box that has not been used yet.
+      const char *raw = g_value_get_string(value);
+      if (!raw || !*raw) {
+        GST_OBJECT_LOCK(self);
+        settingsOf(self).initBox = TextSetting{};
+        settingsOf(self).pendingInitBox.reset();
+        GST_OBJECT_UNLOCK(self);
+        return;
+      }
+      setTextProperty<cv::Rect>(
+          self, "init-box", &Settings::initBox, value,
+          [](const std::string &t, std::string *e) { return colortrack::parseBox(t, e); },
+          [streaming](Settings &s, const cv::Rect &box) {
+            s.pendingInitBox = box;
+            s.initBoxSetWhileStreaming = streaming;
+          });
+      return;
+    }
+    default:
+      break;
+  }
+
+  GST_OBJECT_LOCK(self);
+  Settings &s = settingsOf(self);
+  colortrack::TrackerSettings &t = s.tracker;
+  bool trackerChanged = true;
+  switch (prop_id) {
+    case PROP_MODE:
+      s.mode = static_cast<GstColorTrackMode>(g_value_get_enum(value));
+      trackerChanged = false;
+      break;
+    case PROP_TEMPLATE_LOCATION: {
+      const char *path = g_value_get_string(value);
+      s.templateLocation = path ? path : "";
+      ++s.templateGeneration;
+      trackerChanged = false;
+      break;
+    }
+    case PROP_COLOR_SPACE:
+      t.colorSpace = toColorSpace(g_value_get_enum(value));
+      break;
+    case PROP_MATCH_THRESHOLD:
+      t.matchThreshold = g_value_get_double(value);
+      break;
+    case PROP_SCALE_MIN:
+      t.scale.minFactor = g_value_get_double(value);
+      break;
+    case PROP_SCALE_MAX:
+      t.scale.maxFactor = g_value_get_double(value);
+      break;
+    case PROP_SCALE_STEP:
+      t.scale.step = g_value_get_double(value);
+      break;
+    case PROP_SEARCH_MARGIN:
+      t.searchMargin = g_value_get_double(value);
+      break;
+    case PROP_PROCESS_NOISE:
+      t.kalman.processNoise = g_value_get_double(value);
+      break;
+    case PROP_MEASUREMENT_NOISE:
+      t.kalman.measurementNoise = g_value_get_double(value);
+      break;
+    case PROP_MAX_COAST_FRAMES:
+      t.maxCoastFrames = g_value_get_int(value);
+      break;
+    case PROP_VERIFY:
+      t.verify = toVerifyMode(g_value_get_enum(value));
+      break;
+    case PROP_VERIFY_TOLERANCE:
+      t.verifyTolerance = g_value_get_double(value);
+      break;
+    case PROP_DRAW:
+      s.draw = g_value_get_flags(value);
+      trackerChanged = false;
+      break;
+    case PROP_TRAIL_LENGTH:
+      s.trailLength = g_value_get_uint(value);
+      trackerChanged = false;
+      break;
+    case PROP_POST_MESSAGES:
+      s.postMessages = g_value_get_boolean(value);
+      trackerChanged = false;
+      break;
+    default:
+      trackerChanged = false;
+      G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
+      break;
+  }
+  if (trackerChanged) ++s.trackerGeneration;
+  GST_OBJECT_UNLOCK(self);
+}
+
+static void gst_color_track_get_property(GObject *object, guint prop_id, GValue *value, GParamSpec *pspec) {
+  GstColorTrack *self = GST_COLOR_TRACK(object);
+
+  GST_OBJECT_LOCK(self);
+  const Settings &s = settingsOf(self);
+  const colortrack::TrackerSettings &t = s.tracker;
+  switch (prop_id) {
+    case PROP_MODE:
+      g_value_set_enum(value, s.mode);
+      break;
+    case PROP_TEMPLATE_LOCATION:
+      g_value_set_string(value, s.templateLocation.empty() ? nullptr : s.templateLocation.c_str());
+      break;
+    case PROP_INIT_BOX:
+      g_value_set_string(value, s.initBox.text.empty() ? nullptr : s.initBox.text.c_str());
+      break;
+    case PROP_COLOR_SPACE:
+      g_value_set_enum(value, fromColorSpace(t.colorSpace));
+      break;
+    case PROP_BINS:
+      g_value_set_string(value, s.bins.text.c_str());
+      break;
+    case PROP_CHANNEL_WEIGHTS:
+      g_value_set_string(value, s.weights.text.c_str());
+      break;
+    case PROP_MATCH_THRESHOLD:
+      g_value_set_double(value, t.matchThreshold);
+      break;
+    case PROP_SCALE_MIN:
+      g_value_set_double(value, t.scale.minFactor);
+      break;
+    case PROP_SCALE_MAX:
+      g_value_set_double(value, t.scale.maxFactor);
+      break;
+    case PROP_SCALE_STEP:
+      g_value_set_double(value, t.scale.step);
+      break;
+    case PROP_SEARCH_MARGIN:
+      g_value_set_double(value, t.searchMargin);
+      break;
+    case PROP_PROCESS_NOISE:
+      g_value_set_double(value, t.kalman.processNoise);
+      break;
+    case PROP_MEASUREMENT_NOISE:
+      g_value_set_double(value, t.kalman.measurementNoise);
+      break;
+    case PROP_MAX_COAST_FRAMES:
+      g_value_set_int(value, t.maxCoastFrames);
+      break;
+    case PROP_VERIFY:
+      g_value_set_enum(value, fromVerifyMode(t.verify));
+      break;
+    case PROP_VERIFY_TOLERANCE:
+      g_value_set_double(value, t.verifyTolerance);
+      break;
+    case PROP_DRAW:
+      g_value_set_flags(value, s.draw);
+      break;
+    case PROP_TRAIL_LENGTH:
+      g_value_set_uint(value, s.trailLength);
+      break;
+    case PROP_POST_MESSAGES:
+      g_value_set_boolean(value, s.postMessages);
+      break;
+    default:
+      G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
+      break;
+  }
+  GST_OBJECT_UNLOCK(self);
+}
+
+static void gst_color_track_finalize(GObject *object) {
+  GstColorTrack *self = GST_COLOR_TRACK(object);
+  delete self->priv;
+  self->priv = nullptr;
+  G_OBJECT_CLASS(parent_class)->finalize(object);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Streaming
+
+// Validates what was set before streaming, loads the template file and creates the tracker.
+static gboolean gst_color_track_start(GstBaseTransform *trans) {
+  GstColorTrack *self = GST_COLOR_TRACK(trans);
+  State &state = stateOf(self);
+
+  GST_OBJECT_LOCK(self);
+  const Settings snapshot = settingsOf(self);
+  GST_OBJECT_UNLOCK(self);
+
+  const std::pair<const char *, const TextSetting *> texts[] = {
+      {"bins", &snapshot.bins}, {"channel-weights", &snapshot.weights}, {"init-box", &snapshot.initBox}};
+  for (const auto &[property, setting] : texts) {
+    if (!setting->error.empty()) {
+      GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
+                        ("Invalid value '%s' for property '%s': %s", setting->text.c_str(), property,
+                         setting->error.c_str()),
+                        (nullptr));
+      return FALSE;
+    }
+  }
+
+  try {
+    state = State{};
+    state.tracker = std::make_unique<colortrack::Tracker>(snapshot.tracker);
+    state.appliedTrackerGeneration = snapshot.trackerGeneration;
+    state.appliedTemplateGeneration = snapshot.templateGeneration;
+    if (!snapshot.templateLocation.empty()) {
+      cv::Mat bgr, mask;
+      std::string why;
+      bool missing = false;
+      if (!loadTemplateFile(snapshot.templateLocation, bgr, mask, why, missing)) {
+        if (missing)
+          GST_ELEMENT_ERROR(self, RESOURCE, NOT_FOUND,
+                            ("Template file '%s' (property 'template-location') does not exist.",
+                             snapshot.templateLocation.c_str()),
+                            ("%s", why.c_str()));
+        else
+          GST_ELEMENT_ERROR(self, RESOURCE, OPEN_READ,
+                            ("Could not read the template image '%s' (property 'template-location'): %s",
+                             snapshot.templateLocation.c_str(), why.c_str()),
+                            (nullptr));
+        state = State{};
+        return FALSE;
+      }
+      state.tracker->setTemplate(bgr, mask);
+      state.templateOrigin = "template-location '" + snapshot.templateLocation + "'";
+    }
+  } catch (const std::exception &e) {
+    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("Could not set up the tracker: %s", e.what()), (nullptr));
+    state = State{};
+    return FALSE;
+  }
+
+  GST_OBJECT_LOCK(self);
+  settingsOf(self).streaming = true;
+  GST_OBJECT_UNLOCK(self);
+  self->priv->resetRequested = false;
+  return TRUE;
+}
+
+static gboolean gst_color_track_stop(GstBaseTransform *trans) {
+  GstColorTrack *self = GST_COLOR_TRACK(trans);
+  GST_OBJECT_LOCK(self);
+  settingsOf(self).streaming = false;
+  GST_OBJECT_UNLOCK(self);
+  stateOf(self) = State{};
+  return TRUE;
+}
+
+static gboolean gst_color_track_set_info(GstVideoFilter *filter, GstCaps *, GstVideoInfo *in_info, GstCaps *,
+                                         GstVideoInfo *) {
+  GstColorTrack *self = GST_COLOR_TRACK(filter);
+  if (!colortrack::isSupportedFormat(GST_VIDEO_INFO_FORMAT(in_info))) return FALSE;
+  GST_DEBUG_OBJECT(self, "caps %dx%d %s", GST_VIDEO_INFO_WIDTH(in_info), GST_VIDEO_INFO_HEIGHT(in_info),
+                   GST_VIDEO_INFO_NAME(in_info));
+  // New geometry: positions and velocities no longer mean anything; the template stays.
+  stateOf(self).capsChanged = true;
+  return TRUE;
+}
+
+static gboolean gst_color_track_sink_event(GstBaseTransform *trans, GstEvent *event) {
+  GstColorTrack *self = GST_COLOR_TRACK(trans);
+  if (GST_EVENT_TYPE(event) == GST_EVENT_FLUSH_STOP || GST_EVENT_TYPE(event) == GST_EVENT_SEGMENT)
+    stateOf(self).lastPts = GST_CLOCK_TIME_NONE;  // a seek: no meaningful time step to the next frame
+  return GST_BASE_TRANSFORM_CLASS(parent_class)->sink_event(trans, event);
+}
+
+// Time since the previous frame in frame periods, 1 when the timestamps do not tell.
+static double frame_step(GstColorTrack *self, GstVideoFilter *filter, GstBuffer *buffer) {
+  State &state = stateOf(self);
+  const GstClockTime pts = GST_BUFFER_PTS(buffer);
+  const GstClockTime period = frameDuration(&filter->in_info, buffer);
+  double dt = 1.0;
+  if (GST_CLOCK_TIME_IS_VALID(pts) && GST_CLOCK_TIME_IS_VALID(state.lastPts) && pts > state.lastPts && period > 0) {
+    // Clamped: a long gap says nothing reliable about motion, and a tiny one is jitter.
+    dt = std::clamp(static_cast<double>(pts - state.lastPts) / static_cast<double>(period), 0.25, 8.0);
+  }
+  state.lastPts = pts;
+  return dt;
+}
+
+static void attach_meta(GstBuffer *buffer, const colortrack::TrackOutput &out, const cv::Rect &box) {
+  GstVideoRegionOfInterestMeta *meta = gst_buffer_add_video_region_of_interest_meta(
+      buffer, "colortrack", static_cast<guint>(box.x), static_cast<guint>(box.y), static_cast<guint>(box.width),
+      static_cast<guint>(box.height));
+  meta->id = out.id;
+  GstStructure *params = gst_structure_new("colortrack", "state", G_TYPE_STRING, colortrack::toString(out.state),
+                                           "score", G_TYPE_DOUBLE, out.score, "verified", G_TYPE_BOOLEAN,
+                                           static_cast<gboolean>(out.verified), "scale", G_TYPE_DOUBLE, out.scale,
+                                           "vx", G_TYPE_DOUBLE, out.vx, "vy", G_TYPE_DOUBLE, out.vy, nullptr);
+  gst_video_region_of_interest_meta_add_param(meta, params);
+}
+
+static void post_track_message(GstColorTrack *self, GstBuffer *buffer, guint64 frame,
+                               const colortrack::TrackOutput &out) {
+  const GstSegment *segment = &GST_BASE_TRANSFORM(self)->segment;
+  const GstClockTime pts = GST_BUFFER_PTS(buffer);
+  GstClockTime streamTime = GST_CLOCK_TIME_NONE, runningTime = GST_CLOCK_TIME_NONE;
+  if (GST_CLOCK_TIME_IS_VALID(pts) && segment->format == GST_FORMAT_TIME) {
+    streamTime = gst_segment_to_stream_time(segment, GST_FORMAT_TIME, pts);
+    runningTime = gst_segment_to_running_time(segment, GST_FORMAT_TIME, pts);
+  }
+  const cv::Rect2d box = out.hasBox ? out.box : cv::Rect2d();
+  GstStructure *s = gst_structure_new(
+      "colortrack", "timestamp", G_TYPE_UINT64, static_cast<guint64>(pts), "stream-time", G_TYPE_UINT64,
+      static_cast<guint64>(streamTime), "running-time", G_TYPE_UINT64, static_cast<guint64>(runningTime),
+      "duration", G_TYPE_UINT64, static_cast<guint64>(GST_BUFFER_DURATION(buffer)), "frame", G_TYPE_UINT64, frame,
+      "id", G_TYPE_INT, out.id, "state", G_TYPE_STRING, colortrack::toString(out.state), "x", G_TYPE_DOUBLE, box.x,
+      "y", G_TYPE_DOUBLE, box.y, "width", G_TYPE_DOUBLE, box.width, "height", G_TYPE_DOUBLE, box.height, "score",
+      G_TYPE_DOUBLE, out.score, "verified", G_TYPE_BOOLEAN, static_cast<gboolean>(out.verified), "scale",
+      G_TYPE_DOUBLE, out.scale, nullptr);
+  gst_element_post_message(GST_ELEMENT(self), gst_message_new_element(GST_OBJECT(self), s));
+}
+
+static void draw_overlay(GstVideoFrame *frame, const Settings &settings, const State &state,
+                         const colortrack::TrackOutput &out, const cv::Rect &box) {
+  if (settings.draw == 0) return;
+  colortrack::FrameCanvas canvas(frame);
+  if ((settings.draw & GST_COLOR_TRACK_DRAW_SEARCH_WINDOW) && !out.searchRegion.empty())
+    canvas.boxOutline(out.searchRegion, colortrack::colors::kBlue, 1);
+  if ((settings.draw & GST_COLOR_TRACK_DRAW_TRAIL) && state.trail.size() >= 2) {
+    std::vector<cv::Point> points;
+    points.reserve(state.trail.size());
+    for (const cv::Point2d &p : state.trail) points.emplace_back(cvRound(p.x), cvRound(p.y));
+    canvas.polyline(points, colortrack::colors::kRed, kTrailThickness);
+  }
+  if (!out.hasBox || box.empty()) return;
+  if (settings.draw & GST_COLOR_TRACK_DRAW_BOX) {
+    const colortrack::Rgb colour = out.state == colortrack::TrackState::Coasting ? colortrack::colors::kOrange
+                                   : out.verified                                ? colortrack::colors::kGreen
+                                                                                 : colortrack::colors::kRed;
+    canvas.boxOutline(box, colour, kBoxThickness);
+  }
+  if (settings.draw & GST_COLOR_TRACK_DRAW_LABEL) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%d %.2f %s", out.id, out.score, colortrack::toString(out.state));
+    canvas.label(text, cv::Point(box.x, box.y - 4));
+  }
+}
+
+// Applies the settings snapshot to the tracker: everything that changed since the last frame.
+// Returns false (after posting an error) when streaming must stop.
+static bool apply_settings(GstColorTrack *self, const Settings &snapshot, const std::optional<cv::Rect> &initBox,
+                           bool initBoxWhileStreaming, const std::string &initBoxText,
+                           const colortrack::FrameView &view) {
+  State &state = stateOf(self);
+  colortrack::Tracker &tracker = *state.tracker;
+
+  if (snapshot.trackerGeneration != state.appliedTrackerGeneration) {
+    tracker.setSettings(snapshot.tracker);
+    state.appliedTrackerGeneration = snapshot.trackerGeneration;
+  }
+
+  if (snapshot.templateGeneration != state.appliedTemplateGeneration) {
+    state.appliedTemplateGeneration = snapshot.templateGeneration;
+    if (!snapshot.templateLocation.empty()) {
+      cv::Mat bgr, mask;
+      std::string why;
+      bool missing = false;
+      if (loadTemplateFile(snapshot.templateLocation, bgr, mask, why, missing)) {
+        tracker.setTemplate(bgr, mask);
+        state.templateOrigin = "template-location '" + snapshot.templateLocation + "'";
+        state.trail.clear();
+        state.warnedNoTemplate = false;
+      } else {
+        // Not fatal while streaming: the previous template keeps working.
+        GST_ELEMENT_WARNING(self, RESOURCE, OPEN_READ,
+                            ("Could not read the template image '%s' (property 'template-location'): %s. "
+                             "Keeping the previous template.",
+                             snapshot.templateLocation.c_str(), why.c_str()),
+                            (missing ? "the file does not exist" : nullptr));
+      }
+    }
+  }
+
+  if (state.capsChanged || self->priv->resetRequested.exchange(false)) {
+    state.capsChanged = false;
+    tracker.reset();
+    state.trail.clear();
+  }
+
+  if (initBox) {
+    const cv::Rect frameRect(cv::Point(), view.size());
+    if ((*initBox & frameRect) != *initBox) {
+      const cv::Size frame = view.size();
+      if (initBoxWhileStreaming) {
+        GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS,
+                            ("Property 'init-box' '%s' does not fit in the %dx%d frame: ignored.",
+                             initBoxText.c_str(), frame.width, frame.height),
+                            (nullptr));
+      } else {
+        GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
+                          ("Property 'init-box' '%s' does not fit in the %dx%d frame.", initBoxText.c_str(),
+                           frame.width, frame.height),
+                          (nullptr));
+        return false;
+      }
+    } else {
+      tracker.setTemplateFromBox(view, *initBox);
+      state.templateOrigin = "init-box '" + initBoxText + "'";
+      state.trail.clear();
+      state.warnedNoTemplate = false;
+    }
+  }
+  return true;
+}
+
+static GstFlowReturn gst_color_track_transform_frame_ip(GstVideoFilter *filter, GstVideoFrame *frame) {
+  GstColorTrack *self = GST_COLOR_TRACK(filter);
+  State &state = stateOf(self);
+  GstBuffer *buffer = frame->buffer;
+
+  // Snapshot of the settings; the init-box is taken (one use only).
+  GST_OBJECT_LOCK(self);
+  Settings &shared = settingsOf(self);
+  const Settings snapshot = shared;
+  const std::optional<cv::Rect> initBox = shared.pendingInitBox;
+  if (initBox) {
+    shared.pendingInitBox.reset();
+    shared.initBox = TextSetting{};
+  }
+  GST_OBJECT_UNLOCK(self);
+
+  const guint64 frameNumber = state.frameCount++;
+  const double dt = frame_step(self, filter, buffer);
+
+  try {
+    if (!state.tracker) {
+      GST_ELEMENT_ERROR(self, CORE, FAILED, ("colortrack was not started."), (nullptr));
+      return GST_FLOW_ERROR;
+    }
+    const colortrack::FrameView view(frame);
+    if (!apply_settings(self, snapshot, initBox, snapshot.initBoxSetWhileStreaming, snapshot.initBox.text, view))
+      return GST_FLOW_ERROR;
+
+    colortrack::Tracker &tracker = *state.tracker;
+    if (!tracker.hasTemplate()) {
+      if (!state.warnedNoTemplate) {
+        state.warnedNoTemplate = true;
+        GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS,
+                            ("No template: set 'template-location' or 'init-box'. Passing video through."),
+                            (nullptr));
+      }
+      return GST_FLOW_OK;
+    }
+
+    const cv::Size templateSize = tracker.templateSize();
+    if (templateSize.width > view.size().width || templateSize.height > view.size().height) {
+      GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
+                        ("The template from %s (%dx%d) is larger than the %dx%d frame.", state.templateOrigin.c_str(),
+                         templateSize.width, templateSize.height, view.size().width, view.size().height),
+                        (nullptr));
+      return GST_FLOW_ERROR;
+    }
+
+    const colortrack::TrackOutput out = tracker.process(view, dt);
+
+    if (!out.hasBox || out.id != state.trailTrackId) state.trail.clear();
+    state.trailTrackId = out.id;
+    if (out.hasBox && snapshot.trailLength > 0) {
+      state.trail.emplace_back(out.box.x + out.box.width / 2, out.box.y + out.box.height / 2);
+      while (state.trail.size() > snapshot.trailLength) state.trail.pop_front();
+    }
+
+    const cv::Rect box = out.hasBox ? roundedClippedBox(out.box, view.size()) : cv::Rect();
+    if (out.hasBox && !box.empty()) attach_meta(buffer, out, box);
+    draw_overlay(frame, snapshot, state, out, box);
+    if (snapshot.postMessages) post_track_message(self, buffer, frameNumber, out);
+    return GST_FLOW_OK;
+  } catch (const colortrack::TrackerError &e) {
+    GST_ELEMENT_ERROR(self, STREAM, FAILED, ("Tracking failed: %s", e.what()), (nullptr));
+  } catch (const cv::Exception &e) {
+    GST_ELEMENT_ERROR(self, STREAM, FAILED, ("OpenCV error while tracking"), ("%s", e.what()));
+  } catch (const std::exception &e) {
+    GST_ELEMENT_ERROR(self, STREAM, FAILED, ("Error while tracking: %s", e.what()), (nullptr));
+  }
+  return GST_FLOW_ERROR;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Class
+
+static void gst_color_track_class_init(GstColorTrackClass *klass) {
+  GObjectClass *gobject_class = G_OBJECT_CLASS(klass);
+  GstElementClass *element_class = GST_ELEMENT_CLASS(klass);
+  GstBaseTransformClass *trans_class = GST_BASE_TRANSFORM_CLASS(klass);
+  GstVideoFilterClass *filter_class = GST_VIDEO_FILTER_CLASS(klass);
+
+  GST_DEBUG_CATEGORY_INIT(gst_color_track_debug, "colortrack", 0, "Colour-indexing object tracker");
+
+  gobject_class->set_property = gst_color_track_set_property;
+  gobject_class->get_property = gst_color_track_get_property;
+  gobject_class->finalize = gst_color_track_finalize;
+
+  const colortrack::TrackerSettings defaults;
+  constexpr auto rw = static_cast<GParamFlags>(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS);
+  constexpr auto live = static_cast<GParamFlags>(rw | GST_PARAM_MUTABLE_PLAYING);
+
+  g_object_class_install_property(
+      gobject_class, PROP_MODE,
+      g_param_spec_enum("mode", "Mode", "How the object is defined (only 'template' for now)",
+                        GST_TYPE_COLOR_TRACK_MODE, GST_COLOR_TRACK_MODE_TEMPLATE, rw));
+  g_object_class_install_property(
+      gobject_class, PROP_TEMPLATE_LOCATION,
+      g_param_spec_string("template-location", "Template location",
+                          "Image file (PNG, JPEG) of the object to track; a PNG alpha channel selects its pixels. "
+                          "Loaded at start and again when changed",
+                          nullptr, live));
+  g_object_class_install_property(
+      gobject_class, PROP_INIT_BOX,
+      g_param_spec_string("init-box", "Initial box",
+                          "\"x,y,w,h\" in pixels: the template is taken from this box of the next frame, where "
+                          "tracking starts; cleared once used",
+                          nullptr, live));
+  g_object_class_install_property(
+      gobject_class, PROP_COLOR_SPACE,
+      g_param_spec_enum("color-space", "Colour space", "Colour space of the histograms", GST_TYPE_COLOR_TRACK_COLOR_SPACE,
+                        fromColorSpace(defaults.colorSpace), live));
+  g_object_class_install_property(
+      gobject_class, PROP_BINS,
+      g_param_spec_string("bins", "Bins", "Histogram bins per channel, \"c1,c2,c3\", each 1-256",
+                          colortrack::formatBins(defaults.bins).c_str(), live));
+  g_object_class_install_property(
+      gobject_class, PROP_CHANNEL_WEIGHTS,
+      g_param_spec_string("channel-weights", "Channel weights",
+                          "Weight of each channel in the match, \"w1,w2,w3\", each 0-1 (V is weighted down for "
+                          "robustness to lighting)",
+                          colortrack::formatWeights(defaults.weights).c_str(), live));
+  g_object_class_install_property(
+      gobject_class, PROP_MATCH_THRESHOLD,
+      g_param_spec_double("match-threshold", "Match threshold",
+                          "Minimum histogram match value (0-1) of a detection", 0.0, 1.0, defaults.matchThreshold,
+                          live));
+  g_object_class_install_property(
+      gobject_class, PROP_SCALE_MIN,
+      g_param_spec_double("scale-min", "Minimum scale step",
+                          "Smallest box size tried per frame, relative to the current box", 0.5, 1.0,
+                          defaults.scale.minFactor, live));
+  g_object_class_install_property(
+      gobject_class, PROP_SCALE_MAX,
+      g_param_spec_double("scale-max", "Maximum scale step",
+                          "Largest box size tried per frame, relative to the current box", 1.0, 2.0,
+                          defaults.scale.maxFactor, live));
+  g_object_class_install_property(
+      gobject_class, PROP_SCALE_STEP,
+      g_param_spec_double("scale-step", "Scale step", "Step between the box sizes tried", 0.001, 0.5,
+                          defaults.scale.step, live));
+  g_object_class_install_property(
+      gobject_class, PROP_SEARCH_MARGIN,
+      g_param_spec_double("search-margin", "Search margin",
+                          "Search region around the prediction, in box sizes (plus 3 sigma of the prediction)", 0.0,
+                          20.0, defaults.searchMargin, live));
+  g_object_class_install_property(
+      gobject_class, PROP_PROCESS_NOISE,
+      g_param_spec_double("process-noise", "Process noise",
+                          "Kalman process noise (jerk spectral density, px^2/frame^5): higher follows sudden "
+                          "motion faster, lower smooths more",
+                          0.0, 1e6, defaults.kalman.processNoise, live));
+  g_object_class_install_property(
+      gobject_class, PROP_MEASUREMENT_NOISE,
+      g_param_spec_double("measurement-noise", "Measurement noise",
+                          "Kalman measurement noise (variance of a detection's position, px^2)", 1e-6, 1e6,
+                          defaults.kalman.measurementNoise, live));
+  g_object_class_install_property(
+      gobject_class, PROP_MAX_COAST_FRAMES,
+      g_param_spec_int("max-coast-frames", "Maximum coasting frames",
+                       "Frames without a detection before the track is lost", 0, 10000, defaults.maxCoastFrames,
+                       live));
+  g_object_class_install_property(
+      gobject_class, PROP_VERIFY,
+      g_param_spec_enum("verify", "Verify", "Edge check that tells the object from same-coloured look-alikes",
+                        GST_TYPE_COLOR_TRACK_VERIFY, fromVerifyMode(defaults.verify), live));
+  g_object_class_install_property(
+      gobject_class, PROP_VERIFY_TOLERANCE,
+      g_param_spec_double("verify-tolerance", "Verify tolerance",
+                          "Largest relative difference of edge density/energy from the template's for a "
+                          "verified match",
+                          0.0, 100.0, defaults.verifyTolerance, live));
+  g_object_class_install_property(
+      gobject_class, PROP_DRAW,
+      g_param_spec_flags("draw", "Draw", "What the overlay shows", GST_TYPE_COLOR_TRACK_DRAW, kDefaultDraw, live));
+  g_object_class_install_property(
+      gobject_class, PROP_TRAIL_LENGTH,
+      g_param_spec_uint("trail-length", "Trail length", "Frames of box-centre history in the trail", 0, 10000,
+                        kDefaultTrailLength, live));
+  g_object_class_install_property(
+      gobject_class, PROP_POST_MESSAGES,
+      g_param_spec_boolean("post-messages", "Post messages",
+                           "Post a \"colortrack\" element message with the track for every frame",
+                           kDefaultPostMessages, live));
+
+  /**
+   * GstColorTrack::reset:
+   * @colortrack: the element
+   *
+   * Forgets the track (the template stays): the next frame searches the whole frame.
+   */
+  gst_color_track_signals[SIGNAL_RESET] =
+      g_signal_new("reset", G_TYPE_FROM_CLASS(klass), static_cast<GSignalFlags>(G_SIGNAL_RUN_LAST | G_SIGNAL_ACTION),
+                   G_STRUCT_OFFSET(GstColorTrackClass, reset), nullptr, nullptr, nullptr, G_TYPE_NONE, 0);
+  klass->reset = gst_color_track_reset_action;
+
+  gst_element_class_set_static_metadata(element_class, "Colour object tracker", "Filter/Analyzer/Video",
+                                        "Tracks a coloured object by modified colour indexing with a Kalman "
+                                        "filter; attaches region-of-interest meta and draws the track",
+                                        "colortrack developers");
+  gst_element_class_add_static_pad_template(element_class, &sink_template);
+  gst_element_class_add_static_pad_template(element_class, &src_template);
+
+  trans_class->start = GST_DEBUG_FUNCPTR(gst_color_track_start);
+  trans_class->stop = GST_DEBUG_FUNCPTR(gst_color_track_stop);
+  trans_class->sink_event = GST_DEBUG_FUNCPTR(gst_color_track_sink_event);
+  filter_class->set_info = GST_DEBUG_FUNCPTR(gst_color_track_set_info);
+  filter_class->transform_frame_ip = GST_DEBUG_FUNCPTR(gst_color_track_transform_frame_ip);
+
+  gst_type_mark_as_plugin_api(GST_TYPE_COLOR_TRACK_MODE, static_cast<GstPluginAPIFlags>(0));
+  gst_type_mark_as_plugin_api(GST_TYPE_COLOR_TRACK_COLOR_SPACE, static_cast<GstPluginAPIFlags>(0));
+  gst_type_mark_as_plugin_api(GST_TYPE_COLOR_TRACK_VERIFY, static_cast<GstPluginAPIFlags>(0));
+  gst_type_mark_as_plugin_api(GST_TYPE_COLOR_TRACK_DRAW, static_cast<GstPluginAPIFlags>(0));
+}
+
+static void gst_color_track_init(GstColorTrack *self) {
+  self->priv = new GstColorTrackPrivate();
+  Settings &s = self->priv->settings;
+  s.bins.text = colortrack::formatBins(s.tracker.bins);
+  s.weights.text = colortrack::formatWeights(s.tracker.weights);
+}

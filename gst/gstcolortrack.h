@@ -78,6 +78,10 @@ struct _GstColorTrackClass {
 };
 
 GType gst_color_track_get_type(void);
+#define GST_TYPE_COLOR_TRACK_MODE (gst_color_track_mode_get_type())
+#define GST_TYPE_COLOR_TRACK_COLOR_SPACE (gst_color_track_color_space_get_type())
+#define GST_TYPE_COLOR_TRACK_VERIFY (gst_color_track_verify_get_type())
+#define GST_TYPE_COLOR_TRACK_DRAW (gst_color_track_draw_get_type())
 GType gst_color_track_mode_get_type(void);
 GType gst_color_track_color_space_get_type(void);
 GType gst_color_track_verify_get_type(void);

@@ -99,7 +99,10 @@ void FrameCanvas::boxOutline(const cv::Rect &box, const Rgb &colour, int thickne
   const int a = align_;
   const int x0 = box.x / a * a, y0 = box.y / a * a;
   const int x1 = (box.x + box.width + a - 1) / a * a, y1 = (box.y + box.height + a - 1) / a * a;
-  const int t = std::max(a, (thickness + a - 1) / a * a);
+  // A line of one chroma sample gets blended with its neighbours by any chroma upsampling downstream; two
+  // samples keep the middle pixels exactly the colour asked for. Hairlines (thickness 1) stay one sample.
+  int t = std::max(1, thickness);
+  if (a > 1) t = thickness <= 1 ? a : std::max(2 * a, (thickness + a - 1) / a * a);
   if (x1 - x0 <= 0 || y1 - y0 <= 0) return;
   fillRect(cv::Rect(x0, y0, x1 - x0, std::min(t, y1 - y0)), colour);                       // top
   fillRect(cv::Rect(x0, std::max(y0, y1 - t), x1 - x0, std::min(t, y1 - y0)), colour);     // bottom

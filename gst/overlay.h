@@ -35,8 +35,8 @@ class FrameCanvas {
   explicit FrameCanvas(GstVideoFrame *frame);
 
   // Outline of `box` drawn inside it, `thickness` pixels wide. On chroma-subsampled formats the box is
-  // first grown to even coordinates and the thickness to an even number, so that every chroma sample
-  // under the outline is entirely covered and the colour is exact, not blended with the background.
+  // first grown to even coordinates and a thick outline covers two whole chroma samples (4 px), so that
+  // its colour is exact and stays so through chroma upsampling (videoconvert interpolates chroma).
   void boxOutline(const cv::Rect &box, const Rgb &colour, int thickness);
   void polyline(const std::vector<cv::Point> &points, const Rgb &colour, int thickness);
   // Light text with a dark outline, readable on any background. Luma only on YUV formats.

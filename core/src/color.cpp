@@ -5,22 +5,138 @@
 #include <stdexcept>
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgproc.hpp>
+#include <opencv2/core/hal/intrin.hpp>
 
 namespace colortrack {
 
 namespace {
 
-// Bin of a value in [0, 1] among n equal bins; 1.0 goes to the last bin.
-int unitBin(double value, int n) { return std::clamp(static_cast<int>(std::floor(value * n)), 0, n - 1); }
+// Bin of a value in [0, 1] among n equal bins; 1.0 goes to the last bin. The tiny bias absorbs the
+// rounding of value * n when it is mathematically a whole number (value = k/n exactly): a non-whole
+// value * n from 8-bit inputs lies at least 1/1530 below the next whole number, so the bias never
+// moves a value that is not on a border.
+int unitBin(double value, int n) {
+  return std::clamp(static_cast<int>(std::floor(value * n + 1e-9)), 0, n - 1);
+}
 
 // Bin of a hue in degrees [0, 360) among n equal bins.
-int hueBin(double degrees, int n) { return unitBin(degrees / 360.0, n); }
+int hueBin(double degrees, int n) {
+  return unitBin(degrees / 360.0, n);
+}
 
 void checkLayout(const BinLayout &layout) {
   for (int n : layout.bins)
-    if (n < 1 || n > 256) throw std::invalid_argument("colortrack::BinMapper: bins per channel must be 1..256");
+    if (n < 1 || n > 256)
+      throw std::invalid_argument("colortrack::BinMapper: bins per channel must be 1..256");
 }
+
+// HSV bins straight from 8-bit RGB, exactly floor(h/360*n), floor(s*n), floor(v*n) (clamped) without
+// going through OpenCV's 8-bit HSV, whose quantised hue and saturation put ~4% of pixels in a neighbouring
+// bin. With diff = max - min, h/60 = sector + num/diff, so h/360*n = hueNumerator*n / (6*diff) where
+// hueNumerator = sector*diff + num is a whole number in [0, 6*diff).
+struct HsvBinner {
+  int hueBins, satBins, valBins;
+
+  static int hueNumerator(int r, int g, int b, int maxc, int diff) {
+    if (maxc == r) return g >= b ? g - b : g - b + 6 * diff;
+    if (maxc == g) return b - r + 2 * diff;
+    return r - g + 4 * diff;
+  }
+
+  cv::Vec3b operator()(int r, int g, int b) const {
+    const int maxc = std::max({r, g, b});
+    const int diff = maxc - std::min({r, g, b});
+    const int h = diff == 0 ? 0 : hueNumerator(r, g, b, maxc, diff) * hueBins / (6 * diff);
+    const int s = maxc == 0 ? 0 : diff * satBins / maxc;
+    const int v = maxc * valBins / 255;
+    return cv::Vec3b(static_cast<std::uint8_t>(std::min(h, hueBins - 1)),
+                     static_cast<std::uint8_t>(std::min(s, satBins - 1)),
+                     static_cast<std::uint8_t>(std::min(v, valBins - 1)));
+  }
+
+#if CV_SIMD128
+  // 16 pixels at a time. Hue and saturation quotients are computed in float: numerators and denominators
+  // are whole numbers below 2^24 (exact in float), and a correctly rounded division of them cannot cross a
+  // whole number, since a non-whole quotient of these sizes stays further from one than float precision.
+  // V = floor(max*n / 255) uses the 16-bit identity floor(x/255) = (x * 0x8081) >> 23, exact for x < 2^16.
+  // Returns how many leading pixels of the row it did (a multiple of 16).
+  int rowSimd(const std::uint8_t *bgr, std::uint8_t *out, int width) const {
+    using namespace cv;
+    const v_float32x4 hueScale = v_setall_f32(float(hueBins)), satScale = v_setall_f32(float(satBins));
+    const v_uint16x8 valScale = v_setall_u16(std::uint16_t(valBins)), div255 = v_setall_u16(0x8081);
+    const v_int16x8 oneS16 = v_setall_s16(1);
+    const v_uint8x16 hueLast = v_setall_u8(std::uint8_t(hueBins - 1));
+    const v_uint8x16 satLast = v_setall_u8(std::uint8_t(satBins - 1));
+    const v_uint8x16 valLast = v_setall_u8(std::uint8_t(valBins - 1));
+    int x = 0;
+    for (; x + 16 <= width; x += 16, bgr += 48, out += 48) {
+      v_uint8x16 b8, g8, r8;
+      v_load_deinterleave(bgr, b8, g8, r8);
+      const v_uint8x16 max8 = v_max(r8, v_max(g8, b8));
+      const v_uint8x16 diff8 = max8 - v_min(r8, v_min(g8, b8));
+
+      v_uint16x8 r16[2], g16[2], b16[2], max16[2], diff16[2];
+      v_expand(r8, r16[0], r16[1]);
+      v_expand(g8, g16[0], g16[1]);
+      v_expand(b8, b16[0], b16[1]);
+      v_expand(max8, max16[0], max16[1]);
+      v_expand(diff8, diff16[0], diff16[1]);
+
+      v_int16x8 hue16[2], sat16[2];
+      v_uint16x8 val16[2];
+      for (int part = 0; part < 2; ++part) {
+        const v_int16x8 r = v_reinterpret_as_s16(r16[part]), g = v_reinterpret_as_s16(g16[part]);
+        const v_int16x8 b = v_reinterpret_as_s16(b16[part]), maxc = v_reinterpret_as_s16(max16[part]);
+        const v_int16x8 diff = v_reinterpret_as_s16(diff16[part]);
+        const v_int16x8 diff2 = diff + diff, diff4 = diff2 + diff2, diff6 = diff4 + diff2;
+        v_int16x8 numR = g - b;
+        numR = v_select(numR < v_setzero_s16(), numR + diff6, numR);
+        const v_int16x8 numerator =
+            v_select(maxc == r, numR, v_select(maxc == g, b - r + diff2, r - g + diff4));
+
+        val16[part] = v_mul_hi(v_mul_wrap(max16[part], valScale), div255) >> 7;
+
+        // All four are non-negative, so they widen as unsigned. Grey (diff 0) and black (max 0) have zero
+        // numerators; a denominator of at least 1 then gives bin 0 without dividing by zero.
+        v_uint32x4 num32[2], diff32[2], hueDen32[2], satDen32[2];
+        v_expand(v_reinterpret_as_u16(numerator), num32[0], num32[1]);
+        v_expand(diff16[part], diff32[0], diff32[1]);
+        v_expand(v_reinterpret_as_u16(v_max(diff6, oneS16)), hueDen32[0], hueDen32[1]);
+        v_expand(v_reinterpret_as_u16(v_max(maxc, oneS16)), satDen32[0], satDen32[1]);
+        v_int32x4 hue32[2], sat32[2];
+        for (int q = 0; q < 2; ++q) {
+          hue32[q] = v_trunc(v_cvt_f32(v_reinterpret_as_s32(num32[q])) * hueScale /
+                             v_cvt_f32(v_reinterpret_as_s32(hueDen32[q])));
+          sat32[q] = v_trunc(v_cvt_f32(v_reinterpret_as_s32(diff32[q])) * satScale /
+                             v_cvt_f32(v_reinterpret_as_s32(satDen32[q])));
+        }
+        hue16[part] = v_pack(hue32[0], hue32[1]);
+        sat16[part] = v_pack(sat32[0], sat32[1]);
+      }
+      // Bins reach n only at h/s/v = 1 exactly; pack to bytes (256 saturates to 255) and clamp to n - 1.
+      const v_uint8x16 hue = v_min(v_pack_u(hue16[0], hue16[1]), hueLast);
+      const v_uint8x16 sat = v_min(v_pack_u(sat16[0], sat16[1]), satLast);
+      const v_uint8x16 val = v_min(v_pack(val16[0], val16[1]), valLast);
+      v_store_interleave(out, hue, sat, val);
+    }
+    return x;
+  }
+#endif
+
+  void row(const std::uint8_t *bgr, std::uint8_t *out, int width) const {
+    int x = 0;
+#if CV_SIMD128
+    x = rowSimd(bgr, out, width);
+#endif
+    for (; x < width; ++x) {
+      const std::uint8_t *p = bgr + 3 * x;
+      const cv::Vec3b bins = (*this)(p[2], p[1], p[0]);
+      out[3 * x] = bins[0];
+      out[3 * x + 1] = bins[1];
+      out[3 * x + 2] = bins[2];
+    }
+  }
+};
 
 }  // namespace
 
@@ -47,31 +163,33 @@ Hsv rgbToHsv(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
 
 BinMapper::BinMapper(ColorSpace space, const BinLayout &layout) : space_(space), layout_(layout) {
   checkLayout(layout);
-  for (int c = 0; c < 3; ++c) {
-    const int n = layout.bins[c];
-    for (int k = 0; k < 256; ++k) {
-      int bin;
-      if (space == ColorSpace::Hsv && c == 0)
-        bin = hueBin(k * 360.0 / 256.0, n);  // HSV_FULL: 8-bit hue k stands for k * 360/256 degrees
-      else
-        bin = unitBin(k / 255.0, n);  // S, V (and R, G, B) are 0..255 for [0, 1]
-      lut_[c][k] = static_cast<std::uint8_t>(bin);
-    }
-  }
+  // The tables serve the RGB path (channel value k stands for k/255). HSV bins are computed per pixel.
+  for (int c = 0; c < 3; ++c)
+    for (int k = 0; k < 256; ++k) lut_[c][k] = static_cast<std::uint8_t>(unitBin(k / 255.0, layout.bins[c]));
 }
 
 void BinMapper::map(const cv::Mat &bgr, cv::Mat &out) const {
   CV_Assert(bgr.type() == CV_8UC3);
-  cv::Mat converted;
-  if (space_ == ColorSpace::Hsv)
-    cv::cvtColor(bgr, converted, cv::COLOR_BGR2HSV_FULL);  // H spans 0..255 for the whole circle
-  else
-    cv::cvtColor(bgr, converted, cv::COLOR_BGR2RGB);
-  // One 3-channel table: channel c of the table applies to channel c of the converted image.
-  cv::Mat table(1, 256, CV_8UC3);
-  auto *entry = table.ptr<cv::Vec3b>();
-  for (int k = 0; k < 256; ++k) entry[k] = cv::Vec3b(lut_[0][k], lut_[1][k], lut_[2][k]);
-  cv::LUT(converted, table, out);
+  if (out.data == bgr.data) out.release();  // rows are read and written in one pass: no aliasing
+  out.create(bgr.size(), CV_8UC3);
+  const HsvBinner hsv{layout_.bins[0], layout_.bins[1], layout_.bins[2]};
+  const bool isHsv = space_ == ColorSpace::Hsv;
+  // Rows are independent: split them over OpenCV's thread pool (a no-op with one thread).
+  cv::parallel_for_(cv::Range(0, bgr.rows), [&](const cv::Range &rows) {
+    for (int y = rows.start; y < rows.end; ++y) {
+      const std::uint8_t *in = bgr.ptr<std::uint8_t>(y);
+      std::uint8_t *binsRow = out.ptr<std::uint8_t>(y);
+      if (isHsv) {
+        hsv.row(in, binsRow, bgr.cols);
+      } else {
+        for (int x = 0; x < bgr.cols; ++x) {  // input B,G,R; output R,G,B bins
+          binsRow[3 * x] = lut_[0][in[3 * x + 2]];
+          binsRow[3 * x + 1] = lut_[1][in[3 * x + 1]];
+          binsRow[3 * x + 2] = lut_[2][in[3 * x]];
+        }
+      }
+    }
+  });
 }
 
 std::array<int, 3> BinMapper::binOf(std::uint8_t r, std::uint8_t g, std::uint8_t b) const {

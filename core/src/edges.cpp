@@ -9,7 +9,8 @@ namespace colortrack {
 namespace {
 
 // Canny thresholds on the contrast-stretched, lightly blurred patch (gradient magnitude, L2 norm of the 3x3
-// Sobel). Stretching makes the patch span 0..255, so fixed thresholds behave the same in dim and bright light.
+// Sobel). Stretching makes the patch span 0..255, so fixed thresholds behave the same in dim and bright
+// light.
 constexpr double kCannyLow = 90;
 constexpr double kCannyHigh = 220;
 // A patch whose gray range is below this is flat: stretching it would only amplify noise into "edges".

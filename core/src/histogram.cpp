@@ -44,7 +44,8 @@ void countsOf(const BinImage &bins, const BinLayout &layout, const cv::Rect &rec
   accumulate(bins, layout, local, cv::Mat(), cv::Point(), counts);
 }
 
-Histogram histogramOf(const BinImage &bins, const BinLayout &layout, const cv::Rect &rect, const cv::Mat &mask) {
+Histogram histogramOf(const BinImage &bins, const BinLayout &layout, const cv::Rect &rect,
+                      const cv::Mat &mask) {
   CV_Assert(bins.bins.empty() || bins.bins.type() == CV_8UC3);
   CV_Assert(mask.empty() || (mask.type() == CV_8UC1 && mask.size() == rect.size()));
   Histogram hist;
@@ -84,22 +85,34 @@ double matchValue(const Histogram &window, const Histogram &model, const Channel
 }
 
 double matchCounts(const int *counts, double area, const Histogram &model, const ChannelWeights &weights) {
+  // This is the one place where match values of counts are computed: the fast search and the brute
+  // force both come here, so their scores are bit-identical and ties compare exactly.
   double value = 1.0;
   for (int c = 0; c < 3; ++c) {
-    if (weights.w[c] == 0) continue;
+    const double weight = weights.w[c];
+    if (weight == 0) continue;
     if (area <= 0) return 0.0;
     const int n = model.layout.bins[c];
     const int *windowCounts = counts + model.layout.offset(c);
     const float *modelValues = model.channel(c);
     // Σ min(I_j / area, T_j) computed as Σ min(count_j, T_j * area) / area: one division per channel.
-    double common = 0, modelSum = 0;
-    for (int j = 0; j < n; ++j) {
-      const double scaledModel = modelValues[j] * area;
-      common += std::min(static_cast<double>(windowCounts[j]), scaledModel);
-      modelSum += modelValues[j];
+    // Four partial sums break the addition dependency chain (this runs for every searched position).
+    constexpr int kLanes = 4;
+    double common[kLanes] = {}, modelSum[kLanes] = {};
+    int j = 0;
+    for (; j + kLanes <= n; j += kLanes)
+      for (int k = 0; k < kLanes; ++k) {
+        common[k] += std::min(static_cast<double>(windowCounts[j + k]), modelValues[j + k] * area);
+        modelSum[k] += modelValues[j + k];
+      }
+    for (; j < n; ++j) {
+      common[0] += std::min(static_cast<double>(windowCounts[j]), modelValues[j] * area);
+      modelSum[0] += modelValues[j];
     }
-    const double channelValue = modelSum > 0 ? common / (area * modelSum) : 0.0;
-    value *= std::pow(channelValue, weights.w[c]);
+    const double commonTotal = (common[0] + common[1]) + (common[2] + common[3]);
+    const double modelTotal = (modelSum[0] + modelSum[1]) + (modelSum[2] + modelSum[3]);
+    const double channelValue = modelTotal > 0 ? commonTotal / (area * modelTotal) : 0.0;
+    value *= weight == 1 ? channelValue : std::pow(channelValue, weight);  // pow(x, 1) == x: skip the call
   }
   return value;
 }

@@ -83,6 +83,10 @@ void KalmanFilter9::predict(double dt) {
   cov_ = 0.5 * (cov_ + cov_.transpose());  // keep it exactly symmetric against rounding drift
 }
 
+void KalmanFilter9::holdForCoasting() {
+  for (int index : {2, 5, 7, 8}) state_(index) = 0;  // ax, ay, vs, as
+}
+
 void KalmanFilter9::correct(double x, double y, double scale) {
   if (!initialised_) {
     init(x, y, scale);
@@ -101,7 +105,11 @@ void KalmanFilter9::correct(double x, double y, double scale) {
   cov_ = 0.5 * (cov_ + cov_.transpose());
 }
 
-double KalmanFilter9::stdX() const { return std::sqrt(std::max(0.0, cov_(0, 0))); }
-double KalmanFilter9::stdY() const { return std::sqrt(std::max(0.0, cov_(3, 3))); }
+double KalmanFilter9::stdX() const {
+  return std::sqrt(std::max(0.0, cov_(0, 0)));
+}
+double KalmanFilter9::stdY() const {
+  return std::sqrt(std::max(0.0, cov_(3, 3)));
+}
 
 }  // namespace colortrack

@@ -52,9 +52,9 @@ ScaleResult refineScale(const BinImage &bins, const cv::Rect2d &box, const Histo
                           std::max(1, cvRound(h)));
     if ((window & limits) != window) continue;
     const int ring = std::max(1, cvRound(params.ringWidth * std::min(w, h)));
-    const cv::Rect outerRect = cv::Rect(window.x - ring, window.y - ring, window.width + 2 * ring,
-                                        window.height + 2 * ring) &
-                               limits;
+    const cv::Rect outerRect =
+        cv::Rect(window.x - ring, window.y - ring, window.width + 2 * ring, window.height + 2 * ring) &
+        limits;
     countsOf(bins, model.layout, window, inner);
     countsOf(bins, model.layout, outerRect, outer);
     const double windowArea = window.area();

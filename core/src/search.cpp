@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -16,9 +17,9 @@ constexpr std::size_t kMaxRingBytes = std::size_t(32) << 20;
 // The part of the region where a window can be placed: region clipped to the bin image, in bin-image
 // coordinates. Empty when the window does not fit.
 struct Placement {
-  cv::Rect area;          // clipped region, bin-image coordinates
-  int positionsX = 0;     // window positions per row
-  int positionsY = 0;     // window positions per column
+  cv::Rect area;       // clipped region, bin-image coordinates
+  int positionsX = 0;  // window positions per row
+  int positionsY = 0;  // window positions per column
   bool fits() const { return positionsX > 0 && positionsY > 0; }
 };
 
@@ -56,18 +57,99 @@ inline void addPixel(int *counts, const cv::Vec3b &p, const BinOffsets &o, int s
   counts[o.c2 + p[2]] += sign;
 }
 
-// Adds (sign = +1) or removes (-1) the pixel rows [y0, y1) of the area to the per-cell counts `cells`
-// (one block of `total` ints per cell column).
-void accumulateRows(const cv::Mat &binMat, const cv::Rect &area, int y0, int y1, const std::vector<int> &cellOfColumn,
-                    const BinOffsets &o, int sign, int *cells) {
-  for (int y = y0; y < y1; ++y) {
-    const cv::Vec3b *row = binMat.ptr<cv::Vec3b>(area.y + y) + area.x;
-    for (int x = 0; x < area.width; ++x) addPixel(cells + cellOfColumn[x], row[x], o, sign);
+// Per-cell counts of bands of pixel rows. Neighbouring pixels often share bins, and incrementing the same
+// counter back to back stalls on the previous increment; so with cells wide enough to pay for the final
+// sum (8 px and more), four interleaved copies of each cell's counters take consecutive pixel columns and
+// are summed once per band.
+class CellCounter {
+ public:
+  CellCounter(const cv::Mat &binMat, const cv::Rect &area, int step, const BinOffsets &o)
+      : binMat_(binMat),
+        area_(area),
+        o_(o),
+        cells_((area.width + step - 1) / step),
+        copies_(step >= 8 ? 4 : 1) {
+    columnBase_.resize(area.width);
+    for (int x = 0; x < area.width; ++x) columnBase_[x] = ((x / step) * copies_ + x % copies_) * o.total;
+    if (copies_ > 1) scratch_.resize(std::size_t(cells_) * copies_ * o.total);
   }
-}
 
-// Coarse pass: scores of the window approximated by whole cells of step x step pixels, at every grid
-// position (multiples of `step` from the area's corner). Returns the scores row-major, gridX x gridY.
+  // Adds (sign +1) or removes (-1) the counts of pixel rows [y0, y1) to `cells` (cells x total ints).
+  void add(int y0, int y1, int sign, int *cells) {
+    if (copies_ == 1) {  // one column per cell: no back-to-back reuse within a row
+      accumulate(y0, y1, sign, cells);
+      return;
+    }
+    std::fill(scratch_.begin(), scratch_.end(), 0);
+    accumulate(y0, y1, +1, scratch_.data());
+    const int total = o_.total;
+    for (int cell = 0; cell < cells_; ++cell) {
+      const int *copy = &scratch_[std::size_t(cell) * copies_ * total];
+      int *out = cells + std::size_t(cell) * total;
+      for (int k = 0; k < copies_; ++k, copy += total)
+        for (int i = 0; i < total; ++i) out[i] += sign * copy[i];
+    }
+  }
+
+ private:
+  void accumulate(int y0, int y1, int sign, int *counters) const {
+    for (int y = y0; y < y1; ++y) {
+      const cv::Vec3b *row = binMat_.ptr<cv::Vec3b>(area_.y + y) + area_.x;
+      for (int x = 0; x < area_.width; ++x) addPixel(counters + columnBase_[x], row[x], o_, sign);
+    }
+  }
+
+  const cv::Mat &binMat_;
+  cv::Rect area_;
+  BinOffsets o_;
+  int cells_, copies_;
+  std::vector<int> columnBase_;  // counter block of each pixel column
+  std::vector<int> scratch_;     // cells x copies x total
+};
+
+// Ranking score of the coarse pass: the logarithm of the match value, in float with precomputed model
+// sums. The coarse windows are approximations anyway; exact values come from matchCounts() later.
+class CoarseScorer {
+ public:
+  CoarseScorer(const Histogram &model, const ChannelWeights &weights) : layout_(model.layout) {
+    for (int c = 0; c < 3; ++c) {
+      weight_[c] = static_cast<float>(weights.w[c]);
+      double sum = 0;
+      for (int j = 0; j < layout_.bins[c]; ++j) sum += model.channel(c)[j];
+      inverseModelSum_[c] = sum > 0 ? static_cast<float>(1.0 / sum) : 0.0f;
+    }
+    model_ = model.values;
+  }
+
+  float logScore(const int *counts, int pixels) const {
+    const float inverseArea = 1.0f / static_cast<float>(pixels);
+    float total = 0;
+    for (int c = 0; c < 3; ++c) {
+      if (weight_[c] == 0) continue;
+      const int offset = layout_.offset(c);
+      const int n = layout_.bins[c];
+      float common[4] = {};  // partial sums: lets the compiler vectorise
+      int j = 0;
+      for (; j + 4 <= n; j += 4)
+        for (int k = 0; k < 4; ++k)
+          common[k] +=
+              std::min(static_cast<float>(counts[offset + j + k]) * inverseArea, model_[offset + j + k]);
+      for (; j < n; ++j)
+        common[0] += std::min(static_cast<float>(counts[offset + j]) * inverseArea, model_[offset + j]);
+      const float channelValue = ((common[0] + common[1]) + (common[2] + common[3])) * inverseModelSum_[c];
+      total += weight_[c] * std::log(std::max(channelValue, 1e-30f));
+    }
+    return total;
+  }
+
+ private:
+  BinLayout layout_;
+  std::vector<float> model_;
+  std::array<float, 3> weight_{}, inverseModelSum_{};
+};
+
+// Coarse pass: ranking scores of the window approximated by whole cells of step x step pixels, at every
+// grid position (multiples of `step` from the area's corner). Returns the scores row-major, gridX x gridY.
 std::vector<float> coarseScores(const BinImage &bins, const Placement &pl, cv::Size window, int step,
                                 const Histogram &model, const ChannelWeights &weights, int gridX, int gridY) {
   const BinOffsets o(model.layout);
@@ -78,14 +160,16 @@ std::vector<float> coarseScores(const BinImage &bins, const Placement &pl, cv::S
   const int winCellsX = std::clamp(static_cast<int>(std::lround(double(window.width) / step)), 1, cellsX);
   const int winCellsY = std::clamp(static_cast<int>(std::lround(double(window.height) / step)), 1, cellsY);
 
-  std::vector<int> cellOfColumn(area.width);
-  for (int x = 0; x < area.width; ++x) cellOfColumn[x] = (x / step) * o.total;
+  CellCounter counter(bins.bins, area, step, o);
 
   // columnSums: counts of the window's cell rows, per cell column. A ring of the last winCellsY cell rows
   // lets a cell row leave the window without recounting its pixels.
   std::vector<int> columnSums(std::size_t(cellsX) * o.total, 0);
   const std::size_t rowInts = std::size_t(cellsX) * o.total;
-  const bool useRing = rowInts * winCellsY * sizeof(int) <= kMaxRingBytes;
+  // The ring costs three passes over a cell row's counts per cell row; recounting costs touching the
+  // pixels twice. Small steps (many cells, few pixels each) favour recounting.
+  const bool ringIsCheaper = 3 * rowInts < std::size_t(2) * 3 * step * area.width;
+  const bool useRing = ringIsCheaper && rowInts * winCellsY * sizeof(int) <= kMaxRingBytes;
   std::vector<int> ring(useRing ? rowInts * winCellsY : 0);
   auto pixelRowsOf = [&](int cellRow, int &y0, int &y1) {
     y0 = cellRow * step;
@@ -99,18 +183,19 @@ std::vector<float> coarseScores(const BinImage &bins, const Placement &pl, cv::S
         for (std::size_t i = 0; i < rowInts; ++i) columnSums[i] -= slot[i];
       std::fill(slot, slot + rowInts, 0);
       pixelRowsOf(cellRow, y0, y1);
-      accumulateRows(bins.bins, area, y0, y1, cellOfColumn, o, +1, slot);
+      counter.add(y0, y1, +1, slot);
       for (std::size_t i = 0; i < rowInts; ++i) columnSums[i] += slot[i];
     } else {
       if (cellRow >= winCellsY) {
         pixelRowsOf(cellRow - winCellsY, y0, y1);
-        accumulateRows(bins.bins, area, y0, y1, cellOfColumn, o, -1, columnSums.data());
+        counter.add(y0, y1, -1, columnSums.data());
       }
       pixelRowsOf(cellRow, y0, y1);
-      accumulateRows(bins.bins, area, y0, y1, cellOfColumn, o, +1, columnSums.data());
+      counter.add(y0, y1, +1, columnSums.data());
     }
   };
 
+  const CoarseScorer scorer(model, weights);
   std::vector<float> scores(std::size_t(gridX) * gridY);
   std::vector<int> windowSums(o.total);
   int nextCellRow = 0;  // first cell row not yet added
@@ -134,8 +219,7 @@ std::vector<float> coarseScores(const BinImage &bins, const Placement &pl, cv::S
       // Every pixel counts once per channel, so channel 0 sums to the pixel count (edge cells are partial).
       int pixels = 0;
       for (int i = 0; i < model.layout.bins[0]; ++i) pixels += windowSums[i];
-      scores[std::size_t(gy) * gridX + gx] =
-          static_cast<float>(matchCounts(windowSums.data(), pixels, model, weights));
+      scores[std::size_t(gy) * gridX + gx] = scorer.logScore(windowSums.data(), pixels);
     }
   }
   return scores;
@@ -160,43 +244,44 @@ std::vector<cv::Point> bestSeparated(const std::vector<float> &scores, int gridX
   return picked;
 }
 
-// Exact scores of every window position in `positions` (top-left corners, area coordinates): running
-// histograms, the first window of each row slid down from the previous row's, then slid right column by
-// column, so each step costs O(window side) rather than O(window area).
+// Exact scores of every window position in `positions` (top-left corners, area coordinates) with running
+// histograms: one histogram per pixel column of the window's height, slid down a row at a time (two
+// pixels per column), and the window's histogram slid right by swapping one column histogram for the
+// next. A position costs O(bins) instead of O(window area).
 void refine(const BinImage &bins, const Placement &pl, cv::Size window, const cv::Rect &positions,
             const Histogram &model, const ChannelWeights &weights, Best &best) {
   const BinOffsets o(model.layout);
   const cv::Mat &binMat = bins.bins;
-  const cv::Point base = pl.area.tl();  // area -> bin-image coordinates
+  const cv::Point base = pl.area.tl() + positions.tl();  // first window's corner, bin-image coordinates
+  const int columns = positions.width + window.width - 1;
   const double pixels = double(window.width) * window.height;
-  std::vector<int> rowStart(o.total, 0), counts(o.total);
 
-  const int x0 = base.x + positions.x;
-  for (int y = base.y + positions.y; y < base.y + positions.y + window.height; ++y) {
-    const cv::Vec3b *row = binMat.ptr<cv::Vec3b>(y);
-    for (int x = x0; x < x0 + window.width; ++x) addPixel(rowStart.data(), row[x], o, +1);
+  std::vector<int> columnCounts(std::size_t(columns) * o.total, 0);
+  for (int y = base.y; y < base.y + window.height; ++y) {
+    const cv::Vec3b *row = binMat.ptr<cv::Vec3b>(y) + base.x;
+    for (int x = 0; x < columns; ++x) addPixel(&columnCounts[std::size_t(x) * o.total], row[x], o, +1);
   }
-  for (int py = positions.y; py < positions.br().y; ++py) {
-    const int top = base.y + py;
-    if (py > positions.y) {  // slide the row's first window down by one pixel row
-      const cv::Vec3b *leaving = binMat.ptr<cv::Vec3b>(top - 1);
-      const cv::Vec3b *entering = binMat.ptr<cv::Vec3b>(top + window.height - 1);
-      for (int x = x0; x < x0 + window.width; ++x) {
-        addPixel(rowStart.data(), leaving[x], o, -1);
-        addPixel(rowStart.data(), entering[x], o, +1);
+  std::vector<int> counts(o.total);
+  for (int py = 0; py < positions.height; ++py) {
+    if (py > 0) {
+      const cv::Vec3b *leaving = binMat.ptr<cv::Vec3b>(base.y + py - 1) + base.x;
+      const cv::Vec3b *entering = binMat.ptr<cv::Vec3b>(base.y + py + window.height - 1) + base.x;
+      for (int x = 0; x < columns; ++x) {
+        int *column = &columnCounts[std::size_t(x) * o.total];
+        addPixel(column, leaving[x], o, -1);
+        addPixel(column, entering[x], o, +1);
       }
     }
-    counts = rowStart;
-    for (int px = positions.x; px < positions.br().x; ++px) {
-      if (px > positions.x) {  // slide right by one pixel column
-        const int leftX = base.x + px - 1, rightX = base.x + px + window.width - 1;
-        for (int y = top; y < top + window.height; ++y) {
-          const cv::Vec3b *row = binMat.ptr<cv::Vec3b>(y);
-          addPixel(counts.data(), row[leftX], o, -1);
-          addPixel(counts.data(), row[rightX], o, +1);
-        }
+    std::fill(counts.begin(), counts.end(), 0);
+    for (int x = 0; x < window.width; ++x)
+      for (int i = 0; i < o.total; ++i) counts[i] += columnCounts[std::size_t(x) * o.total + i];
+    for (int px = 0; px < positions.width; ++px) {
+      if (px > 0) {
+        const int *leaving = &columnCounts[std::size_t(px - 1) * o.total];
+        const int *entering = &columnCounts[std::size_t(px + window.width - 1) * o.total];
+        for (int i = 0; i < o.total; ++i) counts[i] += entering[i] - leaving[i];
       }
-      best.offer(matchCounts(counts.data(), pixels, model, weights), cv::Point(px, py));
+      best.offer(matchCounts(counts.data(), pixels, model, weights), positions.tl() + cv::Point(px, py));
     }
   }
 }
@@ -211,24 +296,27 @@ SearchResult resultOf(const Best &best, const Placement &pl, const BinImage &bin
 
 }  // namespace
 
-SearchResult searchWindow(const BinImage &bins, const cv::Rect &region, cv::Size window, const Histogram &model,
-                          const ChannelWeights &weights, const SearchParams &params) {
+SearchResult searchWindow(const BinImage &bins, const cv::Rect &region, cv::Size window,
+                          const Histogram &model, const ChannelWeights &weights, const SearchParams &params) {
   const Placement pl = placementOf(bins, region, window);
   if (!pl.fits()) return SearchResult();
   CV_Assert(bins.bins.type() == CV_8UC3);
 
-  const int step = params.coarseStep > 0 ? params.coarseStep : std::max(1, std::min(window.width, window.height) / 6);
+  const int step =
+      params.coarseStep > 0 ? params.coarseStep : std::max(1, std::min(window.width, window.height) / 6);
   // Grid positions: multiples of step; the last real position lies less than one step past the last one.
   const int gridX = (pl.positionsX - 1) / step + 1;
   const int gridY = (pl.positionsY - 1) / step + 1;
   const std::vector<float> scores = coarseScores(bins, pl, window, step, model, weights, gridX, gridY);
-  const std::vector<cv::Point> candidates = bestSeparated(scores, gridX, gridY, std::max(1, params.candidates));
+  const std::vector<cv::Point> candidates =
+      bestSeparated(scores, gridX, gridY, std::max(1, params.candidates));
 
   Best best;
   const cv::Rect allPositions(0, 0, pl.positionsX, pl.positionsY);
   for (const cv::Point &g : candidates) {
     const cv::Point center = g * step;
-    const cv::Rect around = cv::Rect(center.x - step, center.y - step, 2 * step + 1, 2 * step + 1) & allPositions;
+    const cv::Rect around =
+        cv::Rect(center.x - step, center.y - step, 2 * step + 1, 2 * step + 1) & allPositions;
     refine(bins, pl, window, around, model, weights, best);
   }
   return resultOf(best, pl, bins, window);

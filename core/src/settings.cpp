@@ -52,12 +52,15 @@ std::nullopt_t fail(std::string *error, const std::string &message) {
   return std::nullopt;
 }
 
-std::string quoted(const std::string &text) { return "\"" + text + "\""; }
+std::string quoted(const std::string &text) {
+  return "\"" + text + "\"";
+}
 
 std::string formatWeight(double value) {
   std::array<char, 32> buffer{};
   // Three significant digits keep "0.3" as "0.3" rather than "0.29999999999999999".
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::general, 3);
+  const auto result =
+      std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::general, 3);
   return std::string(buffer.data(), result.ptr);
 }
 
@@ -97,7 +100,8 @@ std::optional<cv::Rect> parseBox(const std::string &text, std::string *error) {
 }
 
 std::string formatBins(const BinLayout &layout) {
-  return std::to_string(layout.bins[0]) + "," + std::to_string(layout.bins[1]) + "," + std::to_string(layout.bins[2]);
+  return std::to_string(layout.bins[0]) + "," + std::to_string(layout.bins[1]) + "," +
+         std::to_string(layout.bins[2]);
 }
 
 std::string formatWeights(const ChannelWeights &weights) {

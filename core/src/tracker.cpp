@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <optional>
 
 #include <opencv2/imgcodecs.hpp>
@@ -52,7 +53,8 @@ struct Tracker::Impl {
   int trackId = 0;
   int coastFrames = 0;
   int unverifiedFrames = 0;
-  double lastScale = 1.0;
+  int searchFrames = 0;    // frames searched since the track was lost (picks the scale to try)
+  double lastScale = 1.0;  // last measured scale
   bool lastVerified = false;
 
   // Scratch buffers reused across frames.
@@ -97,14 +99,14 @@ struct Tracker::Impl {
     const cv::Size2d size = windowSize(scale);
     const cv::Size window(std::max(1, cvRound(size.width)), std::max(1, cvRound(size.height)));
     // Room for the scale refinement's largest window and its ring.
-    const int pad = cvRound(std::max(size.width, size.height) *
-                            (std::max(0.0, s.scale.maxFactor - 1.0) + s.scale.ringWidth * s.scale.maxFactor)) +
+    const int pad = cvRound(std::max(size.width, size.height) * (std::max(0.0, s.scale.maxFactor - 1.0) +
+                                                                 s.scale.ringWidth * s.scale.maxFactor)) +
                     2;
     const cv::Rect searchRect = region & frameRect;
     if (searchRect.width < window.width || searchRect.height < window.height) return std::nullopt;
-    const cv::Rect padded =
-        cv::Rect(searchRect.x - pad, searchRect.y - pad, searchRect.width + 2 * pad, searchRect.height + 2 * pad) &
-        frameRect;
+    const cv::Rect padded = cv::Rect(searchRect.x - pad, searchRect.y - pad, searchRect.width + 2 * pad,
+                                     searchRect.height + 2 * pad) &
+                            frameRect;
     mapRegion(frame, padded, bins);
     const SearchResult found = searchWindow(bins, searchRect, window, model, s.weights);
     if (!found.found || found.score < s.matchThreshold) return std::nullopt;
@@ -112,7 +114,8 @@ struct Tracker::Impl {
   }
 
   // Full-frame search: a coarse pass on a reduced frame, then a full-resolution search around its best.
-  std::optional<Detection> detectEverywhere(const ImageSource &frame, double scale, const TrackerSettings &s) {
+  std::optional<Detection> detectEverywhere(const ImageSource &frame, double scale,
+                                            const TrackerSettings &s) {
     const cv::Size frameSize = frame.size();
     const cv::Size2d size = windowSize(scale);
     if (size.width > frameSize.width || size.height > frameSize.height) return std::nullopt;
@@ -121,12 +124,14 @@ struct Tracker::Impl {
 
     frame.bgr(cv::Rect(cv::Point(), frameSize), bgr);
     // Nearest-neighbour: a histogram only needs a fair sample of the pixels, not a filtered image.
-    cv::resize(bgr, small, cv::Size(frameSize.width / factor, frameSize.height / factor), 0, 0, cv::INTER_NEAREST);
+    cv::resize(bgr, small, cv::Size(frameSize.width / factor, frameSize.height / factor), 0, 0,
+               cv::INTER_NEAREST);
     mapper->map(small, coarseBins.bins);
     coarseBins.origin = cv::Point();
-    const cv::Size coarseWindow(std::max(1, cvRound(size.width / factor)), std::max(1, cvRound(size.height / factor)));
-    const SearchResult coarse = searchWindow(coarseBins, cv::Rect(cv::Point(), small.size()), coarseWindow, model,
-                                             s.weights);
+    const cv::Size coarseWindow(std::max(1, cvRound(size.width / factor)),
+                                std::max(1, cvRound(size.height / factor)));
+    const SearchResult coarse =
+        searchWindow(coarseBins, cv::Rect(cv::Point(), small.size()), coarseWindow, model, s.weights);
     if (!coarse.found) return std::nullopt;
     const cv::Rect around(coarse.box.x * factor - 2 * factor, coarse.box.y * factor - 2 * factor,
                           cvRound(size.width) + 4 * factor, cvRound(size.height) + 4 * factor);
@@ -157,8 +162,10 @@ struct Tracker::Impl {
   }
 
   void startTrack(const Detection &d, const TrackerSettings &s) {
+    searchFrames = 0;
     kalman.setParams(s.kalman);
-    kalman.init(d.box.x + d.box.width / 2, d.box.y + d.box.height / 2, d.box.width / templateBgr.cols);
+    lastScale = d.box.width / templateBgr.cols;
+    kalman.init(d.box.x + d.box.width / 2, d.box.y + d.box.height / 2, lastScale);
     ++trackId;
     state = TrackState::Tracking;
     coastFrames = 0;
@@ -166,7 +173,8 @@ struct Tracker::Impl {
   }
 
   void updateTrack(const Detection &d) {
-    kalman.correct(d.box.x + d.box.width / 2, d.box.y + d.box.height / 2, d.box.width / templateBgr.cols);
+    lastScale = d.box.width / templateBgr.cols;
+    kalman.correct(d.box.x + d.box.width / 2, d.box.y + d.box.height / 2, lastScale);
     state = TrackState::Tracking;
     coastFrames = 0;
   }
@@ -197,7 +205,8 @@ void Tracker::setSettings(const TrackerSettings &settings) {
 }
 
 void Tracker::setTemplate(const cv::Mat &bgr, const cv::Mat &mask) {
-  if (bgr.empty() || bgr.type() != CV_8UC3) throw TrackerError("the template must be a non-empty 8-bit colour image");
+  if (bgr.empty() || bgr.type() != CV_8UC3)
+    throw TrackerError("the template must be a non-empty 8-bit colour image");
   if (!mask.empty() && (mask.size() != bgr.size() || mask.type() != CV_8UC1))
     throw TrackerError("the template mask must be 8-bit, one channel, the template's size");
   if (!mask.empty() && cv::countNonZero(mask) == 0) throw TrackerError("the template mask selects no pixel");
@@ -211,11 +220,13 @@ void Tracker::setTemplate(const cv::Mat &bgr, const cv::Mat &mask) {
 void Tracker::setTemplateFromBox(const ImageSource &frame, const cv::Rect &box) {
   const cv::Rect frameRect(cv::Point(), frame.size());
   if (box.width <= 0 || box.height <= 0)
-    throw TrackerError("the box " + std::to_string(box.width) + "x" + std::to_string(box.height) + " is empty");
+    throw TrackerError("the box " + std::to_string(box.width) + "x" + std::to_string(box.height) +
+                       " is empty");
   if ((box & frameRect) != box)
     throw TrackerError("the box " + std::to_string(box.x) + "," + std::to_string(box.y) + "," +
-                       std::to_string(box.width) + "," + std::to_string(box.height) + " does not lie inside the " +
-                       std::to_string(frameRect.width) + "x" + std::to_string(frameRect.height) + " frame");
+                       std::to_string(box.width) + "," + std::to_string(box.height) +
+                       " does not lie inside the " + std::to_string(frameRect.width) + "x" +
+                       std::to_string(frameRect.height) + " frame");
   cv::Mat bgr;
   frame.bgr(box, bgr);
   setTemplate(bgr);
@@ -226,15 +237,19 @@ void Tracker::setTemplateFromBox(const ImageSource &frame, const cv::Rect &box) 
   // The first process() call predicts one frame ahead; start from zero motion at the box.
 }
 
-bool Tracker::hasTemplate() const { return impl_->hasTemplate(); }
+bool Tracker::hasTemplate() const {
+  return impl_->hasTemplate();
+}
 
-cv::Size Tracker::templateSize() const { return impl_->templateBgr.size(); }
+cv::Size Tracker::templateSize() const {
+  return impl_->templateBgr.size();
+}
 
 void Tracker::reset() {
   impl_->state = TrackState::Searching;
   impl_->coastFrames = 0;
   impl_->unverifiedFrames = 0;
-  impl_->lastScale = impl_->kalman.initialised() ? impl_->kalman.scale() : 1.0;
+  impl_->searchFrames = 0;
   impl_->kalman = KalmanFilter9(settings_.kalman);
 }
 
@@ -281,12 +296,17 @@ TrackOutput Tracker::process(const ImageSource &frame, double dt) {
       out.score = detection->score;
       m.lastVerified = detection->verified;
     } else if (!switched) {
+      m.kalman.holdForCoasting();
       ++m.coastFrames;
       m.state = m.coastFrames > s.maxCoastFrames ? TrackState::Lost : TrackState::Coasting;
     }
   } else {
     out.searchRegion = cv::Rect(cv::Point(), frameSize);
-    detection = m.detectEverywhere(frame, m.lastScale, s);
+    // The object may have changed size while it was away: each searching frame tries the next scale of a
+    // short list (the last one first), which keeps the cost of a frame to one full-frame search.
+    static constexpr double kSearchScales[] = {1.0, 1.0 / 1.4, 1.4, 0.5, 2.0};
+    const double factor = kSearchScales[m.searchFrames++ % std::size(kSearchScales)];
+    detection = m.detectEverywhere(frame, std::clamp(m.lastScale * factor, 0.1, 10.0), s);
     if (detection) {
       m.startTrack(*detection, s);
       out.score = detection->score;
@@ -304,9 +324,6 @@ TrackOutput Tracker::process(const ImageSource &frame, double dt) {
     out.vx = m.kalman.vx();
     out.vy = m.kalman.vy();
     out.verified = m.state == TrackState::Tracking && m.lastVerified;
-    m.lastScale = scale;
-  } else if (m.state == TrackState::Lost) {
-    m.lastScale = std::clamp(m.kalman.scale(), 0.1, 10.0);
   }
   return out;
 }
@@ -319,7 +336,8 @@ void loadTemplate(const std::string &path, cv::Mat &bgr, cv::Mat &mask) {
     throw TrackerError("cannot read the template image \"" + path + "\": " + e.what());
   }
   if (image.empty())
-    throw TrackerError("cannot read the template image \"" + path + "\" (missing, unreadable or not PNG/JPEG)");
+    throw TrackerError("cannot read the template image \"" + path +
+                       "\" (missing, unreadable or not PNG/JPEG)");
   if (image.depth() == CV_16U) image.convertTo(image, CV_8U, 1.0 / 257);
   mask.release();
   switch (image.channels()) {
@@ -333,7 +351,8 @@ void loadTemplate(const std::string &path, cv::Mat &bgr, cv::Mat &mask) {
       cv::cvtColor(image, bgr, cv::COLOR_BGRA2BGR);
       cv::extractChannel(image, mask, 3);
       cv::threshold(mask, mask, 127, 255, cv::THRESH_BINARY);
-      if (cv::countNonZero(mask) == 0) throw TrackerError("the template image \"" + path + "\" is fully transparent");
+      if (cv::countNonZero(mask) == 0)
+        throw TrackerError("the template image \"" + path + "\" is fully transparent");
       break;
     }
     default:

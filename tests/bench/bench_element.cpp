@@ -72,7 +72,8 @@ std::vector<GstBuffer *> renderFrames(const scene::Scene &scene, int count, cons
     const scene::SceneFrame frame = scene.render(index);
     GstBuffer *buffer = gst_buffer_new_allocate(nullptr, GST_VIDEO_INFO_SIZE(&info), nullptr);
     GstVideoFrame mapped;
-    if (!gst_video_frame_map(&mapped, &info, buffer, GST_MAP_WRITE)) throw std::runtime_error("cannot map buffer");
+    if (!gst_video_frame_map(&mapped, &info, buffer, GST_MAP_WRITE))
+      throw std::runtime_error("cannot map buffer");
     cv::Mat destination(frame.bgr.rows, frame.bgr.cols, CV_8UC3, GST_VIDEO_FRAME_PLANE_DATA(&mapped, 0),
                         GST_VIDEO_FRAME_PLANE_STRIDE(&mapped, 0));
     frame.bgr.copyTo(destination);
@@ -104,13 +105,15 @@ GstPadProbeReturn onSinkBuffer(GstPad * /*pad*/, GstPadProbeInfo * /*info*/, gpo
 GstElement *makeElement(const char *factory) {
   GstElement *element = gst_element_factory_make(factory, nullptr);
   if (!element)
-    throw std::runtime_error(std::string("element '") + factory +
-                             "' not found (for colortrack: set GST_PLUGIN_PATH to the build's gst/ directory)");
+    throw std::runtime_error(
+        std::string("element '") + factory +
+        "' not found (for colortrack: set GST_PLUGIN_PATH to the build's gst/ directory)");
   return element;
 }
 
-RunResult runVariant(const Variant &variant, const scene::Scene &scene, const std::vector<GstBuffer *> &frames,
-                     const GstVideoInfo &info, const BenchOptions &options) {
+RunResult runVariant(const Variant &variant, const scene::Scene &scene,
+                     const std::vector<GstBuffer *> &frames, const GstVideoInfo &info,
+                     const BenchOptions &options) {
   GstElement *pipeline = gst_pipeline_new(nullptr);
   GstElement *source = makeElement("appsrc");
   GstElement *under = makeElement(variant.factory);
@@ -152,8 +155,8 @@ RunResult runVariant(const Variant &variant, const scene::Scene &scene, const st
   gst_app_src_end_of_stream(GST_APP_SRC(source));
 
   GstBus *bus = gst_element_get_bus(pipeline);
-  GstMessage *message =
-      gst_bus_timed_pop_filtered(bus, GST_CLOCK_TIME_NONE, GstMessageType(GST_MESSAGE_EOS | GST_MESSAGE_ERROR));
+  GstMessage *message = gst_bus_timed_pop_filtered(bus, GST_CLOCK_TIME_NONE,
+                                                   GstMessageType(GST_MESSAGE_EOS | GST_MESSAGE_ERROR));
   std::string error;
   if (GST_MESSAGE_TYPE(message) == GST_MESSAGE_ERROR) {
     GError *gerror = nullptr;
@@ -168,7 +171,8 @@ RunResult runVariant(const Variant &variant, const scene::Scene &scene, const st
   if (!error.empty()) throw std::runtime_error(error);
 
   const int measured = clock.seen - options.warmup;
-  if (measured <= 0) throw std::runtime_error(std::string(variant.name) + ": too few frames reached the sink");
+  if (measured <= 0)
+    throw std::runtime_error(std::string(variant.name) + ": too few frames reached the sink");
   const double seconds = std::chrono::duration<double>(clock.last - clock.first).count();
   RunResult result;
   result.msPerFrame = 1000.0 * seconds / measured;
@@ -200,9 +204,10 @@ int main(int argc, char **argv) {
   cv::setNumThreads(1);
 
   const cv::Size sizes[] = {{640, 480}, {1920, 1080}};
-  std::printf("colortrack element benchmark: appsrc (BGR, pre-rendered) ! X ! fakesink sync=false, "
-              "%d frames after %d warm-up, OpenCV on 1 thread\n\n",
-              options.frames, options.warmup);
+  std::printf(
+      "colortrack element benchmark: appsrc (BGR, pre-rendered) ! X ! fakesink sync=false, "
+      "%d frames after %d warm-up, OpenCV on 1 thread\n\n",
+      options.frames, options.warmup);
   std::printf("%-10s %-16s %10s %12s %14s\n", "size", "element", "fps", "ms/frame", "over identity");
   std::vector<std::string> machineLines;
   try {
@@ -224,9 +229,11 @@ int main(int argc, char **argv) {
                     r.msPerFrame - identityMs);
         std::fflush(stdout);
         char line[256];
-        std::snprintf(line, sizeof line, "BENCH element case=%s size=%s frames=%d fps=%.2f ms_per_frame=%.4f "
-                      "over_identity_ms=%.4f", variant.name, sizeText.c_str(), options.frames, r.fps,
-                      r.msPerFrame, r.msPerFrame - identityMs);
+        std::snprintf(line, sizeof line,
+                      "BENCH element case=%s size=%s frames=%d fps=%.2f ms_per_frame=%.4f "
+                      "over_identity_ms=%.4f",
+                      variant.name, sizeText.c_str(), options.frames, r.fps, r.msPerFrame,
+                      r.msPerFrame - identityMs);
         machineLines.emplace_back(line);
       }
       for (GstBuffer *frame : frames) gst_buffer_unref(frame);

@@ -48,7 +48,7 @@ class Scene {
   SceneConfig config_;
   cv::Mat background_;  // frame-sized texture
   cv::Mat objectTexture_, objectMask_;  // objectSize
-  cv::Scalar meanColor_;
+  cv::Mat decoyTexture_, decoyMask_;  // the object's colours in smooth rings
 };
 
 // Intersection over union of two boxes (0 when either is empty).

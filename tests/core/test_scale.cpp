@@ -23,8 +23,9 @@ cv::Mat makeScene(int side, unsigned seed) {
   for (int y = y0; y < y0 + side; ++y)
     for (int x = x0; x < x0 + side; ++x) {
       const bool stripe = ((x - x0) / 6 + (y - y0) / 6) % 2 == 0;
-      img.at<cv::Vec3b>(y, x) = stripe ? cv::Vec3b(rng.uniform(0, 30), rng.uniform(40, 90), rng.uniform(200, 255))
-                                       : cv::Vec3b(rng.uniform(0, 30), rng.uniform(100, 140), rng.uniform(150, 200));
+      img.at<cv::Vec3b>(y, x) =
+          stripe ? cv::Vec3b(rng.uniform(0, 30), rng.uniform(40, 90), rng.uniform(200, 255))
+                 : cv::Vec3b(rng.uniform(0, 30), rng.uniform(100, 140), rng.uniform(150, 200));
     }
   return img;
 }

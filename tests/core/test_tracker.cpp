@@ -44,8 +44,8 @@ TEST(Tracker, FollowsMovingTurningScalingObjectUnderLightChanges) {
     if (out.hasBox && f.objectScale > gtLarge) gtLarge = f.objectScale, widthAtLarge = out.box.width;
   }
   const double meanIou = iouSum / scene.config().frames;
-  std::printf("mean IoU %.3f, tracked %d/%d, box width %.1f at scale %.2f, %.1f at scale %.2f\n", meanIou, tracked,
-              scene.config().frames, widthAtSmall, gtSmall, widthAtLarge, gtLarge);
+  std::printf("mean IoU %.3f, tracked %d/%d, box width %.1f at scale %.2f, %.1f at scale %.2f\n", meanIou,
+              tracked, scene.config().frames, widthAtSmall, gtSmall, widthAtLarge, gtLarge);
   EXPECT_GE(meanIou, 0.6);
   EXPECT_GE(tracked, scene.config().frames * 9 / 10);
   // Dynamic scale: the box is clearly larger where the object is (gtLarge/gtSmall = 2 here).
@@ -116,7 +116,8 @@ TEST(Tracker, LosesAndReacquiresElsewhere) {
     const SceneFrame f = scene.render(i);
     const TrackOutput out = tracker.process(MatImageSource(f.bgr));
     if (i >= 60 && i < 90) {
-      EXPECT_FALSE(out.state == TrackState::Tracking) << "frame " << i << ": tracking an object that is not there";
+      EXPECT_FALSE(out.state == TrackState::Tracking)
+          << "frame " << i << ": tracking an object that is not there";
       sawLost |= out.state == TrackState::Lost || out.state == TrackState::Searching;
     }
     if (i >= 90 && out.state == TrackState::Tracking && scene::iou(out.box, f.box) > 0.5) reacquiredAt = i;

@@ -29,6 +29,9 @@ class KalmanFilter9 {
   void predict(double dt = 1.0);
   // Measurement update with a detection.
   void correct(double x, double y, double scale);
+  // Without measurements, extrapolating accelerations (and a changing size) runs away within a few frames:
+  // while coasting, keep moving at constant velocity and constant size.
+  void holdForCoasting();
 
   double x() const { return state_(0); }
   double y() const { return state_(3); }

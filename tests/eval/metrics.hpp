@@ -1,0 +1,66 @@
+// One-pass evaluation (OPE) metrics of the OTB benchmark (Wu, Lim, Yang, CVPR 2013), plus the parsing of an
+// OTB-layout sequence folder. No GStreamer here, so the unit test can check the figures on hand-made boxes.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace colortrack::eval {
+
+// Success-plot thresholds: IoU 0, 0.05, ..., 1 (21 values); precision-plot thresholds: 0, 1, ..., 50 px.
+constexpr int kSuccessSteps = 21;
+constexpr int kPrecisionSteps = 51;
+constexpr double kPrecisionThresholdPx = 20.0;
+
+// One ground-truth line: empty when the object is not annotated (NaN line: fully occluded or out of view).
+using GroundTruthBox = std::optional<cv::Rect2d>;
+
+// Parses groundtruth.txt: one "x,y,w,h" per line, separated by commas, tabs or spaces, CRLF or LF.
+// `originOffset` is subtracted from x and y: 1 turns OTB's 1-based (MATLAB) coordinates into the 0-based
+// pixel coordinates GStreamer elements use, 0 keeps them. Lines with NaN, or with a box of no area, give an
+// empty entry (the OTB toolkit also leaves those frames out of the scores). Returns false and sets `error`
+// for a line that is neither four numbers nor NaN; trailing blank lines are ignored.
+bool parseGroundTruth(const std::string &text, double originOffset, std::vector<GroundTruthBox> &boxes,
+                      std::string *error);
+
+// Intersection over union; 0 when either box is empty.
+double overlap(const cv::Rect2d &a, const cv::Rect2d &b);
+// Distance between the box centres.
+double centreDistance(const cv::Rect2d &a, const cv::Rect2d &b);
+
+// Per-sequence scores of one tracker.
+struct SequenceScore {
+  int scoredFrames = 0;                 // frames with a ground-truth box
+  std::vector<double> success;          // kSuccessSteps fractions: IoU > threshold
+  std::vector<double> precision;        // kPrecisionSteps fractions: centre error <= threshold
+  double auc = 0;                       // mean of `success` (OTB's "AUC")
+  double precisionAt20 = 0;             // precision[20]
+};
+
+// Scores tracker output against ground truth, frame by frame. A frame without a tracker box (nullopt, or past
+// the end of `tracked`) is a miss: IoU 0 and an infinite centre error. Frames without ground truth are left
+// out, so a tracker is neither rewarded nor punished while the object is invisible.
+SequenceScore scoreSequence(const std::vector<GroundTruthBox> &groundTruth,
+                            const std::vector<std::optional<cv::Rect2d>> &tracked);
+
+// Curves averaged over sequences (each sequence weighs the same, as in the OTB plots).
+SequenceScore averageScores(const std::vector<SequenceScore> &scores);
+
+// How a folder's frames are named: <prefix><index, zero-padded to `digits`><suffix>, indices consecutive.
+struct FramePattern {
+  std::string prefix, suffix;
+  int digits = 0;
+  int startIndex = 0;
+  int count = 0;
+  // printf-style pattern for multifilesrc, e.g. "%04d.jpg".
+  std::string printfPattern() const;
+};
+
+// Detects the pattern from the file names of img/ (any order; non-.jpg/.jpeg names are ignored). Returns
+// false with `error` set when the names do not share one zero-padded numbering with consecutive indices.
+bool detectFramePattern(const std::vector<std::string> &fileNames, FramePattern &pattern, std::string *error);
+
+}  // namespace colortrack::eval

@@ -1,0 +1,256 @@
+// colortrack in every caps format and at odd sizes: the frame is read through the real strides (tracking
+// works), the overlay has the right colour in that format, and nothing else in the frame changes.
+// C++ headers first: gstcheck.h defines macros (fail, ...) that clash with names in the standard library.
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "scene.hpp"
+
+#include <gst/check/gstcheck.h>
+#include <gst/check/gstharness.h>
+#include <gst/video/video.h>
+
+namespace {
+
+using colortrack::scene::iou;
+using colortrack::scene::Scene;
+using colortrack::scene::SceneConfig;
+using colortrack::scene::SceneFrame;
+
+constexpr int kFps = 30;
+
+struct FormatCase {
+  const char *format;
+  int width, height;
+};
+
+// Every format of the caps, then odd sizes (chroma planes of ceil(size / 2), rows padded to 4 bytes).
+const FormatCase kCases[] = {
+    {"BGR", 320, 240},  {"RGB", 320, 240},  {"BGRx", 320, 240}, {"RGBx", 320, 240}, {"xBGR", 320, 240},
+    {"xRGB", 320, 240}, {"BGRA", 320, 240}, {"RGBA", 320, 240}, {"ARGB", 320, 240}, {"ABGR", 320, 240},
+    {"I420", 320, 240}, {"NV12", 320, 240}, {"YUY2", 320, 240}, {"I420", 321, 241}, {"NV12", 321, 241},
+    {"YUY2", 321, 241}, {"BGRx", 321, 241}, {"RGB", 321, 241},
+};
+
+std::string capsFor(const char *format, cv::Size size) {
+  return std::string("video/x-raw,format=") + format + ",width=" + std::to_string(size.width) +
+         ",height=" + std::to_string(size.height) + ",framerate=" + std::to_string(kFps) + "/1";
+}
+
+std::string boxString(const cv::Rect &r) {
+  return std::to_string(r.x) + "," + std::to_string(r.y) + "," + std::to_string(r.width) + "," +
+         std::to_string(r.height);
+}
+
+GstBuffer *bgrBuffer(const cv::Mat &bgr, int index) {
+  GstVideoInfo info;
+  gst_video_info_set_format(&info, GST_VIDEO_FORMAT_BGR, bgr.cols, bgr.rows);
+  GstBuffer *buffer = gst_buffer_new_allocate(nullptr, info.size, nullptr);
+  GstVideoFrame frame;
+  fail_unless(gst_video_frame_map(&frame, &info, buffer, GST_MAP_WRITE));
+  cv::Mat target(bgr.size(), CV_8UC3, GST_VIDEO_FRAME_PLANE_DATA(&frame, 0),
+                 GST_VIDEO_FRAME_PLANE_STRIDE(&frame, 0));
+  bgr.copyTo(target);
+  gst_video_frame_unmap(&frame);
+  GST_BUFFER_PTS(buffer) = gst_util_uint64_scale_int(index, GST_SECOND, kFps);
+  GST_BUFFER_DURATION(buffer) = gst_util_uint64_scale_int(1, GST_SECOND, kFps);
+  return buffer;
+}
+
+cv::Mat bgrFromBuffer(GstBuffer *buffer, cv::Size size) {
+  GstVideoInfo info;
+  gst_video_info_set_format(&info, GST_VIDEO_FORMAT_BGR, size.width, size.height);
+  GstVideoFrame frame;
+  fail_unless(gst_video_frame_map(&frame, &info, buffer, GST_MAP_READ));
+  cv::Mat out = cv::Mat(size, CV_8UC3, GST_VIDEO_FRAME_PLANE_DATA(&frame, 0),
+                        GST_VIDEO_FRAME_PLANE_STRIDE(&frame, 0))
+                    .clone();
+  gst_video_frame_unmap(&frame);
+  return out;
+}
+
+struct TrackMeta {
+  bool present = false;
+  cv::Rect box;
+  std::string state;
+  gboolean verified = FALSE;
+};
+
+TrackMeta readMeta(GstBuffer *buffer) {
+  TrackMeta m;
+  auto *roi = gst_buffer_get_video_region_of_interest_meta(buffer);
+  if (!roi || roi->roi_type != g_quark_from_static_string("colortrack")) return m;
+  m.present = true;
+  m.box = cv::Rect(roi->x, roi->y, roi->w, roi->h);
+  const GstStructure *p = gst_video_region_of_interest_meta_get_param(roi, "colortrack");
+  fail_unless(p != nullptr);
+  m.state = gst_structure_get_string(p, "state");
+  gst_structure_get_boolean(p, "verified", &m.verified);
+  return m;
+}
+
+// A harness over a launch line, fed with `caps`; one buffer in, one out.
+class Harness {
+ public:
+  Harness(const std::string &launch, const std::string &caps) {
+    h_ = gst_harness_new_parse(launch.c_str());
+    gst_harness_set_src_caps_str(h_, caps.c_str());
+  }
+  ~Harness() { gst_harness_teardown(h_); }
+  // The element named `name` in the launch line (a new reference).
+  GstElement *element(const char *name) { return gst_bin_get_by_name(GST_BIN(h_->element), name); }
+  Harness(const Harness &) = delete;
+  Harness &operator=(const Harness &) = delete;
+
+  GstBuffer *process(GstBuffer *in) {
+    fail_unless_equals_int(gst_harness_push(h_, in), GST_FLOW_OK);
+    GstBuffer *out = gst_harness_pull(h_);
+    fail_unless(out != nullptr);
+    return out;
+  }
+
+ private:
+  GstHarness *h_;
+};
+
+// The pixel near the box's left edge (middle row) closest to `expected`, and its distance. The outline is
+// 2 px (4 px on chroma-subsampled formats, grown to even coordinates) wide from the box's edge.
+double closestOnLeftEdge(const cv::Mat &bgr, const cv::Rect &box, const cv::Vec3b &expected) {
+  const int y = box.y + box.height / 2;
+  double best = 1e9;
+  for (int x = std::max(0, box.x - 1); x <= std::min(bgr.cols - 1, box.x + 3); ++x) {
+    const cv::Vec3b p = bgr.at<cv::Vec3b>(y, x);
+    best = std::min(best, cv::norm(cv::Vec3d(p[0], p[1], p[2]) - cv::Vec3d(expected[0], expected[1], expected[2])));
+  }
+  return best;
+}
+
+}  // namespace
+
+GST_START_TEST(test_format) {
+  const FormatCase &c = kCases[__i__];
+  SceneConfig config;
+  config.frameSize = cv::Size(c.width, c.height);
+  config.objectSize = cv::Size(48, 48);
+  config.frames = 60;
+  config.seed = 3;
+  const Scene scene(config);
+  const cv::Size size = config.frameSize;
+  GST_INFO("format %s %dx%d", c.format, c.width, c.height);
+
+  // BGR -> format under test, colortrack in that format, and back to BGR to look at the result.
+  Harness toNative("videoconvert ! capsfilter caps=" + capsFor(c.format, size), capsFor("BGR", size));
+  Harness tracker("colortrack name=ct draw=box init-box=" + boxString(scene.initBox()), capsFor(c.format, size));
+  Harness toBgrOut("videoconvert ! capsfilter caps=" + capsFor("BGR", size), capsFor(c.format, size));
+  Harness toBgrRef("videoconvert ! capsfilter caps=" + capsFor("BGR", size), capsFor(c.format, size));
+
+  const cv::Vec3b red(0, 0, 255), green(0, 255, 0);  // BGR
+  std::vector<double> ious;
+  int greenChecks = 0, redChecks = 0;
+  for (int i = 0; i < 40; ++i) {
+    if (i == 20) {
+      // From here on no match passes the edge check (a tolerance of 0 asks for identical edges): the same
+      // object, now reported colour-only, must be outlined in red. Also a property change while playing.
+      GstElement *ct = tracker.element("ct");
+      g_object_set(ct, "verify-tolerance", 0.0, nullptr);
+      gst_object_unref(ct);
+    }
+    const SceneFrame f = scene.render(i);
+    GstBuffer *native = toNative.process(bgrBuffer(f.bgr, i));
+    GstBuffer *reference = gst_buffer_copy_deep(native);
+    GstBuffer *out = tracker.process(native);
+    const TrackMeta m = readMeta(out);
+    ious.push_back(m.present ? iou(m.box, f.box) : 0.0);
+
+    if (i % 8 == 7 && m.present) {
+      const cv::Mat outBgr = bgrFromBuffer(out = toBgrOut.process(out), size);
+      const cv::Mat refBgr = bgrFromBuffer(reference = toBgrRef.process(reference), size);
+
+      // In place and nothing else: outside a band around the outline the frame is bit-identical to the
+      // same input converted without colortrack.
+      cv::Mat changed;
+      cv::absdiff(outBgr, refBgr, changed);
+      cv::cvtColor(changed, changed, cv::COLOR_BGR2GRAY);
+      cv::Mat allowed = cv::Mat::zeros(size, CV_8UC1);
+      const int margin = 6;  // outline width, rounding to even, chroma interpolation
+      cv::rectangle(allowed, cv::Rect(m.box.x - margin, m.box.y - margin, m.box.width + 2 * margin,
+                                      m.box.height + 2 * margin),
+                    cv::Scalar(255), cv::FILLED);
+      cv::rectangle(allowed, cv::Rect(m.box.x + margin, m.box.y + margin, m.box.width - 2 * margin,
+                                      m.box.height - 2 * margin),
+                    cv::Scalar(0), cv::FILLED);
+      changed.setTo(0, allowed);
+      const int stray = cv::countNonZero(changed);
+      fail_unless(stray == 0, "%s %dx%d frame %d: %d pixels changed away from the overlay", c.format, c.width,
+                  c.height, i, stray);
+
+      // The outline colour: green for a verified match, red for a colour-only one (the two are 360 apart, so
+      // a pixel within 40 of one is not the other, nor the object's own reds and oranges).
+      if (m.state == "tracking") {
+        const cv::Vec3b &expected = m.verified ? green : red;
+        const double distance = closestOnLeftEdge(outBgr, m.box, expected);
+        GST_INFO("frame %d: outline %s at distance %.1f", i, m.verified ? "green" : "red", distance);
+        fail_unless(distance < 40, "%s %dx%d frame %d: no %s outline pixel (closest at distance %.1f)", c.format,
+                    c.width, c.height, i, m.verified ? "green" : "red", distance);
+        ++(m.verified ? greenChecks : redChecks);
+      }
+    }
+    gst_buffer_unref(out);
+    gst_buffer_unref(reference);
+  }
+  double meanIou = 0;
+  for (double v : ious) meanIou += v / ious.size();
+  GST_INFO("%s %dx%d: mean IoU %.3f, %d green and %d red outline checks", c.format, c.width, c.height, meanIou,
+           greenChecks, redChecks);
+  fail_unless(meanIou >= 0.5, "%s %dx%d: mean IoU %.3f", c.format, c.width, c.height, meanIou);
+  fail_unless(greenChecks >= 1 && redChecks >= 1, "%s: %d green and %d red outline checks", c.format, greenChecks,
+              redChecks);
+}
+GST_END_TEST;
+
+// Everything drawn at once (trail, search window and label too, near the frame edges at odd sizes): no
+// crash, no stray writes outside the frame (the harness's buffers are checked by the allocator), meta intact.
+GST_START_TEST(test_format_full_overlay) {
+  const FormatCase &c = kCases[__i__];
+  SceneConfig config;
+  config.frameSize = cv::Size(c.width, c.height);
+  config.objectSize = cv::Size(48, 48);
+  config.frames = 40;
+  config.speed = 3;  // sweeps the whole frame: the overlay reaches the edges
+  const Scene scene(config);
+  const cv::Size size = config.frameSize;
+  Harness toNative("videoconvert ! capsfilter caps=" + capsFor(c.format, size), capsFor("BGR", size));
+  Harness tracker("colortrack draw=box+trail+search-window+label init-box=" + boxString(scene.initBox()),
+                  capsFor(c.format, size));
+  int withMeta = 0;
+  for (int i = 0; i < 40; ++i) {
+    GstBuffer *out = tracker.process(toNative.process(bgrBuffer(scene.render(i).bgr, i)));
+    withMeta += readMeta(out).present ? 1 : 0;
+    gst_buffer_unref(out);
+  }
+  fail_unless(withMeta >= 36, "%s: meta on %d of 40 frames", c.format, withMeta);
+}
+GST_END_TEST;
+
+static Suite *colortrack_formats_suite(void) {
+  // Load the plugins once here, in the parent: every test runs in a forked child, which would otherwise
+  // load them (and the many libraries behind them) again.
+  for (const char *plugin : {"colortrack", "videoconvertscale"}) {
+    GstPlugin *loaded = gst_plugin_load_by_name(plugin);
+    if (loaded) gst_object_unref(loaded);
+  }
+  Suite *s = suite_create("colortrack_formats");
+  TCase *tc = tcase_create("formats");
+  suite_add_tcase(s, tc);
+  const int cases = static_cast<int>(G_N_ELEMENTS(kCases));
+  tcase_add_loop_test(tc, test_format, 0, cases);
+  tcase_add_loop_test(tc, test_format_full_overlay, 0, cases);
+  return s;
+}
+
+GST_CHECK_MAIN(colortrack_formats);
