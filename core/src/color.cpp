@@ -138,6 +138,40 @@ struct HsvBinner {
   }
 };
 
+// RGB bins: floor(c * n / 255) per channel (clamped), which is what the lookup tables hold; the SIMD path
+// computes it with the same 16-bit identity as V above, the tail uses the tables.
+struct RgbBinner {
+  const std::array<std::array<std::uint8_t, 256>, 3> &lut;
+  std::array<int, 3> bins;
+
+  void row(const std::uint8_t *bgr, std::uint8_t *out, int width) const {
+    int x = 0;
+#if CV_SIMD128
+    using namespace cv;
+    const v_uint16x8 div255 = v_setall_u16(0x8081);
+    const auto binsOf = [&](const v_uint8x16 &channel, int n) {
+      v_uint16x8 lo, hi;
+      v_expand(channel, lo, hi);
+      const v_uint16x8 scale = v_setall_u16(std::uint16_t(n));
+      lo = v_mul_hi(v_mul_wrap(lo, scale), div255) >> 7;
+      hi = v_mul_hi(v_mul_wrap(hi, scale), div255) >> 7;
+      return v_min(v_pack(lo, hi), v_setall_u8(std::uint8_t(n - 1)));
+    };
+    for (; x + 16 <= width; x += 16) {
+      v_uint8x16 b, g, r;
+      v_load_deinterleave(bgr + 3 * x, b, g, r);
+      v_store_interleave(out + 3 * x, binsOf(r, bins[0]), binsOf(g, bins[1]), binsOf(b, bins[2]));
+    }
+#endif
+    for (; x < width; ++x) {  // input B,G,R; output R,G,B bins
+      const std::uint8_t *p = bgr + 3 * x;
+      out[3 * x] = lut[0][p[2]];
+      out[3 * x + 1] = lut[1][p[1]];
+      out[3 * x + 2] = lut[2][p[0]];
+    }
+  }
+};
+
 }  // namespace
 
 Hsv rgbToHsv(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
@@ -170,24 +204,21 @@ BinMapper::BinMapper(ColorSpace space, const BinLayout &layout) : space_(space),
 
 void BinMapper::map(const cv::Mat &bgr, cv::Mat &out) const {
   CV_Assert(bgr.type() == CV_8UC3);
-  if (out.data == bgr.data) out.release();  // rows are read and written in one pass: no aliasing
-  out.create(bgr.size(), CV_8UC3);
+  const cv::Mat input = bgr;                  // keeps the pixels alive if `out` is the same object as `bgr`
+  if (out.data == input.data) out.release();  // in-place call: write to fresh memory
+  out.create(input.size(), CV_8UC3);
   const HsvBinner hsv{layout_.bins[0], layout_.bins[1], layout_.bins[2]};
+  const RgbBinner rgb{lut_, layout_.bins};
   const bool isHsv = space_ == ColorSpace::Hsv;
   // Rows are independent: split them over OpenCV's thread pool (a no-op with one thread).
-  cv::parallel_for_(cv::Range(0, bgr.rows), [&](const cv::Range &rows) {
+  cv::parallel_for_(cv::Range(0, input.rows), [&](const cv::Range &rows) {
     for (int y = rows.start; y < rows.end; ++y) {
-      const std::uint8_t *in = bgr.ptr<std::uint8_t>(y);
+      const std::uint8_t *in = input.ptr<std::uint8_t>(y);
       std::uint8_t *binsRow = out.ptr<std::uint8_t>(y);
-      if (isHsv) {
-        hsv.row(in, binsRow, bgr.cols);
-      } else {
-        for (int x = 0; x < bgr.cols; ++x) {  // input B,G,R; output R,G,B bins
-          binsRow[3 * x] = lut_[0][in[3 * x + 2]];
-          binsRow[3 * x + 1] = lut_[1][in[3 * x + 1]];
-          binsRow[3 * x + 2] = lut_[2][in[3 * x]];
-        }
-      }
+      if (isHsv)
+        hsv.row(in, binsRow, input.cols);
+      else
+        rgb.row(in, binsRow, input.cols);
     }
   });
 }

@@ -1,10 +1,10 @@
 #include "colortrack/search.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
 #include <cstdint>
-#include <limits>
+#include <numeric>
 #include <vector>
 
 namespace colortrack {
@@ -76,7 +76,7 @@ class CellCounter {
 
   // Adds (sign +1) or removes (-1) the counts of pixel rows [y0, y1) to `cells` (cells x total ints).
   void add(int y0, int y1, int sign, int *cells) {
-    if (copies_ == 1) {  // one column per cell: no back-to-back reuse within a row
+    if (copies_ == 1) {  // narrow cells: summing copies would cost more than the stalls it saves
       accumulate(y0, y1, sign, cells);
       return;
     }
@@ -230,16 +230,31 @@ std::vector<float> coarseScores(const BinImage &bins, const Placement &pl, cv::S
 std::vector<cv::Point> bestSeparated(const std::vector<float> &scores, int gridX, int gridY, int count) {
   std::vector<cv::Point> picked;
   std::vector<std::uint8_t> suppressed(scores.size(), 0);
-  for (int k = 0; k < count; ++k) {
-    std::ptrdiff_t bestIndex = -1;
-    for (std::size_t i = 0; i < scores.size(); ++i)
-      if (!suppressed[i] && (bestIndex < 0 || scores[i] > scores[bestIndex])) bestIndex = std::ptrdiff_t(i);
-    if (bestIndex < 0) break;
-    const cv::Point g(int(bestIndex % gridX), int(bestIndex / gridX));
+  auto pick = [&](std::size_t index) {
+    const cv::Point g(int(index % gridX), int(index / gridX));
     picked.push_back(g);
     for (int y = std::max(0, g.y - 1); y <= std::min(gridY - 1, g.y + 1); ++y)
       for (int x = std::max(0, g.x - 1); x <= std::min(gridX - 1, g.x + 1); ++x)
         suppressed[std::size_t(y) * gridX + x] = 1;
+  };
+  constexpr int kFewCandidates = 16;
+  if (count <= kFewCandidates) {  // a pass per candidate beats sorting every grid position
+    for (int k = 0; k < count; ++k) {
+      std::ptrdiff_t bestIndex = -1;
+      for (std::size_t i = 0; i < scores.size(); ++i)
+        if (!suppressed[i] && (bestIndex < 0 || scores[i] > scores[bestIndex])) bestIndex = std::ptrdiff_t(i);
+      if (bestIndex < 0) break;
+      pick(std::size_t(bestIndex));
+    }
+    return picked;
+  }
+  std::vector<std::size_t> order(scores.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return scores[a] > scores[b]; });
+  for (std::size_t index : order) {
+    if (int(picked.size()) == count) break;
+    if (!suppressed[index]) pick(index);
   }
   return picked;
 }

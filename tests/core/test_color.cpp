@@ -172,21 +172,56 @@ TEST(BinMapper, HsvMapHandlesGreysAndRoiViews) {
       for (int c = 0; c < 3; ++c) ASSERT_EQ(out.at<cv::Vec3b>(y, x)[c], grey[c]);
 }
 
+// Every 8-bit value for many bin counts: the vectorised path and the tables agree with binOf().
+TEST(BinMapper, RgbMapEveryValue) {
+  cv::Mat bgr(1, 256, CV_8UC3);
+  for (int k = 0; k < 256; ++k) bgr.at<cv::Vec3b>(0, k) = cv::Vec3b(k, 255 - k, k / 2);
+  for (int n = 1; n <= 256; ++n) {
+    const BinMapper mapper(ColorSpace::Rgb, BinLayout{{n, n, n}});
+    cv::Mat out;
+    mapper.map(bgr, out);
+    for (int k = 0; k < 256; ++k) {
+      const cv::Vec3b p = bgr.at<cv::Vec3b>(0, k);
+      const auto exact = mapper.binOf(p[2], p[1], p[0]);
+      for (int c = 0; c < 3; ++c)
+        ASSERT_EQ(out.at<cv::Vec3b>(0, k)[c], exact[c]) << "n " << n << " value " << k;
+    }
+  }
+}
+
+TEST(BinMapper, MapInPlace) {
+  cv::RNG rng(21);
+  cv::Mat bgr(9, 35, CV_8UC3);
+  rng.fill(bgr, cv::RNG::UNIFORM, 0, 256);
+  for (const ColorSpace space : {ColorSpace::Hsv, ColorSpace::Rgb}) {
+    const BinMapper mapper(space, BinLayout{{16, 16, 8}});
+    cv::Mat expected, image = bgr.clone();
+    mapper.map(bgr, expected);
+    mapper.map(image, image);
+    EXPECT_EQ(cv::norm(image, expected, cv::NORM_INF), 0.0);
+  }
+}
+
+// Not a timing assertion: prints the cost of mapping a full-HD frame for the report.
 TEST(BinMapper, FullHdTiming) {
   cv::RNG rng(3);
   cv::Mat bgr(1080, 1920, CV_8UC3);
   rng.fill(bgr, cv::RNG::UNIFORM, 0, 256);
-  const BinMapper mapper(ColorSpace::Hsv, BinLayout{{16, 16, 8}});
   const int threads = cv::getNumThreads();
-  cv::setNumThreads(1);
-  cv::Mat out;
-  mapper.map(bgr, out);  // warm-up (allocation)
-  const int runs = 20;
-  const auto start = std::chrono::steady_clock::now();
-  for (int i = 0; i < runs; ++i) mapper.map(bgr, out);
-  const double ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / runs;
+  for (const ColorSpace space : {ColorSpace::Hsv, ColorSpace::Rgb})
+    for (const int useThreads : {1, threads}) {
+      const BinMapper mapper(space, BinLayout{{16, 16, 8}});
+      cv::setNumThreads(useThreads);
+      cv::Mat out;
+      mapper.map(bgr, out);  // warm-up (allocation)
+      const int runs = 10;
+      const auto start = std::chrono::steady_clock::now();
+      for (int i = 0; i < runs; ++i) mapper.map(bgr, out);
+      const double ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / runs;
+      std::printf("BinMapper::map (%s) on 1920x1080, %d thread(s): %.2f ms per frame\n",
+                  space == ColorSpace::Hsv ? "HSV" : "RGB", useThreads, ms);
+      EXPECT_EQ(out.size(), bgr.size());
+    }
   cv::setNumThreads(threads);
-  std::printf("BinMapper::map (HSV) on 1920x1080, one thread: %.2f ms per frame\n", ms);
-  EXPECT_EQ(out.size(), bgr.size());
 }

@@ -51,8 +51,8 @@ struct Comparison {
 };
 
 Comparison compare(const BinImage &image, const cv::Rect &region, cv::Size window, const Histogram &model,
-                   const SearchParams &params = SearchParams()) {
-  const ChannelWeights weights;  // 1, 1, 0.3
+                   const SearchParams &params = SearchParams(),
+                   const ChannelWeights &weights = ChannelWeights()) {
   return {searchWindow(image, region, window, model, weights, params),
           searchWindowBruteForce(image, region, window, model, weights)};
 }
@@ -60,12 +60,12 @@ Comparison compare(const BinImage &image, const cv::Rect &region, cv::Size windo
 // The fast result must be the brute-force one, or (tied scores) another position with the same score;
 // its reported score must be the exact value of its box.
 void expectSameAsBruteForce(const BinImage &image, const Comparison &r, const Histogram &model,
-                            const std::string &what) {
+                            const std::string &what, const ChannelWeights &weights = ChannelWeights()) {
   SCOPED_TRACE(what);
   ASSERT_TRUE(r.brute.found);
   ASSERT_TRUE(r.fast.found);
   EXPECT_EQ(r.fast.box.size(), r.brute.box.size());
-  EXPECT_NEAR(r.fast.score, windowMatch(image, r.fast.box, model, ChannelWeights()), 1e-12);
+  EXPECT_NEAR(r.fast.score, windowMatch(image, r.fast.box, model, weights), 1e-12);
   if (r.fast.box != r.brute.box)
     EXPECT_NEAR(r.fast.score, r.brute.score, 1e-9) << "fast " << r.fast.box << " brute " << r.brute.box;
   else
@@ -99,10 +99,13 @@ TEST(SearchWindow, FindsThePastedPatchLikeBruteForce) {
       const Histogram model = mixtureModel(mixture, c.window, rng);
       SearchParams params;
       params.coarseStep = c.step;
-      const Comparison r = compare(image, image.frameRect(), c.window, model, params);
+      // Each repeat uses other channel weights: the default (V down), all equal, and one channel off.
+      const ChannelWeights weights[] = {ChannelWeights(), ChannelWeights{{1.0, 1.0, 1.0}},
+                                        ChannelWeights{{0.5, 0.0, 1.0}}};
+      const Comparison r = compare(image, image.frameRect(), c.window, model, params, weights[repeat]);
       const std::string what = cv::format("image %dx%d window %dx%d step %d seed %d", c.image.width,
                                           c.image.height, c.window.width, c.window.height, c.step, seed);
-      expectSameAsBruteForce(image, r, model, what);
+      expectSameAsBruteForce(image, r, model, what, weights[repeat]);
       // The patch was found: the best box overlaps it by most of its area.
       const cv::Rect patchInFrame = patch + image.origin;
       EXPECT_GT((r.fast.box & patchInFrame).area(), patch.area() / 2) << what;

@@ -480,6 +480,12 @@ GST_START_TEST(test_reset_signal) {
 GST_END_TEST;
 
 static Suite *colortrack_suite(void) {
+  // Load the plugins once here, in the parent: every test runs in a forked child, which would otherwise
+  // load them (and the many libraries behind them) again.
+  for (const char *plugin : {"colortrack", "videoconvertscale"}) {
+    GstPlugin *loaded = gst_plugin_load_by_name(plugin);
+    if (loaded) gst_object_unref(loaded);
+  }
   Suite *s = suite_create("colortrack");
   TCase *tc = tcase_create("general");
   suite_add_tcase(s, tc);
