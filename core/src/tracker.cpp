@@ -8,6 +8,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "colortrack/likelihood.hpp"
+
 namespace colortrack {
 
 namespace {
@@ -17,6 +19,11 @@ namespace {
 constexpr int kCoarseWindowSide = 16;
 // While the track is colour-only (unverified), look over the whole frame this often for a verified target.
 constexpr int kUnverifiedGlobalSearchPeriod = 5;
+// Discriminative method: the motion prior's standard deviation in box sizes (sqrt of the box area), and the
+// width of the surroundings the likelihood is learnt against, in box sizes per side.
+constexpr double kMotionPriorSigma = 1.0;
+constexpr double kSurroundings = 0.5;
+constexpr double kAspectRate = 0.3;  // smoothing of the measured aspect ratio
 
 cv::Rect roundRect(const cv::Rect2d &r) {
   return cv::Rect(cvRound(r.x), cvRound(r.y), std::max(1, cvRound(r.width)), std::max(1, cvRound(r.height)));
@@ -57,18 +64,32 @@ struct Tracker::Impl {
   double lastScale = 1.0;  // last measured scale
   bool lastVerified = false;
 
+  // The discriminative model and the box's shape relative to the template.
+  ColorLikelihood likelihood;
+  double aspect = 1.0;  // (box width / height) / (template width / height)
+
   // Scratch buffers reused across frames.
-  cv::Mat bgr, small, gray;
-  BinImage bins, coarseBins;
+  cv::Mat bgr, small, gray, probability, integralP;
+  BinImage bins, coarseBins, learnBins;
 
   bool hasTemplate() const { return !templateBgr.empty(); }
   cv::Size2d windowSize(double scale) const {
-    return cv::Size2d(templateBgr.cols * scale, templateBgr.rows * scale);
+    const double a = std::sqrt(aspect);
+    return cv::Size2d(templateBgr.cols * scale * a, templateBgr.rows * scale / a);
+  }
+  // Scale of a box: the square root of its area relative to the template's, so aspect changes leave it alone.
+  double scaleOf(const cv::Rect2d &box) const {
+    return std::sqrt(box.area() / (static_cast<double>(templateBgr.cols) * templateBgr.rows));
+  }
+  bool useLikelihood(const TrackerSettings &s) const {
+    return s.method == Method::Discriminative && !likelihood.empty();
   }
 
   void rebuildModel(const TrackerSettings &s) {
-    if (!mapper || mapper->space() != s.colorSpace || !(mapper->layout() == s.bins))
+    if (!mapper || mapper->space() != s.colorSpace || !(mapper->layout() == s.bins)) {
       mapper.emplace(s.colorSpace, s.bins);
+      likelihood = ColorLikelihood(s.bins);
+    }
     if (!hasTemplate()) return;
     BinImage templateBins;
     mapper->map(templateBgr, templateBins.bins);
@@ -94,7 +115,8 @@ struct Tracker::Impl {
 
   // Window search over `region` at the given scale, then scale refinement and edge check.
   std::optional<Detection> detectIn(const ImageSource &frame, const cv::Rect &region, double scale,
-                                    const TrackerSettings &s) {
+                                    const TrackerSettings &s, const cv::Point2d *prior = nullptr) {
+    if (useLikelihood(s)) return detectByLikelihood(frame, region, scale, s, prior);
     const cv::Rect frameRect(cv::Point(), frame.size());
     const cv::Size2d size = windowSize(scale);
     const cv::Size window(std::max(1, cvRound(size.width)), std::max(1, cvRound(size.height)));
@@ -130,12 +152,124 @@ struct Tracker::Impl {
     coarseBins.origin = cv::Point();
     const cv::Size coarseWindow(std::max(1, cvRound(size.width / factor)),
                                 std::max(1, cvRound(size.height / factor)));
-    const SearchResult coarse =
-        searchWindow(coarseBins, cv::Rect(cv::Point(), small.size()), coarseWindow, model, s.weights);
-    if (!coarse.found) return std::nullopt;
-    const cv::Rect around(coarse.box.x * factor - 2 * factor, coarse.box.y * factor - 2 * factor,
+    cv::Point coarseBest;
+    if (useLikelihood(s)) {
+      likelihood.map(coarseBins, probability);
+      cv::Mat meanP;  // mean likelihood of the window centred at each pixel
+      cv::boxFilter(probability, meanP, CV_32F, coarseWindow, cv::Point(-1, -1), true, cv::BORDER_CONSTANT);
+      const int x0 = coarseWindow.width / 2, y0 = coarseWindow.height / 2;
+      const cv::Rect valid(x0, y0, small.cols - coarseWindow.width + 1, small.rows - coarseWindow.height + 1);
+      if (valid.width <= 0 || valid.height <= 0) return std::nullopt;
+      cv::Point at;
+      cv::minMaxLoc(meanP(valid), nullptr, nullptr, nullptr, &at);
+      coarseBest = at;
+    } else {
+      const SearchResult coarse = searchWindow(coarseBins, cv::Rect(cv::Point(), small.size()), coarseWindow,
+                                               model, s.weights);
+      if (!coarse.found) return std::nullopt;
+      coarseBest = coarse.box.tl();
+    }
+    const cv::Rect around(coarseBest.x * factor - 2 * factor, coarseBest.y * factor - 2 * factor,
                           cvRound(size.width) + 4 * factor, cvRound(size.height) + 4 * factor);
     return detectIn(frame, around, scale, s);
+  }
+
+  // Likelihood search: every window of the current size scored by its mean P(object | colour), weighted by
+  // a Gaussian motion prior around `prior` (none while searching the whole frame); then the width and
+  // height that enclose the most likelihood mass above one half.
+  std::optional<Detection> detectByLikelihood(const ImageSource &frame, const cv::Rect &region, double scale,
+                                              const TrackerSettings &s, const cv::Point2d *prior) {
+    const cv::Rect frameRect(cv::Point(), frame.size());
+    const cv::Size2d size = windowSize(scale);
+    const cv::Size window(std::max(1, cvRound(size.width)), std::max(1, cvRound(size.height)));
+    const cv::Rect searchRect = region & frameRect;
+    if (searchRect.width < window.width || searchRect.height < window.height) return std::nullopt;
+    const int pad = cvRound(std::max(size.width, size.height) * std::max(0.0, s.scale.maxFactor - 1.0)) + 2;
+    const cv::Rect padded = cv::Rect(searchRect.x - pad, searchRect.y - pad, searchRect.width + 2 * pad,
+                                     searchRect.height + 2 * pad) &
+                            frameRect;
+    mapRegion(frame, padded, bins);
+    likelihood.map(bins, probability);
+    cv::integral(probability, integralP, CV_64F);
+    const cv::Point origin = bins.origin;
+
+    const double sigma = kMotionPriorSigma * std::sqrt(size.width * size.height);
+    auto windowScore = [&](int x, int y) {
+      const double mean = boxSum(integralP, cv::Rect(x - origin.x, y - origin.y, window.width, window.height)) /
+                          window.area();
+      if (!prior) return mean;
+      const double dx = x + window.width / 2.0 - prior->x, dy = y + window.height / 2.0 - prior->y;
+      return mean * std::exp(-(dx * dx + dy * dy) / (2 * sigma * sigma));
+    };
+    // A coarse grid, then every pixel around its best.
+    const int step = std::max(1, std::min(window.width, window.height) / 12);
+    const int maxX = searchRect.br().x - window.width, maxY = searchRect.br().y - window.height;
+    cv::Point best(searchRect.x, searchRect.y);
+    double bestScore = -1;
+    for (int y = searchRect.y; y <= maxY; y += step)
+      for (int x = searchRect.x; x <= maxX; x += step)
+        if (const double v = windowScore(x, y); v > bestScore) bestScore = v, best = cv::Point(x, y);
+    const cv::Point coarse = best;
+    for (int y = std::max(searchRect.y, coarse.y - step); y <= std::min(maxY, coarse.y + step); ++y)
+      for (int x = std::max(searchRect.x, coarse.x - step); x <= std::min(maxX, coarse.x + step); ++x)
+        if (const double v = windowScore(x, y); v > bestScore) bestScore = v, best = cv::Point(x, y);
+
+    // Size: the box whose mean likelihood most exceeds that of the ring around it, i.e. the box that sits on
+    // the border between object-like and background-like pixels. (A fixed level such as sum(P - 1/2) shrinks
+    // the box onto the most object-like part whenever the object holds colours the background shares.)
+    const cv::Point2d centre(best.x + window.width / 2.0, best.y + window.height / 2.0);
+    const cv::Rect limits = cv::Rect(origin, probability.size());
+    Detection d;
+    double bestMass = -1e18;
+    const double stepFactor = s.scale.step > 0 ? s.scale.step : 1.0;
+    for (double fw = s.scale.minFactor; fw <= s.scale.maxFactor + 1e-9; fw += stepFactor)
+      for (double fh = s.scale.minFactor; fh <= s.scale.maxFactor + 1e-9; fh += stepFactor) {
+        if (!s.adaptAspect && std::abs(fw - fh) > 1e-9) continue;
+        const cv::Rect2d box = centredBox(centre.x, centre.y, cv::Size2d(size.width * fw, size.height * fh));
+        const cv::Rect r = roundRect(box);
+        if ((r & limits) != r) continue;
+        const int ring = std::max(1, cvRound(s.scale.ringWidth * std::min(box.width, box.height)));
+        const cv::Rect outer =
+            cv::Rect(r.x - ring, r.y - ring, r.width + 2 * ring, r.height + 2 * ring) & limits;
+        const double inside = boxSum(integralP, r - origin);
+        const double ringArea = outer.area() - r.area();
+        const double ringMean = ringArea > 0 ? (boxSum(integralP, outer - origin) - inside) / ringArea : 0;
+        // Prefer the current size on ties, so noise does not make the box wander.
+        const double mass = inside / r.area() - ringMean - 1e-6 * (std::abs(fw - 1) + std::abs(fh - 1));
+        if (mass > bestMass) bestMass = mass, d.box = box;
+      }
+    if (bestMass <= -1e18) d.box = centredBox(centre.x, centre.y, size);
+    const cv::Rect r = roundRect(d.box) & limits;
+    const double meanP = r.area() > 0 ? boxSum(integralP, r - origin) / r.area() : 0;
+    if (meanP < s.likelihoodThreshold) return std::nullopt;
+    // The likelihood finds the most object-like place; whether it is the object is the template's call: its
+    // colour-indexing match value, as in the paper (also the score reported).
+    d.score = windowMatch(bins, r, model, s.weights);
+    if (d.score < s.matchThreshold) return std::nullopt;
+    d.verified = verify(frame, roundRect(d.box), s);
+    return d;
+  }
+
+  // Learns the likelihood from `box` and the ring around it (rate 1 replaces the model).
+  void learnLikelihood(const ImageSource &frame, const cv::Rect2d &box, double rate) {
+    const cv::Rect frameRect(cv::Point(), frame.size());
+    const double grow = kSurroundings * std::max(box.width, box.height);
+    const cv::Rect object = roundRect(box) & frameRect;
+    const cv::Rect around =
+        roundRect(cv::Rect2d(box.x - grow, box.y - grow, box.width + 2 * grow, box.height + 2 * grow)) & frameRect;
+    if (object.empty()) return;
+    mapRegion(frame, around, learnBins);
+    likelihood.learn(learnBins, object, around, rate);
+  }
+
+  // Keeps the discriminative model current: learnt from scratch the first time (a template file gives no
+  // surroundings), then adapted slowly.
+  void learn(const ImageSource &frame, const cv::Rect2d &box, const TrackerSettings &s) {
+    if (s.method != Method::Discriminative) return;
+    if (likelihood.empty())
+      learnLikelihood(frame, box, 1.0);
+    else if (s.modelUpdateRate > 0)
+      learnLikelihood(frame, box, s.modelUpdateRate);
   }
 
   Detection finishDetection(const ImageSource &frame, const cv::Rect &found, const TrackerSettings &s) {
@@ -164,7 +298,7 @@ struct Tracker::Impl {
   void startTrack(const Detection &d, const TrackerSettings &s) {
     searchFrames = 0;
     kalman.setParams(s.kalman);
-    lastScale = d.box.width / templateBgr.cols;
+    measureShape(d.box, 1.0);
     kalman.init(d.box.x + d.box.width / 2, d.box.y + d.box.height / 2, lastScale);
     ++trackId;
     state = TrackState::Tracking;
@@ -172,8 +306,16 @@ struct Tracker::Impl {
     unverifiedFrames = 0;
   }
 
+  // Scale (for the Kalman filter) and aspect (smoothed here: it changes slowly and the filter has no state
+  // for it) of a measured box.
+  void measureShape(const cv::Rect2d &box, double aspectRate) {
+    const double boxAspect = (box.width / box.height) / (static_cast<double>(templateBgr.cols) / templateBgr.rows);
+    aspect = std::clamp((1 - aspectRate) * aspect + aspectRate * boxAspect, 0.25, 4.0);
+    lastScale = scaleOf(box);
+  }
+
   void updateTrack(const Detection &d) {
-    lastScale = d.box.width / templateBgr.cols;
+    measureShape(d.box, kAspectRate);
     kalman.correct(d.box.x + d.box.width / 2, d.box.y + d.box.height / 2, lastScale);
     state = TrackState::Tracking;
     coastFrames = 0;
@@ -212,6 +354,8 @@ void Tracker::setTemplate(const cv::Mat &bgr, const cv::Mat &mask) {
   if (!mask.empty() && cv::countNonZero(mask) == 0) throw TrackerError("the template mask selects no pixel");
   impl_->templateBgr = bgr.clone();
   impl_->templateMask = mask.empty() ? cv::Mat() : mask.clone();
+  impl_->likelihood = ColorLikelihood(settings_.bins);
+  impl_->aspect = 1.0;
   impl_->rebuildModel(settings_);
   reset();
   impl_->lastScale = 1.0;
@@ -234,6 +378,7 @@ void Tracker::setTemplateFromBox(const ImageSource &frame, const cv::Rect &box) 
   start.box = box;
   start.verified = true;
   impl_->startTrack(start, settings_);
+  impl_->learn(frame, start.box, settings_);
   // The first process() call predicts one frame ahead; start from zero motion at the box.
 }
 
@@ -273,9 +418,12 @@ TrackOutput Tracker::process(const ImageSource &frame, double dt) {
     // Keep the predicted scale sane: the window must fit in the frame.
     const double maxScale = std::min(static_cast<double>(frameSize.width) / m.templateBgr.cols,
                                      static_cast<double>(frameSize.height) / m.templateBgr.rows);
-    const double scale = std::clamp(m.kalman.scale(), 0.1, maxScale);
+    // Search around the last measured size, not the predicted one: a scale velocity learnt from noisy sizes
+    // would otherwise run ahead of the +-6% the refinement can pull back each frame, and collapse the box.
+    const double scale = std::clamp(m.lastScale, 0.1, maxScale);
     out.searchRegion = m.predictionRegion(s) & cv::Rect(cv::Point(), frameSize);
-    detection = m.detectIn(frame, out.searchRegion, scale, s);
+    const cv::Point2d predicted(m.kalman.x(), m.kalman.y());
+    detection = m.detectIn(frame, out.searchRegion, scale, s, &predicted);
     // A colour-only track may be a same-colour decoy: look over the whole frame now and then for a verified
     // target and move to it (a new track, since it is another object).
     bool switched = false;
@@ -284,6 +432,7 @@ TrackOutput Tracker::process(const ImageSource &frame, double dt) {
       const auto global = m.detectEverywhere(frame, scale, s);
       if (global && global->verified) {
         m.startTrack(*global, s);
+        m.learn(frame, global->box, s);
         out.searchRegion = cv::Rect(cv::Point(), frameSize);
         out.score = global->score;
         m.lastVerified = true;
@@ -293,6 +442,7 @@ TrackOutput Tracker::process(const ImageSource &frame, double dt) {
     if (!switched && detection) {
       if (detection->verified) m.unverifiedFrames = 0;
       m.updateTrack(*detection);
+      m.learn(frame, detection->box, s);
       out.score = detection->score;
       m.lastVerified = detection->verified;
     } else if (!switched) {
@@ -309,6 +459,7 @@ TrackOutput Tracker::process(const ImageSource &frame, double dt) {
     detection = m.detectEverywhere(frame, std::clamp(m.lastScale * factor, 0.1, 10.0), s);
     if (detection) {
       m.startTrack(*detection, s);
+      m.learn(frame, detection->box, s);
       out.score = detection->score;
       m.lastVerified = detection->verified;
     }

@@ -582,6 +582,10 @@ std::string machineDescription() {
                             std::thread::hardware_concurrency(), cv::getNumThreads(), system.sysname,
                             system.release, gstVersion, cv::getVersionString().c_str());
   g_free(gstVersion);
+  // Other processes compete for the cores; the load says how much the fps figures can be trusted.
+  std::ifstream loadavg("/proc/loadavg");
+  double load1 = 0;
+  if (loadavg >> load1) text += format("; load average %.2f at the start", load1);
   return text;
 }
 
@@ -625,8 +629,9 @@ std::string markdownTables(const std::vector<Sequence> &sequences, const std::ve
       }
       if (!e.warning.empty()) notes.push_back(trackers[t] + ": " + e.warning);
     }
-    for (const std::string &note : notes) md << "\n- " << note;
-    md << "\n\n";
+    if (!notes.empty()) md << "\n";
+    for (const std::string &note : notes) md << "- " << note << "\n";
+    md << "\n";
   }
 
   md << "### Mean over " << sequences.size() << " sequences\n\n";
@@ -898,10 +903,12 @@ int run(int argc, char **argv) {
          << "- Machine: " << machineDescription() << "\n"
          << "- colortrack plugin: " << pluginOf("colortrack") << "\n"
          << "- cvtracker plugin: " << pluginOf("cvtracker") << "\n"
-         << "- Command: `" << options.commandLine << "`\n"
-         << "- Protocol: OTB one-pass evaluation, initialised with frame 1's ground truth (x, y minus "
-         << options.gtOrigin << " into 0-based pixels); frames without ground truth are not scored; a frame "
-            "without the tracker's ROI meta is a miss.\n\n";
+         << "- Command: `" << options.commandLine << "`\n";
+  if (!sequences.empty())
+    header << "- Protocol: OTB one-pass evaluation, initialised with frame 1's ground truth (x, y minus "
+           << options.gtOrigin << " into 0-based pixels); frames without ground truth are not scored; a frame "
+              "without the tracker's ROI meta is a miss.\n";
+  header << "\n";
 
   std::ostringstream body;
   if (!sequences.empty()) {
@@ -946,7 +953,7 @@ int run(int argc, char **argv) {
              outDir / "precision.png");
     body << "\n![success](success.png) ![precision](precision.png)\n";
   }
-  if (options.overhead) body << "\n" << measureOverhead(options, progress);
+  if (options.overhead) body << (sequences.empty() ? "" : "\n") << measureOverhead(options, progress);
 
   const std::string report = header.str() + body.str();
   std::fputs(report.c_str(), stdout);

@@ -267,14 +267,16 @@ GST_START_TEST(test_malformed_strings) {
 }
 GST_END_TEST;
 
-// While playing, a bad value is refused with a warning and the element goes on with the old one.
+// While playing, a bad value is refused with a warning and the element goes on with the old one (for a
+// template file that cannot be read: the old template).
 GST_START_TEST(test_bad_value_while_playing_keeps_old) {
   SceneConfig config = smallScene();
   const Scene scene(config);
   Pipeline p("colortrack name=ct init-box=" + boxString(scene.initBox()));
   fail_unless(p.play() != GST_STATE_CHANGE_FAILURE);
   for (int i = 0; i < 5; ++i) p.push(scene.render(i).bgr, i);
-  g_object_set(p.tracker(), "bins", "16,x,8", "channel-weights", "1,1,7", "init-box", "1,1,1", nullptr);
+  g_object_set(p.tracker(), "bins", "16,x,8", "channel-weights", "1,1,7", "init-box", "1,1,1", "template-location",
+               "/nonexistent-colortrack-dir/other.png", nullptr);
   for (int i = 5; i < 20; ++i) p.push(scene.render(i).bgr, i);
   const Outcome o = p.finish();
 
@@ -282,6 +284,8 @@ GST_START_TEST(test_bad_value_while_playing_keeps_old) {
   fail_unless(o.warned("bins") && o.warned("16,x,8"), "no warning naming bins");
   fail_unless(o.warned("channel-weights") && o.warned("1,1,7"), "no warning naming channel-weights");
   fail_unless(o.warned("init-box") && o.warned("1,1,1"), "no warning naming init-box");
+  fail_unless(o.warned("template-location") && o.warned("/nonexistent-colortrack-dir/other.png"),
+              "no warning naming the template file");
   gchar *bins = nullptr, *weights = nullptr;
   g_object_get(p.tracker(), "bins", &bins, "channel-weights", &weights, nullptr);
   fail_unless_equals_string(bins, "16,16,8");

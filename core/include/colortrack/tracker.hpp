@@ -18,7 +18,20 @@
 
 namespace colortrack {
 
+// How a frame is searched for the target.
+enum class Method {
+  // The paper's modified colour indexing: the template's per-channel histograms against every window by
+  // weighted histogram intersection, scale by window-versus-ring match.
+  Indexing,
+  // Object-versus-surroundings colour likelihood P(object | colour), learnt from the target box and the
+  // ring around it and adapted slowly; windows scored by their mean likelihood with a motion prior, box size
+  // and aspect by the likelihood mass they enclose. Falls back to Indexing until it has been learnt (a
+  // template file has no surroundings: the first detection teaches it).
+  Discriminative,
+};
+
 struct TrackerSettings {
+  Method method = Method::Discriminative;
   ColorSpace colorSpace = ColorSpace::Hsv;
   BinLayout bins;
   ChannelWeights weights;
@@ -29,6 +42,11 @@ struct TrackerSettings {
   int maxCoastFrames = 10;  // frames without detection before the track is lost
   VerifyMode verify = VerifyMode::Both;
   double verifyTolerance = 0.5;
+
+  // Discriminative method only.
+  double likelihoodThreshold = 0.3;  // minimum mean P(object | colour) in the box for a detection
+  double modelUpdateRate = 0.05;     // how fast the likelihood follows appearance changes (0 = never)
+  bool adaptAspect = true;           // let the box's width and height change independently
 };
 
 struct TrackOutput {

@@ -1,0 +1,44 @@
+// Object-versus-surroundings colour likelihood: P(object | colour) from joint colour histograms of the
+// target box and of the ring around it (the idea behind DAT, Possegger et al. 2015). Colours the
+// surroundings share count less, which is what a plain template histogram cannot express.
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "colortrack/color.hpp"
+
+namespace colortrack {
+
+class ColorLikelihood {
+ public:
+  explicit ColorLikelihood(const BinLayout &layout = BinLayout());
+
+  const BinLayout &layout() const { return layout_; }
+  bool empty() const { return !learned_; }
+
+  // Learns from a bin image covering `object` (frame coordinates) and its surroundings: the ring between
+  // `object` and `surroundings` (clipped to the bin image). rate in (0,1]: 1 replaces the model, smaller
+  // values blend the new estimate into the old one (slow adaptation to appearance change).
+  void learn(const BinImage &bins, const cv::Rect &object, const cv::Rect &surroundings, double rate);
+
+  // Per-pixel P(object | colour) of a bin image, CV_32FC1 in [0,1]. Colours never seen count 0.5.
+  void map(const BinImage &bins, cv::Mat &probability) const;
+
+  // P(object | colour) of one joint bin.
+  float probability(int jointBin) const { return table_[jointBin]; }
+  int jointBin(const cv::Vec3b &bins) const {
+    return (bins[0] * layout_.bins[1] + bins[1]) * layout_.bins[2] + bins[2];
+  }
+
+ private:
+  BinLayout layout_;
+  std::vector<float> table_;  // joint bin -> P(object | colour)
+  bool learned_ = false;
+};
+
+// Sum of `values` (CV_64F integral image from cv::integral) over `rect` in the integral's coordinates.
+double boxSum(const cv::Mat &integral, const cv::Rect &rect);
+
+}  // namespace colortrack

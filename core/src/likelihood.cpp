@@ -1,0 +1,49 @@
+#include "colortrack/likelihood.hpp"
+
+#include <algorithm>
+
+namespace colortrack {
+
+ColorLikelihood::ColorLikelihood(const BinLayout &layout)
+    : layout_(layout), table_(static_cast<size_t>(layout.bins[0]) * layout.bins[1] * layout.bins[2], 0.5f) {}
+
+void ColorLikelihood::learn(const BinImage &bins, const cv::Rect &object, const cv::Rect &surroundings,
+                            double rate) {
+  const cv::Rect limits = bins.frameRect();
+  const cv::Rect inner = object & limits, outer = (surroundings | object) & limits;
+  if (inner.empty()) return;
+  std::vector<float> objectCounts(table_.size(), 0.f), ringCounts(table_.size(), 0.f);
+  for (int y = outer.y; y < outer.br().y; ++y) {
+    const cv::Vec3b *row = bins.bins.ptr<cv::Vec3b>(y - bins.origin.y) - bins.origin.x;
+    const bool rowInObject = y >= inner.y && y < inner.br().y;
+    for (int x = outer.x; x < outer.br().x; ++x) {
+      const bool inObject = rowInObject && x >= inner.x && x < inner.br().x;
+      (inObject ? objectCounts : ringCounts)[jointBin(row[x])] += 1.f;
+    }
+  }
+  // P(O|c) = H_O(c) / (H_O(c) + H_S(c)) on raw counts: the ring's larger area is the prior that a colour
+  // seen in both belongs to the background more often than not.
+  const float keep = static_cast<float>(learned_ ? 1.0 - rate : 0.0), add = 1.f - keep;
+  for (size_t j = 0; j < table_.size(); ++j) {
+    const float total = objectCounts[j] + ringCounts[j];
+    const float p = total > 0 ? objectCounts[j] / total : 0.5f;
+    table_[j] = keep * table_[j] + add * p;
+  }
+  learned_ = true;
+}
+
+void ColorLikelihood::map(const BinImage &bins, cv::Mat &probability) const {
+  probability.create(bins.bins.size(), CV_32FC1);
+  for (int y = 0; y < bins.bins.rows; ++y) {
+    const cv::Vec3b *in = bins.bins.ptr<cv::Vec3b>(y);
+    float *out = probability.ptr<float>(y);
+    for (int x = 0; x < bins.bins.cols; ++x) out[x] = table_[jointBin(in[x])];
+  }
+}
+
+double boxSum(const cv::Mat &integral, const cv::Rect &r) {
+  return integral.at<double>(r.y, r.x) + integral.at<double>(r.br().y, r.br().x) -
+         integral.at<double>(r.y, r.br().x) - integral.at<double>(r.br().y, r.x);
+}
+
+}  // namespace colortrack
