@@ -134,6 +134,10 @@ enum {
   PROP_DRAW,
   PROP_TRAIL_LENGTH,
   PROP_POST_MESSAGES,
+  PROP_METHOD,
+  PROP_LIKELIHOOD_THRESHOLD,
+  PROP_MODEL_UPDATE_RATE,
+  PROP_ADAPT_ASPECT,
 };
 
 enum { SIGNAL_RESET, LAST_SIGNAL };
@@ -189,6 +193,19 @@ GType gst_color_track_verify_get_type(void) {
   return type;
 }
 
+GType gst_color_track_method_get_type(void) {
+  static gsize type = 0;
+  static const GEnumValue values[] = {
+      {GST_COLOR_TRACK_METHOD_INDEXING, "Modified colour indexing: template histograms by intersection", "indexing"},
+      {GST_COLOR_TRACK_METHOD_DISCRIMINATIVE,
+       "Object-versus-surroundings colour likelihood with motion prior (more accurate on real video)",
+       "discriminative"},
+      {0, nullptr, nullptr},
+  };
+  if (g_once_init_enter(&type)) g_once_init_leave(&type, g_enum_register_static("GstColorTrackMethod", values));
+  return type;
+}
+
 GType gst_color_track_draw_get_type(void) {
   static gsize type = 0;
   static const GFlagsValue values[] = {
@@ -212,6 +229,11 @@ colortrack::ColorSpace toColorSpace(gint value) {
 }
 GstColorTrackColorSpace fromColorSpace(colortrack::ColorSpace space) {
   return space == colortrack::ColorSpace::Rgb ? GST_COLOR_TRACK_COLOR_SPACE_RGB : GST_COLOR_TRACK_COLOR_SPACE_HSV;
+}
+
+GstColorTrackMethod methodOf(colortrack::Method method) {
+  return method == colortrack::Method::Indexing ? GST_COLOR_TRACK_METHOD_INDEXING
+                                                : GST_COLOR_TRACK_METHOD_DISCRIMINATIVE;
 }
 
 colortrack::VerifyMode toVerifyMode(gint value) {
@@ -419,6 +441,19 @@ static void gst_color_track_set_property(GObject *object, guint prop_id, const G
     case PROP_VERIFY_TOLERANCE:
       t.verifyTolerance = g_value_get_double(value);
       break;
+    case PROP_METHOD:
+      t.method = g_value_get_enum(value) == GST_COLOR_TRACK_METHOD_INDEXING ? colortrack::Method::Indexing
+                                                                           : colortrack::Method::Discriminative;
+      break;
+    case PROP_LIKELIHOOD_THRESHOLD:
+      t.likelihoodThreshold = g_value_get_double(value);
+      break;
+    case PROP_MODEL_UPDATE_RATE:
+      t.modelUpdateRate = g_value_get_double(value);
+      break;
+    case PROP_ADAPT_ASPECT:
+      t.adaptAspect = g_value_get_boolean(value);
+      break;
     case PROP_DRAW:
       s.draw = g_value_get_flags(value);
       trackerChanged = false;
@@ -494,6 +529,18 @@ static void gst_color_track_get_property(GObject *object, guint prop_id, GValue 
       break;
     case PROP_VERIFY_TOLERANCE:
       g_value_set_double(value, t.verifyTolerance);
+      break;
+    case PROP_METHOD:
+      g_value_set_enum(value, methodOf(t.method));
+      break;
+    case PROP_LIKELIHOOD_THRESHOLD:
+      g_value_set_double(value, t.likelihoodThreshold);
+      break;
+    case PROP_MODEL_UPDATE_RATE:
+      g_value_set_double(value, t.modelUpdateRate);
+      break;
+    case PROP_ADAPT_ASPECT:
+      g_value_set_boolean(value, t.adaptAspect);
       break;
     case PROP_DRAW:
       g_value_set_flags(value, s.draw);
@@ -856,6 +903,28 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
                           "tracking starts; cleared once used",
                           nullptr, live));
   g_object_class_install_property(
+      gobject_class, PROP_METHOD,
+      g_param_spec_enum("method", "Method",
+                        "How frames are searched: 'indexing' is the paper's colour indexing; 'discriminative' "
+                        "also learns which colours tell the object from its surroundings",
+                        GST_TYPE_COLOR_TRACK_METHOD, methodOf(defaults.method), live));
+  g_object_class_install_property(
+      gobject_class, PROP_LIKELIHOOD_THRESHOLD,
+      g_param_spec_double("likelihood-threshold", "Likelihood threshold",
+                          "method=discriminative: minimum mean object likelihood (0-1) in the box for a detection",
+                          0.0, 1.0, defaults.likelihoodThreshold, live));
+  g_object_class_install_property(
+      gobject_class, PROP_MODEL_UPDATE_RATE,
+      g_param_spec_double("model-update-rate", "Model update rate",
+                          "method=discriminative: how fast the colour likelihood follows appearance changes, per "
+                          "frame (0 = learn once)",
+                          0.0, 1.0, defaults.modelUpdateRate, live));
+  g_object_class_install_property(
+      gobject_class, PROP_ADAPT_ASPECT,
+      g_param_spec_boolean("adapt-aspect", "Adapt aspect",
+                           "method=discriminative: let the box's width and height change independently",
+                           defaults.adaptAspect, live));
+  g_object_class_install_property(
       gobject_class, PROP_COLOR_SPACE,
       g_param_spec_enum("color-space", "Colour space", "Colour space of the histograms", GST_TYPE_COLOR_TRACK_COLOR_SPACE,
                         fromColorSpace(defaults.colorSpace), live));
@@ -959,6 +1028,7 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
   gst_type_mark_as_plugin_api(GST_TYPE_COLOR_TRACK_MODE, static_cast<GstPluginAPIFlags>(0));
   gst_type_mark_as_plugin_api(GST_TYPE_COLOR_TRACK_COLOR_SPACE, static_cast<GstPluginAPIFlags>(0));
   gst_type_mark_as_plugin_api(GST_TYPE_COLOR_TRACK_VERIFY, static_cast<GstPluginAPIFlags>(0));
+  gst_type_mark_as_plugin_api(GST_TYPE_COLOR_TRACK_METHOD, static_cast<GstPluginAPIFlags>(0));
   gst_type_mark_as_plugin_api(GST_TYPE_COLOR_TRACK_DRAW, static_cast<GstPluginAPIFlags>(0));
 }
 

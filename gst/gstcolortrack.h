@@ -36,6 +36,19 @@ typedef enum {
 } GstColorTrackColorSpace;
 
 /**
+ * GstColorTrackMethod:
+ * @GST_COLOR_TRACK_METHOD_INDEXING: the paper's modified colour indexing (template histograms, histogram
+ *     intersection, window-versus-ring scale)
+ * @GST_COLOR_TRACK_METHOD_DISCRIMINATIVE: object-versus-surroundings colour likelihood learnt from the
+ *     target and the ring around it, with a motion prior and adaptive aspect; detections are still accepted
+ *     by the template's colour-indexing match value
+ */
+typedef enum {
+  GST_COLOR_TRACK_METHOD_INDEXING = 0,
+  GST_COLOR_TRACK_METHOD_DISCRIMINATIVE = 1,
+} GstColorTrackMethod;
+
+/**
  * GstColorTrackVerify:
  * @GST_COLOR_TRACK_VERIFY_NONE: accept every colour match
  * @GST_COLOR_TRACK_VERIFY_EDGE_DENSITY: compare the edge density with the template's
@@ -85,6 +98,8 @@ GType gst_color_track_get_type(void);
 GType gst_color_track_mode_get_type(void);
 GType gst_color_track_color_space_get_type(void);
 GType gst_color_track_verify_get_type(void);
+#define GST_TYPE_COLOR_TRACK_METHOD (gst_color_track_method_get_type())
+GType gst_color_track_method_get_type(void);
 GType gst_color_track_draw_get_type(void);
 
 GST_ELEMENT_REGISTER_DECLARE(colortrack);

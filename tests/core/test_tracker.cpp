@@ -25,11 +25,26 @@ SceneConfig hardConfig() {
   return c;
 }
 
+// The behaviour tests run for both methods: the paper's colour indexing and the discriminative default.
+class TrackerMethod : public ::testing::TestWithParam<Method> {
+ protected:
+  TrackerSettings settings() const {
+    TrackerSettings s;
+    s.method = GetParam();
+    return s;
+  }
+};
+
 }  // namespace
 
-TEST(Tracker, FollowsMovingTurningScalingObjectUnderLightChanges) {
+INSTANTIATE_TEST_SUITE_P(Methods, TrackerMethod, ::testing::Values(Method::Indexing, Method::Discriminative),
+                         [](const auto &info) {
+                           return std::string(info.param == Method::Indexing ? "Indexing" : "Discriminative");
+                         });
+
+TEST_P(TrackerMethod, FollowsMovingTurningScalingObjectUnderLightChanges) {
   const Scene scene(hardConfig());
-  Tracker tracker;
+  Tracker tracker(settings());
   const SceneFrame first = scene.render(0);
   tracker.setTemplateFromBox(MatImageSource(first.bgr), scene.initBox());
   double iouSum = 0;
@@ -52,9 +67,9 @@ TEST(Tracker, FollowsMovingTurningScalingObjectUnderLightChanges) {
   EXPECT_GT(widthAtLarge / widthAtSmall, 1.5);
 }
 
-TEST(Tracker, StartsTrackingAtTheInitBox) {
+TEST_P(TrackerMethod, StartsTrackingAtTheInitBox) {
   const Scene scene(hardConfig());
-  Tracker tracker;
+  Tracker tracker(settings());
   const SceneFrame first = scene.render(0);
   tracker.setTemplateFromBox(MatImageSource(first.bgr), scene.initBox());
   const TrackOutput out = tracker.process(MatImageSource(first.bgr));
@@ -64,14 +79,14 @@ TEST(Tracker, StartsTrackingAtTheInitBox) {
   EXPECT_TRUE(out.verified);
 }
 
-TEST(Tracker, AcquiresFromTemplateImageAnywhere) {
+TEST_P(TrackerMethod, AcquiresFromTemplateImageAnywhere) {
   SceneConfig c = hardConfig();
   c.rotationDegrees = 0;
   c.scaleMin = c.scaleMax = 1.0;
   const Scene scene(c);
   cv::Mat bgr, mask;
   scene.objectTemplate(bgr, mask);
-  Tracker tracker;
+  Tracker tracker(settings());
   tracker.setTemplate(bgr, mask);
   TrackOutput out;
   for (int i = 0; i < 3; ++i) out = tracker.process(MatImageSource(scene.render(i).bgr));
@@ -80,7 +95,7 @@ TEST(Tracker, AcquiresFromTemplateImageAnywhere) {
   EXPECT_TRUE(out.verified);
 }
 
-TEST(Tracker, DecoyIsReportedUnverified) {
+TEST_P(TrackerMethod, DecoyIsReportedUnverified) {
   SceneConfig c = hardConfig();
   c.decoy = true;
   c.leaveFrom = 0;  // the object is away: only the same-colour, untextured decoy is in view
@@ -88,7 +103,7 @@ TEST(Tracker, DecoyIsReportedUnverified) {
   const Scene scene(c);
   cv::Mat bgr, mask;
   scene.objectTemplate(bgr, mask);
-  Tracker tracker;
+  Tracker tracker(settings());
   tracker.setTemplate(bgr, mask);
   int onDecoy = 0, verifiedOnDecoy = 0;
   for (int i = 0; i < 40; ++i) {
@@ -103,12 +118,12 @@ TEST(Tracker, DecoyIsReportedUnverified) {
   EXPECT_EQ(verifiedOnDecoy, 0);
 }
 
-TEST(Tracker, LosesAndReacquiresElsewhere) {
+TEST_P(TrackerMethod, LosesAndReacquiresElsewhere) {
   SceneConfig c = hardConfig();
   c.leaveFrom = 60;
   c.leaveTo = 90;
   const Scene scene(c);
-  Tracker tracker;
+  Tracker tracker(settings());
   tracker.setTemplateFromBox(MatImageSource(scene.render(0).bgr), scene.initBox());
   bool sawLost = false;
   int reacquiredAt = -1;

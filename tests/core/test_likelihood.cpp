@@ -1,0 +1,77 @@
+// Object-versus-surroundings colour likelihood: hand-computed cases.
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "colortrack/color.hpp"
+#include "colortrack/likelihood.hpp"
+
+using namespace colortrack;
+
+namespace {
+
+const cv::Vec3b kRed(0, 0, 255), kGreen(0, 200, 0), kBlue(255, 0, 0), kYellow(0, 255, 255);
+
+// 40x40 green surroundings, a 20x20 object at (10,10): red except a blue column of 20 px (5%), and 20 blue
+// pixels out in the surroundings.
+cv::Mat makeImage() {
+  cv::Mat img(40, 40, CV_8UC3, cv::Scalar(kGreen[0], kGreen[1], kGreen[2]));
+  img(cv::Rect(10, 10, 20, 20)).setTo(cv::Scalar(kRed[0], kRed[1], kRed[2]));
+  img(cv::Rect(10, 10, 1, 20)).setTo(cv::Scalar(kBlue[0], kBlue[1], kBlue[2]));
+  img(cv::Rect(0, 0, 20, 1)).setTo(cv::Scalar(kBlue[0], kBlue[1], kBlue[2]));
+  return img;
+}
+
+struct Fixture {
+  BinMapper mapper{ColorSpace::Hsv, BinLayout{}};
+  ColorLikelihood likelihood{BinLayout{}};
+  BinImage bins;
+  Fixture() { mapper.map(makeImage(), bins.bins); }
+  float p(const cv::Vec3b &bgr) {
+    cv::Mat px(1, 1, CV_8UC3, cv::Scalar(bgr[0], bgr[1], bgr[2])), b;
+    mapper.map(px, b);
+    return likelihood.probability(likelihood.jointBin(b.at<cv::Vec3b>(0, 0)));
+  }
+};
+
+}  // namespace
+
+TEST(Likelihood, UnlearntIsOneHalf) {
+  Fixture f;
+  EXPECT_TRUE(f.likelihood.empty());
+  EXPECT_FLOAT_EQ(f.p(kRed), 0.5f);
+}
+
+TEST(Likelihood, LearnsObjectAgainstSurroundings) {
+  Fixture f;
+  f.likelihood.learn(f.bins, cv::Rect(10, 10, 20, 20), cv::Rect(0, 0, 40, 40), 1.0);
+  EXPECT_FALSE(f.likelihood.empty());
+  EXPECT_FLOAT_EQ(f.p(kRed), 1.0f);    // only in the object
+  EXPECT_FLOAT_EQ(f.p(kGreen), 0.0f);  // only around it
+  EXPECT_FLOAT_EQ(f.p(kBlue), 0.5f);   // 20 pixels in each: H_O / (H_O + H_S)
+  EXPECT_FLOAT_EQ(f.p(kYellow), 0.5f); // never seen
+}
+
+TEST(Likelihood, SlowUpdateBlends) {
+  Fixture f;
+  f.likelihood.learn(f.bins, cv::Rect(10, 10, 20, 20), cv::Rect(0, 0, 40, 40), 1.0);
+  // Learn again with the object box on pure surroundings: green now belongs to the object.
+  f.likelihood.learn(f.bins, cv::Rect(30, 30, 10, 10), cv::Rect(30, 30, 10, 10), 0.1);
+  EXPECT_NEAR(f.p(kGreen), 0.1, 1e-6);  // 0.9 * 0 + 0.1 * 1
+  EXPECT_NEAR(f.p(kRed), 0.95, 1e-6);   // unseen in the new sample (0.5) blended in at 0.1
+}
+
+TEST(Likelihood, MapsEveryPixelAndClipsLearning) {
+  Fixture f;
+  // Surroundings beyond the image are clipped, not read.
+  f.likelihood.learn(f.bins, cv::Rect(10, 10, 20, 20), cv::Rect(-20, -20, 80, 80), 1.0);
+  cv::Mat probability;
+  f.likelihood.map(f.bins, probability);
+  ASSERT_EQ(probability.type(), CV_32FC1);
+  ASSERT_EQ(probability.size(), cv::Size(40, 40));
+  EXPECT_FLOAT_EQ(probability.at<float>(20, 20), 1.0f);
+  EXPECT_FLOAT_EQ(probability.at<float>(35, 35), 0.0f);
+  cv::Mat integral;
+  cv::integral(probability, integral, CV_64F);
+  EXPECT_NEAR(boxSum(integral, cv::Rect(11, 10, 19, 20)), 19 * 20, 1e-9);  // the red part of the object
+}
