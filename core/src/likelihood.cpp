@@ -5,7 +5,9 @@
 namespace colortrack {
 
 ColorLikelihood::ColorLikelihood(const BinLayout &layout)
-    : layout_(layout), table_(static_cast<size_t>(layout.bins[0]) * layout.bins[1] * layout.bins[2], 0.5f) {}
+    : layout_(layout),
+      table_(static_cast<size_t>(layout.bins[0]) * layout.bins[1] * layout.bins[2], 0.5f),
+      strict_(table_.size(), 0.f) {}
 
 void ColorLikelihood::learn(const BinImage &bins, const cv::Rect &object, const cv::Rect &surroundings,
                             double rate) {
@@ -28,6 +30,7 @@ void ColorLikelihood::learn(const BinImage &bins, const cv::Rect &object, const 
     const float total = objectCounts[j] + ringCounts[j];
     const float p = total > 0 ? objectCounts[j] / total : 0.5f;
     table_[j] = keep * table_[j] + add * p;
+    strict_[j] = keep * strict_[j] + add * (total > 0 ? p : 0.f);
   }
   learned_ = true;
 }
@@ -39,6 +42,17 @@ void ColorLikelihood::map(const BinImage &bins, cv::Mat &probability) const {
     float *out = probability.ptr<float>(y);
     for (int x = 0; x < bins.bins.cols; ++x) out[x] = table_[jointBin(in[x])];
   }
+}
+
+double ColorLikelihood::confidence(const BinImage &bins, const cv::Rect &rect) const {
+  const cv::Rect r = rect & bins.frameRect();
+  if (r.empty()) return 0;
+  double sum = 0;
+  for (int y = r.y; y < r.br().y; ++y) {
+    const cv::Vec3b *row = bins.bins.ptr<cv::Vec3b>(y - bins.origin.y) - bins.origin.x;
+    for (int x = r.x; x < r.br().x; ++x) sum += strict_[jointBin(row[x])];
+  }
+  return sum / r.area();
 }
 
 double boxSum(const cv::Mat &integral, const cv::Rect &r) {

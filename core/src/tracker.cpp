@@ -23,6 +23,11 @@ constexpr int kUnverifiedGlobalSearchPeriod = 5;
 // width of the surroundings the likelihood is learnt against, in box sizes per side.
 constexpr double kMotionPriorSigma = 1.0;
 constexpr double kSurroundings = 0.5;
+// Discriminative sizing: the ring the box's mean likelihood is compared with, as a fraction of the box's
+// smaller side. Narrower than the indexing ring: the likelihood map is sharper than a window's histogram,
+// and a wide ring reaches neighbouring object-coloured clutter. 0.1-0.2 all give mean AUC 0.55-0.57 on the
+// shared sequences, 0.25 gives 0.52, 0.5 gives 0.33 (docs/benchmarks.md).
+constexpr double kLikelihoodRing = 0.15;
 constexpr double kAspectRate = 0.3;  // smoothing of the measured aspect ratio
 
 cv::Rect roundRect(const cv::Rect2d &r) {
@@ -228,7 +233,7 @@ struct Tracker::Impl {
         const cv::Rect2d box = centredBox(centre.x, centre.y, cv::Size2d(size.width * fw, size.height * fh));
         const cv::Rect r = roundRect(box);
         if ((r & limits) != r) continue;
-        const int ring = std::max(1, cvRound(s.scale.ringWidth * std::min(box.width, box.height)));
+        const int ring = std::max(1, cvRound(kLikelihoodRing * std::min(box.width, box.height)));
         const cv::Rect outer =
             cv::Rect(r.x - ring, r.y - ring, r.width + 2 * ring, r.height + 2 * ring) & limits;
         const double inside = boxSum(integralP, r - origin);
@@ -240,12 +245,11 @@ struct Tracker::Impl {
       }
     if (bestMass <= -1e18) d.box = centredBox(centre.x, centre.y, size);
     const cv::Rect r = roundRect(d.box) & limits;
-    const double meanP = r.area() > 0 ? boxSum(integralP, r - origin) / r.area() : 0;
-    if (meanP < s.likelihoodThreshold) return std::nullopt;
-    // The likelihood finds the most object-like place; whether it is the object is the template's call: its
-    // colour-indexing match value, as in the paper (also the score reported).
+    if (likelihood.confidence(bins, r) < s.likelihoodThreshold) return std::nullopt;
+    // The score reported is the paper's match value against the template, so that it means the same in both
+    // methods; acceptance here is the likelihood's (the template was one frame's look, the likelihood follows
+    // the object as it changes).
     d.score = windowMatch(bins, r, model, s.weights);
-    if (d.score < s.matchThreshold) return std::nullopt;
     d.verified = verify(frame, roundRect(d.box), s);
     return d;
   }

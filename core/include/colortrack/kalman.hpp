@@ -8,7 +8,7 @@ namespace colortrack {
 struct KalmanParams {
   // Spectral density of the jerk (white-noise jerk model) for x and y, in px^2 per frame^5 units. Scale
   // uses processNoise * scaleNoiseRatio, since scale is ~1 while positions are in pixels.
-  double processNoise = 1.0;
+  double processNoise = 10.0;
   double measurementNoise = 4.0;  // variance of measured x and y, px^2; scale: * scaleNoiseRatio
   double scaleNoiseRatio = 1e-4;
 };

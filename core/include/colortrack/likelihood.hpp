@@ -26,6 +26,10 @@ class ColorLikelihood {
   // Per-pixel P(object | colour) of a bin image, CV_32FC1 in [0,1]. Colours never seen count 0.5.
   void map(const BinImage &bins, cv::Mat &probability) const;
 
+  // Mean P(object | colour) over `rect` with colours never seen counted as background (0): the confidence
+  // that the box holds the object, which unseen colours (0.5 for the search) must not raise.
+  double confidence(const BinImage &bins, const cv::Rect &rect) const;
+
   // P(object | colour) of one joint bin.
   float probability(int jointBin) const { return table_[jointBin]; }
   int jointBin(const cv::Vec3b &bins) const {
@@ -34,7 +38,8 @@ class ColorLikelihood {
 
  private:
   BinLayout layout_;
-  std::vector<float> table_;  // joint bin -> P(object | colour)
+  std::vector<float> table_;   // joint bin -> P(object | colour), unseen colours 0.5
+  std::vector<float> strict_;  // the same with unseen colours 0
   bool learned_ = false;
 };
 

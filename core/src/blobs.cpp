@@ -1,0 +1,309 @@
+#include "colortrack/blobs.hpp"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <string_view>
+
+#include <opencv2/imgproc.hpp>
+
+namespace colortrack {
+
+namespace {
+
+std::string_view trimmed(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
+  return s;
+}
+
+// Locale independent (an application's locale may use a decimal comma).
+bool parseDouble(std::string_view field, double &value) {
+  field = trimmed(field);
+  if (field.empty()) return false;
+  const char *end = field.data() + field.size();
+  const auto [ptr, ec] = std::from_chars(field.data(), end, value);
+  return ec == std::errc() && ptr == end && std::isfinite(value);
+}
+
+std::string formatNumber(double value) {
+  std::array<char, 32> buffer{};
+  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value,
+                                    std::chars_format::general, 4);
+  return std::string(buffer.data(), result.ptr);
+}
+
+// HSV of a colour given as doubles in [0, 255] (LUT cell centres fall between 8-bit values).
+Hsv hsvOf(double r, double g, double b) {
+  const double mx = std::max({r, g, b}), mn = std::min({r, g, b}), delta = mx - mn;
+  Hsv hsv;
+  hsv.v = mx / 255.0;
+  hsv.s = mx > 0 ? delta / mx : 0;
+  if (delta > 0) {
+    double h;
+    if (mx == r)
+      h = 60.0 * (g - b) / delta;
+    else if (mx == g)
+      h = 60.0 * (b - r) / delta + 120.0;
+    else
+      h = 60.0 * (r - g) / delta + 240.0;
+    if (h < 0) h += 360.0;
+    hsv.h = h >= 360.0 ? h - 360.0 : h;
+  }
+  return hsv;
+}
+
+// BT.601 limited range to RGB, the matrix of OpenCV's YUV2BGR conversions.
+std::array<double, 3> rgbOfYuv601(double y, double u, double v) {
+  const double c = 1.164 * (y - 16.0), d = u - 128.0, e = v - 128.0;
+  const auto clamp = [](double x) { return std::clamp(x, 0.0, 255.0); };
+  return {clamp(c + 1.596 * e), clamp(c - 0.391 * d - 0.813 * e), clamp(c + 2.018 * d)};
+}
+
+double percentile(std::vector<double> &values, double p) {
+  if (values.empty()) return 0;
+  const auto k = static_cast<std::size_t>(std::lround(p * (values.size() - 1)));
+  std::nth_element(values.begin(), values.begin() + k, values.end());
+  return values[k];
+}
+
+}  // namespace
+
+bool HsvRange::contains(const Hsv &hsv) const {
+  if (hsv.s < lower.s || hsv.s > upper.s || hsv.v < lower.v || hsv.v > upper.v) return false;
+  if (upper.h - lower.h >= 360.0) return true;
+  if (lower.h <= upper.h) return hsv.h >= lower.h && hsv.h <= upper.h;
+  return hsv.h >= lower.h || hsv.h <= upper.h;  // wraps through 0
+}
+
+std::optional<Hsv> parseHsv(const std::string &text, std::string *error) {
+  const auto fail = [&](const std::string &message) -> std::optional<Hsv> {
+    if (error) *error = message;
+    return std::nullopt;
+  };
+  std::array<double, 3> values{};
+  std::string_view rest = text;
+  for (int i = 0; i < 3; ++i) {
+    const auto comma = rest.find(',');
+    if ((i < 2) != (comma != std::string_view::npos) || !parseDouble(rest.substr(0, comma), values[i]))
+      return fail("expected \"h,s,v\" (h in degrees 0-360, s and v 0-1), got \"" + text + "\"");
+    rest.remove_prefix(comma == std::string_view::npos ? rest.size() : comma + 1);
+  }
+  if (values[0] < 0 || values[0] > 360)
+    return fail("hue must be 0-360 degrees, got " + formatNumber(values[0]) + " in \"" + text + "\"");
+  if (values[1] < 0 || values[1] > 1)
+    return fail("saturation must be 0-1, got " + formatNumber(values[1]) + " in \"" + text + "\"");
+  if (values[2] < 0 || values[2] > 1)
+    return fail("value must be 0-1, got " + formatNumber(values[2]) + " in \"" + text + "\"");
+  return Hsv{values[0], values[1], values[2]};
+}
+
+std::string formatHsv(const Hsv &hsv) {
+  return formatNumber(hsv.h) + "," + formatNumber(hsv.s) + "," + formatNumber(hsv.v);
+}
+
+std::string validateRange(const HsvRange &range) {
+  if (range.lower.s > range.upper.s)
+    return "lower saturation " + formatNumber(range.lower.s) + " exceeds upper saturation " +
+           formatNumber(range.upper.s);
+  if (range.lower.v > range.upper.v)
+    return "lower value " + formatNumber(range.lower.v) + " exceeds upper value " + formatNumber(range.upper.v);
+  return {};
+}
+
+RangeLut::RangeLut(const HsvRange &range, PixelEncoding encoding)
+    : range_(range), encoding_(encoding), table_(std::size_t{1} << (3 * kBits)) {
+  constexpr int cells = 1 << kBits;
+  constexpr double width = 1 << kShift;
+  const auto centre = [&](int cell) { return cell * width + (width - 1) / 2; };
+  for (int a = 0; a < cells; ++a)
+    for (int b = 0; b < cells; ++b)
+      for (int c = 0; c < cells; ++c) {
+        std::array<double, 3> rgb{centre(a), centre(b), centre(c)};
+        if (encoding == PixelEncoding::Yuv601) rgb = rgbOfYuv601(rgb[0], rgb[1], rgb[2]);
+        const bool inside = range.contains(hsvOf(rgb[0], rgb[1], rgb[2]));
+        table_[(a << (2 * kBits)) | (b << kBits) | c] = inside ? 255 : 0;
+      }
+}
+
+SampledFrame sampledBgr(const cv::Mat &bgr) {
+  CV_Assert(bgr.type() == CV_8UC3);
+  SampledFrame frame;
+  frame.encoding = PixelEncoding::Rgb;
+  frame.size = bgr.size();
+  const cv::Mat bytes(bgr.rows, bgr.cols * 3, CV_8UC1, bgr.data, bgr.step);
+  for (int c = 0; c < 3; ++c) frame.channels[c] = ChannelSampler{bytes, 2 - c, 3, 1, 1};  // R, G, B
+  return frame;
+}
+
+int autoDecimation(cv::Size frame) {
+  return frame.area() <= 640 * 480 ? 1 : 2;
+}
+
+void segment(const SampledFrame &frame, const RangeLut &lut, int decimation, cv::Mat &mask) {
+  const int d = std::max(1, decimation);
+  const cv::Size grid((frame.size.width + d - 1) / d, (frame.size.height + d - 1) / d);
+  mask.create(grid, CV_8UC1);
+  // Byte offset of every grid column in each channel's row: the inner loop is then three loads and a
+  // table lookup per pixel whatever the format.
+  std::array<std::vector<int>, 3> columns;
+  for (int c = 0; c < 3; ++c) {
+    const ChannelSampler &ch = frame.channels[c];
+    columns[c].resize(grid.width);
+    for (int x = 0; x < grid.width; ++x) columns[c][x] = (x * d / ch.xSub) * ch.sampleBytes + ch.byteOffset;
+  }
+  const std::uint8_t *table = lut.table();
+  const int *col0 = columns[0].data(), *col1 = columns[1].data(), *col2 = columns[2].data();
+  constexpr int shift = RangeLut::kShift, bits = RangeLut::kBits;
+  for (int y = 0; y < grid.height; ++y) {
+    const int fy = y * d;
+    const std::uint8_t *p0 = frame.channels[0].plane.ptr(fy / frame.channels[0].ySub);
+    const std::uint8_t *p1 = frame.channels[1].plane.ptr(fy / frame.channels[1].ySub);
+    const std::uint8_t *p2 = frame.channels[2].plane.ptr(fy / frame.channels[2].ySub);
+    std::uint8_t *out = mask.ptr(y);
+    for (int x = 0; x < grid.width; ++x) {
+      const int index = ((p0[col0[x]] >> shift) << (2 * bits)) | ((p1[col1[x]] >> shift) << bits) |
+                        (p2[col2[x]] >> shift);
+      out[x] = table[index];
+    }
+  }
+}
+
+void cleanMask(cv::Mat &mask, int size) {
+  if (size < 2) return;
+  // Square kernels: separable, so OpenCV runs them as two cheap 1-D passes.
+  const cv::Mat kernel = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(size, size));
+  cv::morphologyEx(mask, mask, cv::MORPH_OPEN, kernel);
+  cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, kernel);
+}
+
+BlobDetector::BlobDetector(const BlobSettings &settings) : settings_(settings) {}
+
+void BlobDetector::setSettings(const BlobSettings &settings) {
+  const bool rangeChanged = settings.range.lower.h != settings_.range.lower.h ||
+                            settings.range.lower.s != settings_.range.lower.s ||
+                            settings.range.lower.v != settings_.range.lower.v ||
+                            settings.range.upper.h != settings_.range.upper.h ||
+                            settings.range.upper.s != settings_.range.upper.s ||
+                            settings.range.upper.v != settings_.range.upper.v;
+  settings_ = settings;
+  if (rangeChanged) {
+    rgbLut_.reset();
+    yuvLut_.reset();
+  }
+}
+
+const RangeLut &BlobDetector::lutFor(PixelEncoding encoding) {
+  std::optional<RangeLut> &lut = encoding == PixelEncoding::Rgb ? rgbLut_ : yuvLut_;
+  if (!lut) lut.emplace(settings_.range, encoding);
+  return *lut;
+}
+
+std::vector<Blob> BlobDetector::detect(const ImageSource &frame) {
+  frame.bgr(cv::Rect(cv::Point(), frame.size()), bgr_);
+  return detect(sampledBgr(bgr_));
+}
+
+std::vector<Blob> BlobDetector::detect(const SampledFrame &frame) {
+  const int d = settings_.decimation > 0 ? settings_.decimation : autoDecimation(frame.size);
+  lastDecimation_ = d;
+  segment(frame, lutFor(frame.encoding), d, mask_);
+
+  // The kernel is given in frame pixels; on a decimated grid it shrinks, kept odd (centred) and, when
+  // enabled at all, at least 3 so that one-sample specks still go.
+  int kernel = 0;
+  if (settings_.morphSize >= 2) {
+    kernel = static_cast<int>(std::lround(static_cast<double>(settings_.morphSize) / d));
+    if (kernel % 2 == 0) ++kernel;
+    kernel = std::max(kernel, 3);
+  }
+  cleanMask(mask_, kernel);
+
+  const int count = cv::connectedComponentsWithStats(mask_, labels_, stats_, centroids_, 8, CV_32S);
+  const double cellArea = static_cast<double>(d) * d;
+  std::vector<Blob> blobs;
+  for (int label = 1; label < count; ++label) {  // 0 is the background
+    const int *s = stats_.ptr<int>(label);
+    const double area = s[cv::CC_STAT_AREA] * cellArea;
+    if (area < settings_.minArea) continue;
+    Blob blob;
+    blob.area = area;
+    // Grid sample (x, y) is frame pixel (x d, y d): centroids scale without offset.
+    blob.centroid = cv::Point2d(centroids_.at<double>(label, 0) * d, centroids_.at<double>(label, 1) * d);
+    blob.box = cv::Rect(s[cv::CC_STAT_LEFT] * d, s[cv::CC_STAT_TOP] * d, s[cv::CC_STAT_WIDTH] * d,
+                        s[cv::CC_STAT_HEIGHT] * d) &
+               cv::Rect(cv::Point(), frame.size);
+    blob.fill = static_cast<double>(s[cv::CC_STAT_AREA]) / (static_cast<double>(s[cv::CC_STAT_WIDTH]) *
+                                                           s[cv::CC_STAT_HEIGHT]);
+    blobs.push_back(blob);
+  }
+  std::sort(blobs.begin(), blobs.end(), [](const Blob &a, const Blob &b) { return a.area > b.area; });
+  if (static_cast<int>(blobs.size()) > settings_.maxObjects) blobs.resize(std::max(0, settings_.maxObjects));
+  return blobs;
+}
+
+HsvRange learnRange(const ImageSource &frame, const cv::Rect &box) {
+  cv::Mat patch;
+  frame.bgr(box, patch);
+  std::vector<double> hues, sats, vals;
+  const double cx = (box.width - 1) / 2.0, cy = (box.height - 1) / 2.0;
+  const double rx = std::max(0.5, box.width / 2.0), ry = std::max(0.5, box.height / 2.0);
+  double sumSin = 0, sumCos = 0;
+  for (int y = 0; y < patch.rows; ++y) {
+    const cv::Vec3b *row = patch.ptr<cv::Vec3b>(y);
+    for (int x = 0; x < patch.cols; ++x) {
+      const double dx = (x - cx) / rx, dy = (y - cy) / ry;
+      if (dx * dx + dy * dy > 1.0) continue;  // outside the inscribed ellipse: probably background
+      const Hsv hsv = rgbToHsv(row[x][2], row[x][1], row[x][0]);
+      hues.push_back(hsv.h);
+      sats.push_back(hsv.s);
+      vals.push_back(hsv.v);
+      // Weighted by saturation: the hue of a nearly grey pixel is noise.
+      const double angle = hsv.h * CV_PI / 180.0;
+      sumSin += hsv.s * std::sin(angle);
+      sumCos += hsv.s * std::cos(angle);
+    }
+  }
+  HsvRange range;
+  if (hues.empty()) return range;
+
+  constexpr double kLow = 0.05, kHigh = 0.95;
+  constexpr double kHueMargin = 10.0, kSatMargin = 0.1;
+  constexpr double kDarker = 0.6;  // V may drop to 60% of the darkest typical pixel (a 35% dimmer scene + margin)
+  std::vector<double> s = sats, v = vals;
+  const double sLow = percentile(s, kLow), sHigh = percentile(s, kHigh);
+  const double vLow = percentile(v, kLow);
+  range.lower.s = std::max(0.0, sLow - kSatMargin);
+  range.upper.s = std::min(1.0, sHigh + kSatMargin);
+  range.lower.v = std::max(0.0, vLow * kDarker);
+  range.upper.v = 1.0;  // brighter is always fine: V is the first channel light changes
+
+  std::vector<double> medianSat = sats;
+  if (percentile(medianSat, 0.5) < 0.15 || std::hypot(sumSin, sumCos) <= 0) {
+    range.lower.h = 0;  // a grey object: its hue means nothing
+    range.upper.h = 360;
+    return range;
+  }
+  const double mean = std::atan2(sumSin, sumCos) * 180.0 / CV_PI;
+  std::vector<double> deviations;
+  deviations.reserve(hues.size());
+  for (std::size_t i = 0; i < hues.size(); ++i) {
+    if (sats[i] < 0.15) continue;
+    double d = std::fmod(hues[i] - mean + 540.0, 360.0) - 180.0;  // signed angle, (-180, 180]
+    deviations.push_back(d);
+  }
+  const double dLow = percentile(deviations, kLow) - kHueMargin;
+  const double dHigh = percentile(deviations, kHigh) + kHueMargin;
+  if (dHigh - dLow >= 360.0) {
+    range.lower.h = 0;
+    range.upper.h = 360;
+  } else {
+    const auto wrap = [](double h) { return std::fmod(std::fmod(h, 360.0) + 360.0, 360.0); };
+    range.lower.h = wrap(mean + dLow);
+    range.upper.h = wrap(mean + dHigh);
+  }
+  return range;
+}
+
+}  // namespace colortrack
