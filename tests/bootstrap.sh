@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 packages=(
   g++ meson ninja-build pkg-config
   libgstreamer1.0-dev libgstreamer-plugins-base1.0-dev gstreamer1.0-tools
-  gstreamer1.0-plugins-base gstreamer1.0-plugins-good
+  gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-plugins-bad gstreamer1.0-opencv
   libopencv-dev libeigen3-dev libserialport-dev libgtest-dev
 )
 missing=()

@@ -28,6 +28,8 @@ constexpr double kSurroundings = 0.5;
 // and a wide ring reaches neighbouring object-coloured clutter. 0.1-0.2 all give mean AUC 0.55-0.57 on the
 // shared sequences, 0.25 gives 0.52, 0.5 gives 0.33 (docs/benchmarks.md).
 constexpr double kLikelihoodRing = 0.15;
+// Discriminative search works on a region reduced so the box's smaller side is about this many pixels.
+constexpr double kLikelihoodWindowSide = 40;
 constexpr double kAspectRate = 0.3;  // smoothing of the measured aspect ratio
 
 cv::Rect roundRect(const cv::Rect2d &r) {
@@ -149,10 +151,8 @@ struct Tracker::Impl {
     const int factor = std::max(1, static_cast<int>(std::min(size.width, size.height) / kCoarseWindowSide));
     if (factor == 1) return detectIn(frame, cv::Rect(cv::Point(), frameSize), scale, s);
 
-    frame.bgr(cv::Rect(cv::Point(), frameSize), bgr);
-    // Nearest-neighbour: a histogram only needs a fair sample of the pixels, not a filtered image.
-    cv::resize(bgr, small, cv::Size(frameSize.width / factor, frameSize.height / factor), 0, 0,
-               cv::INTER_NEAREST);
+    // A sample of the pixels is enough for histograms; no need for a filtered image.
+    frame.sampledBgr(cv::Rect(cv::Point(), frameSize), factor, small);
     mapper->map(small, coarseBins.bins);
     coarseBins.origin = cv::Point();
     const cv::Size coarseWindow(std::max(1, cvRound(size.width / factor)),
@@ -186,66 +186,81 @@ struct Tracker::Impl {
                                               const TrackerSettings &s, const cv::Point2d *prior) {
     const cv::Rect frameRect(cv::Point(), frame.size());
     const cv::Size2d size = windowSize(scale);
-    const cv::Size window(std::max(1, cvRound(size.width)), std::max(1, cvRound(size.height)));
     const cv::Rect searchRect = region & frameRect;
-    if (searchRect.width < window.width || searchRect.height < window.height) return std::nullopt;
+    if (searchRect.width < size.width || searchRect.height < size.height) return std::nullopt;
     const int pad = cvRound(std::max(size.width, size.height) * std::max(0.0, s.scale.maxFactor - 1.0)) + 2;
     const cv::Rect padded = cv::Rect(searchRect.x - pad, searchRect.y - pad, searchRect.width + 2 * pad,
                                      searchRect.height + 2 * pad) &
                             frameRect;
-    mapRegion(frame, padded, bins);
+
+    // Large boxes are searched on a reduced copy of the region (nearest neighbour: a sample of the pixels),
+    // so the cost per frame stays about the same whatever the object's size. `f` full-resolution pixels make
+    // one local pixel; local coordinates start at the padded region's corner.
+    const int f = std::max(1, static_cast<int>(std::min(size.width, size.height) / kLikelihoodWindowSide));
+    frame.sampledBgr(padded, f, small);
+    mapper->map(small, bins.bins);
+    bins.origin = cv::Point();
     likelihood.map(bins, probability);
     cv::integral(probability, integralP, CV_64F);
-    const cv::Point origin = bins.origin;
+    const cv::Rect limits(cv::Point(), probability.size());
+    auto toLocal = [&](double x, double y) { return cv::Point2d((x - padded.x) / f, (y - padded.y) / f); };
 
-    const double sigma = kMotionPriorSigma * std::sqrt(size.width * size.height);
+    const cv::Size2d sizeL(size.width / f, size.height / f);
+    const cv::Size window(std::max(1, cvRound(sizeL.width)), std::max(1, cvRound(sizeL.height)));
+    const cv::Point2d searchTl = toLocal(searchRect.x, searchRect.y);
+    const cv::Rect searchL = cv::Rect(cvCeil(searchTl.x), cvCeil(searchTl.y), searchRect.width / f,
+                                      searchRect.height / f) &
+                             limits;
+    if (searchL.width < window.width || searchL.height < window.height) return std::nullopt;
+    const std::optional<cv::Point2d> priorL =
+        prior ? std::optional<cv::Point2d>(toLocal(prior->x, prior->y)) : std::nullopt;
+    const double sigma = kMotionPriorSigma * std::sqrt(sizeL.width * sizeL.height);
     auto windowScore = [&](int x, int y) {
-      const double mean = boxSum(integralP, cv::Rect(x - origin.x, y - origin.y, window.width, window.height)) /
-                          window.area();
-      if (!prior) return mean;
-      const double dx = x + window.width / 2.0 - prior->x, dy = y + window.height / 2.0 - prior->y;
+      const double mean = boxSum(integralP, cv::Rect(x, y, window.width, window.height)) / window.area();
+      if (!priorL) return mean;
+      const double dx = x + window.width / 2.0 - priorL->x, dy = y + window.height / 2.0 - priorL->y;
       return mean * std::exp(-(dx * dx + dy * dy) / (2 * sigma * sigma));
     };
     // A coarse grid, then every pixel around its best.
     const int step = std::max(1, std::min(window.width, window.height) / 12);
-    const int maxX = searchRect.br().x - window.width, maxY = searchRect.br().y - window.height;
-    cv::Point best(searchRect.x, searchRect.y);
+    const int maxX = searchL.br().x - window.width, maxY = searchL.br().y - window.height;
+    cv::Point best = searchL.tl();
     double bestScore = -1;
-    for (int y = searchRect.y; y <= maxY; y += step)
-      for (int x = searchRect.x; x <= maxX; x += step)
+    for (int y = searchL.y; y <= maxY; y += step)
+      for (int x = searchL.x; x <= maxX; x += step)
         if (const double v = windowScore(x, y); v > bestScore) bestScore = v, best = cv::Point(x, y);
     const cv::Point coarse = best;
-    for (int y = std::max(searchRect.y, coarse.y - step); y <= std::min(maxY, coarse.y + step); ++y)
-      for (int x = std::max(searchRect.x, coarse.x - step); x <= std::min(maxX, coarse.x + step); ++x)
+    for (int y = std::max(searchL.y, coarse.y - step); y <= std::min(maxY, coarse.y + step); ++y)
+      for (int x = std::max(searchL.x, coarse.x - step); x <= std::min(maxX, coarse.x + step); ++x)
         if (const double v = windowScore(x, y); v > bestScore) bestScore = v, best = cv::Point(x, y);
 
     // Size: the box whose mean likelihood most exceeds that of the ring around it, i.e. the box that sits on
     // the border between object-like and background-like pixels. (A fixed level such as sum(P - 1/2) shrinks
     // the box onto the most object-like part whenever the object holds colours the background shares.)
     const cv::Point2d centre(best.x + window.width / 2.0, best.y + window.height / 2.0);
-    const cv::Rect limits = cv::Rect(origin, probability.size());
-    Detection d;
+    cv::Rect2d boxL = centredBox(centre.x, centre.y, sizeL);
     double bestMass = -1e18;
     const double stepFactor = s.scale.step > 0 ? s.scale.step : 1.0;
     for (double fw = s.scale.minFactor; fw <= s.scale.maxFactor + 1e-9; fw += stepFactor)
       for (double fh = s.scale.minFactor; fh <= s.scale.maxFactor + 1e-9; fh += stepFactor) {
         if (!s.adaptAspect && std::abs(fw - fh) > 1e-9) continue;
-        const cv::Rect2d box = centredBox(centre.x, centre.y, cv::Size2d(size.width * fw, size.height * fh));
+        const cv::Rect2d box = centredBox(centre.x, centre.y, cv::Size2d(sizeL.width * fw, sizeL.height * fh));
         const cv::Rect r = roundRect(box);
         if ((r & limits) != r) continue;
         const int ring = std::max(1, cvRound(kLikelihoodRing * std::min(box.width, box.height)));
         const cv::Rect outer =
             cv::Rect(r.x - ring, r.y - ring, r.width + 2 * ring, r.height + 2 * ring) & limits;
-        const double inside = boxSum(integralP, r - origin);
+        const double inside = boxSum(integralP, r);
         const double ringArea = outer.area() - r.area();
-        const double ringMean = ringArea > 0 ? (boxSum(integralP, outer - origin) - inside) / ringArea : 0;
+        const double ringMean = ringArea > 0 ? (boxSum(integralP, outer) - inside) / ringArea : 0;
         // Prefer the current size on ties, so noise does not make the box wander.
         const double mass = inside / r.area() - ringMean - 1e-6 * (std::abs(fw - 1) + std::abs(fh - 1));
-        if (mass > bestMass) bestMass = mass, d.box = box;
+        if (mass > bestMass) bestMass = mass, boxL = box;
       }
-    if (bestMass <= -1e18) d.box = centredBox(centre.x, centre.y, size);
-    const cv::Rect r = roundRect(d.box) & limits;
+    const cv::Rect r = roundRect(boxL) & limits;
     if (likelihood.confidence(bins, r) < s.likelihoodThreshold) return std::nullopt;
+    Detection d;
+    d.box = cv::Rect2d(padded.x + boxL.x * f, padded.y + boxL.y * f, boxL.width * f, boxL.height * f);
     // The score reported is the paper's match value against the template, so that it means the same in both
     // methods; acceptance here is the likelihood's (the template was one frame's look, the likelihood follows
     // the object as it changes).

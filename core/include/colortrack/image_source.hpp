@@ -12,6 +12,9 @@ class ImageSource {
   virtual cv::Size size() const = 0;
   // Writes the pixels of `rect` (inside the frame) as CV_8UC3 BGR into `out` (reallocated if needed).
   virtual void bgr(const cv::Rect &rect, cv::Mat &out) const = 0;
+  // Every `step`-th pixel of `rect` in both directions (nearest neighbour), as BGR: size rect / step. Sources
+  // that can read a sample without converting the whole rectangle override this.
+  virtual void sampledBgr(const cv::Rect &rect, int step, cv::Mat &out) const;
 };
 
 // An ImageSource over a BGR cv::Mat (tests, benchmarks, template files).
@@ -20,6 +23,7 @@ class MatImageSource : public ImageSource {
   explicit MatImageSource(const cv::Mat &bgr) : bgr_(bgr) {}
   cv::Size size() const override { return bgr_.size(); }
   void bgr(const cv::Rect &rect, cv::Mat &out) const override { bgr_(rect).copyTo(out); }
+  void sampledBgr(const cv::Rect &rect, int step, cv::Mat &out) const override;
 
  private:
   cv::Mat bgr_;
