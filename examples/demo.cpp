@@ -113,6 +113,15 @@ Options parseOptions(int &argc, char **&argv) {
   if (!problem.empty()) throw DemoError(problem + " (see --help)");
   if (options.frames == 0 || options.frames < -1) throw DemoError("--frames must be a positive number");
   if (options.output.empty()) throw DemoError("--output must name a file");
+  if (inputKind(options.input) == InputKind::Uri && !gst_uri_is_valid(options.input.c_str())) {
+    // filesink truncates its file at start: writing over the input would destroy it.
+    gchar *in = g_canonicalize_filename(options.input.c_str(), nullptr);
+    gchar *out = g_canonicalize_filename(options.output.c_str(), nullptr);
+    const bool same = g_strcmp0(in, out) == 0;
+    g_free(in);
+    g_free(out);
+    if (same) throw DemoError("the output file is the input file: choose another --output");
+  }
   if (inputKind(options.input) != InputKind::Scene && options.initBox.empty() && options.templatePath.empty())
     throw DemoError(
         "a camera, file or stream input needs --init-box X,Y,W,H or --template FILE to know what "
@@ -412,7 +421,9 @@ int run(const Options &options) {
 
   scene::SceneConfig sceneConfig;
   sceneConfig.frameSize = cv::Size(640, 480);
-  sceneConfig.frames = options.frames > 0 ? options.frames : kSceneFrames;  // one pass of the motion script
+  // One pass of the motion script is always kSceneFrames long, so --frames changes the length of the run and
+  // not the object's speed (the script repeats after a pass).
+  sceneConfig.frames = kSceneFrames;
   sceneConfig.scaleMin = 0.7;
   sceneConfig.scaleMax = 1.4;
   sceneConfig.rotationDegrees = 90;
@@ -421,7 +432,7 @@ int run(const Options &options) {
   scene::Scene scene(sceneConfig);
   if (run.kind == InputKind::Scene) {
     run.scene = &scene;
-    run.sceneFrames = sceneConfig.frames;
+    run.sceneFrames = options.frames > 0 ? options.frames : kSceneFrames;
   }
 
   run.pipeline = gst_pipeline_new("colortrack-demo");

@@ -28,8 +28,8 @@ constexpr double kSurroundings = 0.5;
 // and a wide ring reaches neighbouring object-coloured clutter. 0.1-0.2 all give mean AUC 0.55-0.57 on the
 // shared sequences, 0.25 gives 0.52, 0.5 gives 0.33 (docs/benchmarks.md).
 constexpr double kLikelihoodRing = 0.15;
-// Discriminative search works on a region reduced so the box's smaller side is about this many pixels.
-constexpr double kLikelihoodWindowSide = 40;
+// Searches while tracking work on a region reduced so the box's smaller side is about this many pixels.
+constexpr double kReducedWindowSide = 40;
 constexpr double kAspectRate = 0.3;  // smoothing of the measured aspect ratio
 
 cv::Rect roundRect(const cv::Rect2d &r) {
@@ -124,22 +124,59 @@ struct Tracker::Impl {
   std::optional<Detection> detectIn(const ImageSource &frame, const cv::Rect &region, double scale,
                                     const TrackerSettings &s, const cv::Point2d *prior = nullptr) {
     if (useLikelihood(s)) return detectByLikelihood(frame, region, scale, s, prior);
-    const cv::Rect frameRect(cv::Point(), frame.size());
     const cv::Size2d size = windowSize(scale);
-    const cv::Size window(std::max(1, cvRound(size.width)), std::max(1, cvRound(size.height)));
     // Room for the scale refinement's largest window and its ring.
     const int pad = cvRound(std::max(size.width, size.height) * (std::max(0.0, s.scale.maxFactor - 1.0) +
                                                                  s.scale.ringWidth * s.scale.maxFactor)) +
                     2;
-    const cv::Rect searchRect = region & frameRect;
-    if (searchRect.width < window.width || searchRect.height < window.height) return std::nullopt;
-    const cv::Rect padded = cv::Rect(searchRect.x - pad, searchRect.y - pad, searchRect.width + 2 * pad,
-                                     searchRect.height + 2 * pad) &
-                            frameRect;
-    mapRegion(frame, padded, bins);
-    const SearchResult found = searchWindow(bins, searchRect, window, model, s.weights);
+    const auto reduced = readReduced(frame, region, size, pad);
+    if (!reduced) return std::nullopt;
+    const cv::Size window(std::max(1, cvRound(reduced->sizeL.width)), std::max(1, cvRound(reduced->sizeL.height)));
+    const SearchResult found = searchWindow(bins, reduced->searchL, window, model, s.weights);
     if (!found.found || found.score < s.matchThreshold) return std::nullopt;
-    return finishDetection(frame, found.box, s);
+    const ScaleResult refined = refineScale(bins, found.box, model, s.weights, s.scale);
+    Detection d;
+    d.box = reduced->toFull(refined.box);
+    d.score = refined.match;
+    d.verified = verify(frame, roundRect(d.box), s);
+    return d;
+  }
+
+  // A search region read at reduced resolution into `bins`: `f` full-resolution pixels make one local pixel
+  // (nearest neighbour: a sample of the pixels is enough for histograms), local coordinates start at the
+  // padded region's corner. Boxes are reduced to a smaller side of about kReducedWindowSide pixels, so the
+  // cost per frame stays about the same whatever the object's size.
+  struct Reduced {
+    cv::Rect padded;     // frame coordinates
+    int f = 1;
+    cv::Rect searchL;    // where windows may lie, local coordinates
+    cv::Size2d sizeL;    // the window size, local
+    cv::Rect2d toFull(const cv::Rect2d &b) const {
+      return cv::Rect2d(padded.x + b.x * f, padded.y + b.y * f, b.width * f, b.height * f);
+    }
+    cv::Point2d toLocal(double x, double y) const {
+      return cv::Point2d((x - padded.x) / f, (y - padded.y) / f);
+    }
+  };
+
+  std::optional<Reduced> readReduced(const ImageSource &frame, const cv::Rect &region, cv::Size2d size, int pad) {
+    const cv::Rect frameRect(cv::Point(), frame.size());
+    const cv::Rect searchRect = region & frameRect;
+    if (searchRect.width < size.width || searchRect.height < size.height) return std::nullopt;
+    Reduced r;
+    r.padded = cv::Rect(searchRect.x - pad, searchRect.y - pad, searchRect.width + 2 * pad,
+                        searchRect.height + 2 * pad) &
+               frameRect;
+    r.f = std::max(1, static_cast<int>(std::min(size.width, size.height) / kReducedWindowSide));
+    frame.sampledBgr(r.padded, r.f, small);
+    mapper->map(small, bins.bins);
+    bins.origin = cv::Point();
+    const cv::Point2d tl = r.toLocal(searchRect.x, searchRect.y);
+    r.searchL = cv::Rect(cvCeil(tl.x), cvCeil(tl.y), searchRect.width / r.f, searchRect.height / r.f) &
+                cv::Rect(cv::Point(), bins.bins.size());
+    r.sizeL = cv::Size2d(size.width / r.f, size.height / r.f);
+    if (r.searchL.width < cvRound(r.sizeL.width) || r.searchL.height < cvRound(r.sizeL.height)) return std::nullopt;
+    return r;
   }
 
   // Full-frame search: a coarse pass on a reduced frame, then a full-resolution search around its best.
@@ -184,36 +221,18 @@ struct Tracker::Impl {
   // height that enclose the most likelihood mass above one half.
   std::optional<Detection> detectByLikelihood(const ImageSource &frame, const cv::Rect &region, double scale,
                                               const TrackerSettings &s, const cv::Point2d *prior) {
-    const cv::Rect frameRect(cv::Point(), frame.size());
     const cv::Size2d size = windowSize(scale);
-    const cv::Rect searchRect = region & frameRect;
-    if (searchRect.width < size.width || searchRect.height < size.height) return std::nullopt;
     const int pad = cvRound(std::max(size.width, size.height) * std::max(0.0, s.scale.maxFactor - 1.0)) + 2;
-    const cv::Rect padded = cv::Rect(searchRect.x - pad, searchRect.y - pad, searchRect.width + 2 * pad,
-                                     searchRect.height + 2 * pad) &
-                            frameRect;
-
-    // Large boxes are searched on a reduced copy of the region (nearest neighbour: a sample of the pixels),
-    // so the cost per frame stays about the same whatever the object's size. `f` full-resolution pixels make
-    // one local pixel; local coordinates start at the padded region's corner.
-    const int f = std::max(1, static_cast<int>(std::min(size.width, size.height) / kLikelihoodWindowSide));
-    frame.sampledBgr(padded, f, small);
-    mapper->map(small, bins.bins);
-    bins.origin = cv::Point();
+    const auto reduced = readReduced(frame, region, size, pad);
+    if (!reduced) return std::nullopt;
     likelihood.map(bins, probability);
     cv::integral(probability, integralP, CV_64F);
     const cv::Rect limits(cv::Point(), probability.size());
-    auto toLocal = [&](double x, double y) { return cv::Point2d((x - padded.x) / f, (y - padded.y) / f); };
-
-    const cv::Size2d sizeL(size.width / f, size.height / f);
+    const cv::Size2d sizeL = reduced->sizeL;
     const cv::Size window(std::max(1, cvRound(sizeL.width)), std::max(1, cvRound(sizeL.height)));
-    const cv::Point2d searchTl = toLocal(searchRect.x, searchRect.y);
-    const cv::Rect searchL = cv::Rect(cvCeil(searchTl.x), cvCeil(searchTl.y), searchRect.width / f,
-                                      searchRect.height / f) &
-                             limits;
-    if (searchL.width < window.width || searchL.height < window.height) return std::nullopt;
+    const cv::Rect searchL = reduced->searchL;
     const std::optional<cv::Point2d> priorL =
-        prior ? std::optional<cv::Point2d>(toLocal(prior->x, prior->y)) : std::nullopt;
+        prior ? std::optional<cv::Point2d>(reduced->toLocal(prior->x, prior->y)) : std::nullopt;
     const double sigma = kMotionPriorSigma * std::sqrt(sizeL.width * sizeL.height);
     auto windowScore = [&](int x, int y) {
       const double mean = boxSum(integralP, cv::Rect(x, y, window.width, window.height)) / window.area();
@@ -260,7 +279,7 @@ struct Tracker::Impl {
     const cv::Rect r = roundRect(boxL) & limits;
     if (likelihood.confidence(bins, r) < s.likelihoodThreshold) return std::nullopt;
     Detection d;
-    d.box = cv::Rect2d(padded.x + boxL.x * f, padded.y + boxL.y * f, boxL.width * f, boxL.height * f);
+    d.box = reduced->toFull(boxL);
     // The score reported is the paper's match value against the template, so that it means the same in both
     // methods; acceptance here is the likelihood's (the template was one frame's look, the likelihood follows
     // the object as it changes).
@@ -289,15 +308,6 @@ struct Tracker::Impl {
       learnLikelihood(frame, box, 1.0);
     else if (s.modelUpdateRate > 0)
       learnLikelihood(frame, box, s.modelUpdateRate);
-  }
-
-  Detection finishDetection(const ImageSource &frame, const cv::Rect &found, const TrackerSettings &s) {
-    Detection d;
-    const ScaleResult refined = refineScale(bins, found, model, s.weights, s.scale);
-    d.box = refined.box;
-    d.score = refined.match;
-    d.verified = verify(frame, roundRect(d.box), s);
-    return d;
   }
 
   bool verify(const ImageSource &frame, const cv::Rect &box, const TrackerSettings &s) {

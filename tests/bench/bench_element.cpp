@@ -37,13 +37,15 @@ struct BenchOptions {
 struct Variant {
   const char *name;
   const char *factory;
-  const char *draw;  // colortrack "draw" flags ("" = draw nothing); nullptr for identity
+  const char *draw;    // colortrack "draw" flags ("" = draw nothing); nullptr for identity
+  const char *method;  // colortrack "method"; nullptr = the element's default
 };
 
 const Variant kVariants[] = {
-    {"identity", "identity", nullptr},
-    {"colortrack", "colortrack", ""},
-    {"colortrack+draw", "colortrack", "box+trail+label+search-window"},
+    {"identity", "identity", nullptr, nullptr},
+    {"colortrack", "colortrack", "", nullptr},
+    {"colortrack+draw", "colortrack", "box+trail+label+search-window", nullptr},
+    {"colortrack-indexing", "colortrack", "", "indexing"},
 };
 
 struct RunResult {
@@ -136,6 +138,7 @@ RunResult runVariant(const Variant &variant, const scene::Scene &scene,
       gst_util_set_object_arg(G_OBJECT(under), "draw", variant.draw);
     else
       g_object_set(under, "draw", 0u, nullptr);
+    if (variant.method) gst_util_set_object_arg(G_OBJECT(under), "method", variant.method);
   }
 
   SinkClock clock;
@@ -208,7 +211,7 @@ int main(int argc, char **argv) {
       "colortrack element benchmark: appsrc (BGR, pre-rendered) ! X ! fakesink sync=false, "
       "%d frames after %d warm-up, OpenCV on 1 thread\n\n",
       options.frames, options.warmup);
-  std::printf("%-10s %-16s %10s %12s %14s\n", "size", "element", "fps", "ms/frame", "over identity");
+  std::printf("%-10s %-20s %10s %12s %14s\n", "size", "element", "fps", "ms/frame", "over identity");
   std::vector<std::string> machineLines;
   try {
     for (const cv::Size size : sizes) {
@@ -225,7 +228,7 @@ int main(int argc, char **argv) {
         const RunResult r = runVariant(variant, scene, frames, info, options);
         if (variant.draw == nullptr) identityMs = r.msPerFrame;
         const std::string sizeText = std::to_string(size.width) + "x" + std::to_string(size.height);
-        std::printf("%-10s %-16s %10.1f %12.3f %14.3f\n", sizeText.c_str(), variant.name, r.fps, r.msPerFrame,
+        std::printf("%-10s %-20s %10.1f %12.3f %14.3f\n", sizeText.c_str(), variant.name, r.fps, r.msPerFrame,
                     r.msPerFrame - identityMs);
         std::fflush(stdout);
         char line[256];

@@ -634,7 +634,7 @@ std::string markdownTables(const std::vector<Sequence> &sequences, const std::ve
     md << "\n";
   }
 
-  md << "### Mean over " << sequences.size() << " sequences\n\n";
+  md << "### Mean over " << sequences.size() << (sequences.size() == 1 ? " sequence" : " sequences") << "\n\n";
   md << "| Tracker | AUC | Precision@20 | fps pipeline | fps element | slowest element fps |\n"
         "|---|---:|---:|---:|---:|---:|\n";
   for (std::size_t t = 0; t < trackers.size(); ++t) {
@@ -652,6 +652,10 @@ std::string markdownTables(const std::vector<Sequence> &sequences, const std::ve
         slowest = e.run.elementFps();
         slowestName = sequences[s].name;
       }
+    }
+    if (scores.empty()) {
+      md << "| " << trackers[t] << " | failed | | | | |\n";
+      continue;
     }
     const SequenceScore mean = averageScores(scores);
     const std::string coverage =
