@@ -42,6 +42,7 @@
 #include <cmath>
 #include <cstdio>
 #include <deque>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -49,6 +50,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "colortrack/blobs.hpp"
+#include "colortrack/multi_tracker.hpp"
 #include "colortrack/settings.hpp"
 #include "colortrack/tracker.hpp"
 #include "frame-view.h"
@@ -89,6 +92,11 @@ struct Settings {
   guint trailLength = kDefaultTrailLength;
   bool postMessages = kDefaultPostMessages;
   bool streaming = false;  // between start() and stop(): a bad value is then a warning and is not applied
+  // mode=threshold: range, clean-up and blob limits; the range ends as the user wrote them.
+  colortrack::BlobSettings blobs;
+  TextSetting hsvLower, hsvUpper;
+  guint64 blobsGeneration = 0;  // bumped on every change of `blobs`
+  cv::Size frameSize;           // from the caps (empty before), to judge min-area set while playing
 };
 
 // What the streaming thread owns (and start()/stop(), which never run concurrently with it).
@@ -103,6 +111,11 @@ struct State {
   bool warnedNoTemplate = false;
   bool capsChanged = false;
   GstClockTime lastPts = GST_CLOCK_TIME_NONE;
+  // mode=threshold.
+  std::unique_ptr<colortrack::BlobDetector> blobDetector;
+  colortrack::MultiTracker multiTracker;
+  guint64 appliedBlobsGeneration = 0;
+  std::map<int, std::deque<cv::Point2d>> trails;  // per track id
 };
 
 }  // namespace
@@ -138,6 +151,11 @@ enum {
   PROP_LIKELIHOOD_THRESHOLD,
   PROP_MODEL_UPDATE_RATE,
   PROP_ADAPT_ASPECT,
+  PROP_HSV_LOWER,
+  PROP_HSV_UPPER,
+  PROP_MORPH_SIZE,
+  PROP_MIN_AREA,
+  PROP_MAX_OBJECTS,
 };
 
 enum { SIGNAL_RESET, LAST_SIGNAL };
@@ -162,6 +180,9 @@ GType gst_color_track_mode_get_type(void) {
   static const GEnumValue values[] = {
       {GST_COLOR_TRACK_MODE_TEMPLATE, "Track the object of a template (template-location or init-box)",
        "template"},
+      {GST_COLOR_TRACK_MODE_THRESHOLD,
+       "Track every blob inside an HSV range (hsv-lower/hsv-upper, or learnt from init-box), each with an id",
+       "threshold"},
       {0, nullptr, nullptr},
   };
   if (g_once_init_enter(&type)) g_once_init_leave(&type, g_enum_register_static("GstColorTrackMode", values));
@@ -212,7 +233,8 @@ GType gst_color_track_draw_get_type(void) {
       {GST_COLOR_TRACK_DRAW_BOX, "Box (red: colour match, green: verified, orange: coasting)", "box"},
       {GST_COLOR_TRACK_DRAW_TRAIL, "Trail of the box centre (red)", "trail"},
       {GST_COLOR_TRACK_DRAW_SEARCH_WINDOW, "Region searched this frame (blue)", "search-window"},
-      {GST_COLOR_TRACK_DRAW_LABEL, "Label \"id score state\"", "label"},
+      {GST_COLOR_TRACK_DRAW_LABEL, "Label \"id score state\" (threshold: \"id area state\")", "label"},
+      {GST_COLOR_TRACK_DRAW_MASK, "mode=threshold: pixels inside the HSV range, tinted magenta", "mask"},
       {0, nullptr, nullptr},
   };
   if (g_once_init_enter(&type)) g_once_init_leave(&type, g_flags_register_static("GstColorTrackDraw", values));
@@ -333,6 +355,73 @@ cv::Rect roundedClippedBox(const cv::Rect2d &box, cv::Size frame) {
   return cv::Rect(cv::Point(x0, y0), cv::Point(x1, y1)) & cv::Rect(cv::Point(), frame);
 }
 
+// hsv-lower / hsv-upper. Each end is parsed alone; the pair must also make sense (lower s and v not above
+// upper). Before streaming a bad value is kept and reported at start (the other end may still be set after
+// it); while streaming it is rejected with a warning and the previous range stays.
+void setHsvProperty(GstColorTrack *self, bool lower, const GValue *value) {
+  const char *property = lower ? "hsv-lower" : "hsv-upper";
+  const char *raw = g_value_get_string(value);
+  const std::string text = raw ? raw : "";
+  std::string error;
+  const std::optional<colortrack::Hsv> parsed = colortrack::parseHsv(text, &error);
+
+  std::string kept;
+  bool rejected = false;
+  GST_OBJECT_LOCK(self);
+  Settings &s = settingsOf(self);
+  TextSetting &setting = lower ? s.hsvLower : s.hsvUpper;
+  colortrack::HsvRange candidate = s.blobs.range;
+  if (parsed) {
+    (lower ? candidate.lower : candidate.upper) = *parsed;
+    if (s.streaming) error = colortrack::validateRange(candidate);
+  }
+  if (parsed && error.empty()) {
+    setting.text = text;
+    setting.error.clear();
+    s.blobs.range = candidate;
+    ++s.blobsGeneration;
+  } else if (!s.streaming) {
+    setting.text = text;
+    setting.error = error;
+  } else {
+    rejected = true;
+    kept = setting.text;
+  }
+  GST_OBJECT_UNLOCK(self);
+
+  if (rejected)
+    GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS,
+                        ("Invalid value '%s' for property '%s': %s. Keeping '%s'.", text.c_str(), property,
+                         error.c_str(), kept.c_str()),
+                        (nullptr));
+  else if (!parsed)
+    GST_WARNING_OBJECT(self, "invalid %s '%s' (%s): the element will fail to start", property, text.c_str(),
+                       error.c_str());
+}
+
+// min-area: larger than a known frame while playing is rejected with a warning (nothing could ever be
+// found); otherwise it is checked against every frame, where it is an error.
+void setMinArea(GstColorTrack *self, int minArea) {
+  int kept = 0;
+  cv::Size frame;
+  GST_OBJECT_LOCK(self);
+  Settings &s = settingsOf(self);
+  const bool rejected = s.streaming && !s.frameSize.empty() && minArea > s.frameSize.area();
+  if (rejected) {
+    kept = s.blobs.minArea;
+    frame = s.frameSize;
+  } else {
+    s.blobs.minArea = minArea;
+    ++s.blobsGeneration;
+  }
+  GST_OBJECT_UNLOCK(self);
+  if (rejected)
+    GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS,
+                        ("Property 'min-area' %d is larger than the %dx%d frame (%d pixels). Keeping %d.", minArea,
+                         frame.width, frame.height, frame.area(), kept),
+                        (nullptr));
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------------------
@@ -364,6 +453,13 @@ static void gst_color_track_set_property(GObject *object, guint prop_id, const G
             s.tracker.weights = v;
             ++s.trackerGeneration;
           });
+      return;
+    case PROP_HSV_LOWER:
+    case PROP_HSV_UPPER:
+      setHsvProperty(self, prop_id == PROP_HSV_LOWER, value);
+      return;
+    case PROP_MIN_AREA:
+      setMinArea(self, g_value_get_int(value));
       return;
     case PROP_INIT_BOX: {
       bool streaming;
@@ -466,6 +562,16 @@ static void gst_color_track_set_property(GObject *object, guint prop_id, const G
       s.postMessages = g_value_get_boolean(value);
       trackerChanged = false;
       break;
+    case PROP_MORPH_SIZE:
+      s.blobs.morphSize = g_value_get_int(value);
+      ++s.blobsGeneration;
+      trackerChanged = false;
+      break;
+    case PROP_MAX_OBJECTS:
+      s.blobs.maxObjects = g_value_get_int(value);
+      ++s.blobsGeneration;
+      trackerChanged = false;
+      break;
     default:
       trackerChanged = false;
       G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
@@ -551,6 +657,21 @@ static void gst_color_track_get_property(GObject *object, guint prop_id, GValue 
     case PROP_POST_MESSAGES:
       g_value_set_boolean(value, s.postMessages);
       break;
+    case PROP_HSV_LOWER:
+      g_value_set_string(value, s.hsvLower.text.c_str());
+      break;
+    case PROP_HSV_UPPER:
+      g_value_set_string(value, s.hsvUpper.text.c_str());
+      break;
+    case PROP_MORPH_SIZE:
+      g_value_set_int(value, s.blobs.morphSize);
+      break;
+    case PROP_MIN_AREA:
+      g_value_set_int(value, s.blobs.minArea);
+      break;
+    case PROP_MAX_OBJECTS:
+      g_value_set_int(value, s.blobs.maxObjects);
+      break;
     default:
       G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
       break;
@@ -577,8 +698,11 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
   const Settings snapshot = settingsOf(self);
   GST_OBJECT_UNLOCK(self);
 
-  const std::pair<const char *, const TextSetting *> texts[] = {
-      {"bins", &snapshot.bins}, {"channel-weights", &snapshot.weights}, {"init-box", &snapshot.initBox}};
+  const std::pair<const char *, const TextSetting *> texts[] = {{"bins", &snapshot.bins},
+                                                                {"channel-weights", &snapshot.weights},
+                                                                {"init-box", &snapshot.initBox},
+                                                                {"hsv-lower", &snapshot.hsvLower},
+                                                                {"hsv-upper", &snapshot.hsvUpper}};
   for (const auto &[property, setting] : texts) {
     if (!setting->error.empty()) {
       GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
@@ -589,12 +713,24 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
     }
   }
 
+  const std::string rangeError = colortrack::validateRange(snapshot.blobs.range);
+  if (!rangeError.empty()) {
+    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
+                      ("Properties 'hsv-lower' '%s' and 'hsv-upper' '%s' do not make a range: %s",
+                       snapshot.hsvLower.text.c_str(), snapshot.hsvUpper.text.c_str(), rangeError.c_str()),
+                      (nullptr));
+    return FALSE;
+  }
+
   try {
     state = State{};
     state.tracker = std::make_unique<colortrack::Tracker>(snapshot.tracker);
     state.appliedTrackerGeneration = snapshot.trackerGeneration;
     state.appliedTemplateGeneration = snapshot.templateGeneration;
-    if (!snapshot.templateLocation.empty()) {
+    state.blobDetector = std::make_unique<colortrack::BlobDetector>(snapshot.blobs);
+    state.appliedBlobsGeneration = snapshot.blobsGeneration;
+    // Threshold mode has no template: a template-location is not even read.
+    if (snapshot.mode == GST_COLOR_TRACK_MODE_TEMPLATE && !snapshot.templateLocation.empty()) {
       cv::Mat bgr, mask;
       std::string why;
       bool missing = false;
@@ -645,6 +781,9 @@ static gboolean gst_color_track_set_info(GstVideoFilter *filter, GstCaps *, GstV
                    GST_VIDEO_INFO_NAME(in_info));
   // New geometry: positions and velocities no longer mean anything; the template stays.
   stateOf(self).capsChanged = true;
+  GST_OBJECT_LOCK(self);
+  settingsOf(self).frameSize = cv::Size(GST_VIDEO_INFO_WIDTH(in_info), GST_VIDEO_INFO_HEIGHT(in_info));
+  GST_OBJECT_UNLOCK(self);
   return TRUE;
 }
 
@@ -681,8 +820,10 @@ static void attach_meta(GstBuffer *buffer, const colortrack::TrackOutput &out, c
   gst_video_region_of_interest_meta_add_param(meta, params);
 }
 
+// `objects` (threshold mode) adds the "objects" field: a GST_TYPE_LIST of "colortrack-object" structures.
 static void post_track_message(GstColorTrack *self, GstBuffer *buffer, guint64 frame,
-                               const colortrack::TrackOutput &out) {
+                               const colortrack::TrackOutput &out,
+                               const std::vector<colortrack::TrackedObject> *objects = nullptr) {
   const GstSegment *segment = &GST_BASE_TRANSFORM(self)->segment;
   const GstClockTime pts = GST_BUFFER_PTS(buffer);
   GstClockTime streamTime = GST_CLOCK_TIME_NONE, runningTime = GST_CLOCK_TIME_NONE;
@@ -699,6 +840,23 @@ static void post_track_message(GstColorTrack *self, GstBuffer *buffer, guint64 f
       "y", G_TYPE_DOUBLE, box.y, "width", G_TYPE_DOUBLE, box.width, "height", G_TYPE_DOUBLE, box.height, "score",
       G_TYPE_DOUBLE, out.score, "verified", G_TYPE_BOOLEAN, static_cast<gboolean>(out.verified), "scale",
       G_TYPE_DOUBLE, out.scale, nullptr);
+  if (objects) {
+    GValue list = G_VALUE_INIT;
+    g_value_init(&list, GST_TYPE_LIST);
+    for (const colortrack::TrackedObject &o : *objects) {
+      GValue item = G_VALUE_INIT;
+      g_value_init(&item, GST_TYPE_STRUCTURE);
+      GstStructure *object = gst_structure_new(
+          "colortrack-object", "id", G_TYPE_INT, o.id, "x", G_TYPE_DOUBLE, o.box.x, "y", G_TYPE_DOUBLE, o.box.y,
+          "width", G_TYPE_DOUBLE, o.box.width, "height", G_TYPE_DOUBLE, o.box.height, "cx", G_TYPE_DOUBLE,
+          o.centre.x, "cy", G_TYPE_DOUBLE, o.centre.y, "area", G_TYPE_DOUBLE, o.area, "state", G_TYPE_STRING,
+          colortrack::toString(o.state), "score", G_TYPE_DOUBLE, o.score, nullptr);
+      gst_value_set_structure(&item, object);
+      gst_structure_free(object);
+      gst_value_list_append_and_take_value(&list, &item);
+    }
+    gst_structure_take_value(s, "objects", &list);
+  }
   gst_element_post_message(GST_ELEMENT(self), gst_message_new_element(GST_OBJECT(self), s));
 }
 
@@ -795,6 +953,204 @@ static bool apply_settings(GstColorTrack *self, const Settings &snapshot, const 
   return true;
 }
 
+// ---------------------------------------------------------------------------------------------------------
+// Threshold mode
+
+// The frame's bytes described channel by channel, so the segmentation reads any supported format in place
+// (YUV through a YUV lookup table) instead of converting the whole frame to BGR first.
+static colortrack::SampledFrame sampled_frame(const GstVideoFrame *frame) {
+  const int w = GST_VIDEO_FRAME_WIDTH(frame), h = GST_VIDEO_FRAME_HEIGHT(frame);
+  const int cw = (w + 1) / 2, ch = (h + 1) / 2;
+  const auto bytes = [frame](int plane, int rows, int rowBytes) {
+    return cv::Mat(rows, rowBytes, CV_8UC1, GST_VIDEO_FRAME_PLANE_DATA(frame, plane),
+                   static_cast<size_t>(GST_VIDEO_FRAME_PLANE_STRIDE(frame, plane)));
+  };
+  colortrack::SampledFrame out;
+  out.size = cv::Size(w, h);
+  out.encoding = colortrack::PixelEncoding::Yuv601;
+  switch (GST_VIDEO_FRAME_FORMAT(frame)) {
+    case GST_VIDEO_FORMAT_I420:
+      out.channels = {colortrack::ChannelSampler{bytes(0, h, w), 0, 1, 1, 1},
+                      colortrack::ChannelSampler{bytes(1, ch, cw), 0, 1, 2, 2},
+                      colortrack::ChannelSampler{bytes(2, ch, cw), 0, 1, 2, 2}};
+      break;
+    case GST_VIDEO_FORMAT_NV12: {
+      const cv::Mat uv = bytes(1, ch, 2 * cw);
+      out.channels = {colortrack::ChannelSampler{bytes(0, h, w), 0, 1, 1, 1},
+                      colortrack::ChannelSampler{uv, 0, 2, 2, 2}, colortrack::ChannelSampler{uv, 1, 2, 2, 2}};
+      break;
+    }
+    case GST_VIDEO_FORMAT_YUY2: {
+      const cv::Mat packed = bytes(0, h, 4 * cw);  // Y0 U Y1 V per two pixels
+      out.channels = {colortrack::ChannelSampler{packed, 0, 2, 1, 1}, colortrack::ChannelSampler{packed, 1, 4, 2, 1},
+                      colortrack::ChannelSampler{packed, 3, 4, 2, 1}};
+      break;
+    }
+    default: {
+      const colortrack::PackedLayout layout = colortrack::packedLayout(frame->info.finfo);
+      const cv::Mat packed = bytes(0, h, w * layout.pixelBytes);
+      out.encoding = colortrack::PixelEncoding::Rgb;
+      out.channels = {colortrack::ChannelSampler{packed, layout.red, layout.pixelBytes, 1, 1},
+                      colortrack::ChannelSampler{packed, layout.green, layout.pixelBytes, 1, 1},
+                      colortrack::ChannelSampler{packed, layout.blue, layout.pixelBytes, 1, 1}};
+      break;
+    }
+  }
+  return out;
+}
+
+static colortrack::MultiTrackerSettings multi_tracker_settings(const Settings &settings) {
+  colortrack::MultiTrackerSettings m;
+  m.kalman = settings.tracker.kalman;
+  m.maxCoastFrames = settings.tracker.maxCoastFrames;
+  return m;
+}
+
+// The primary target (largest reported track) in the single-target shape of template mode.
+static colortrack::TrackOutput primary_output(const std::vector<colortrack::TrackedObject> &objects) {
+  colortrack::TrackOutput out;
+  const int primary = colortrack::primaryIndex(objects);
+  if (primary < 0) return out;  // searching, no box
+  const colortrack::TrackedObject &o = objects[primary];
+  out.state = o.state;
+  out.hasBox = true;
+  out.id = o.id;
+  out.box = o.box;
+  out.score = o.score;
+  out.verified = true;  // no edge check in threshold mode
+  out.scale = o.scale;
+  out.vx = o.vx;
+  out.vy = o.vy;
+  return out;
+}
+
+static void attach_object_meta(GstBuffer *buffer, const colortrack::TrackedObject &o, const cv::Rect &box) {
+  GstVideoRegionOfInterestMeta *meta = gst_buffer_add_video_region_of_interest_meta(
+      buffer, "colortrack", static_cast<guint>(box.x), static_cast<guint>(box.y), static_cast<guint>(box.width),
+      static_cast<guint>(box.height));
+  meta->id = o.id;
+  GstStructure *params = gst_structure_new(
+      "colortrack", "state", G_TYPE_STRING, colortrack::toString(o.state), "score", G_TYPE_DOUBLE, o.score,
+      "verified", G_TYPE_BOOLEAN, TRUE, "scale", G_TYPE_DOUBLE, o.scale, "vx", G_TYPE_DOUBLE, o.vx, "vy",
+      G_TYPE_DOUBLE, o.vy, "area", G_TYPE_DOUBLE, o.area, nullptr);
+  gst_video_region_of_interest_meta_add_param(meta, params);
+}
+
+static void draw_threshold_overlay(GstVideoFrame *frame, const Settings &settings, const State &state,
+                                   const std::vector<colortrack::TrackedObject> &objects,
+                                   const std::vector<cv::Rect> &boxes) {
+  if (settings.draw == 0) return;
+  colortrack::FrameCanvas canvas(frame);
+  if (settings.draw & GST_COLOR_TRACK_DRAW_MASK)
+    canvas.tintMask(state.blobDetector->mask(), state.blobDetector->lastDecimation(), colortrack::colors::kMagenta);
+  for (size_t i = 0; i < objects.size(); ++i) {
+    const colortrack::TrackedObject &o = objects[i];
+    const colortrack::Rgb colour = colortrack::idColour(o.id);
+    const auto trail = state.trails.find(o.id);
+    if ((settings.draw & GST_COLOR_TRACK_DRAW_TRAIL) && trail != state.trails.end() && trail->second.size() >= 2) {
+      std::vector<cv::Point> points;
+      for (const cv::Point2d &p : trail->second) points.emplace_back(cvRound(p.x), cvRound(p.y));
+      canvas.polyline(points, colour, kTrailThickness);
+    }
+    if (boxes[i].empty()) continue;
+    // Coasting tracks get a thin outline: the id colour says who, the weight says how sure.
+    if (settings.draw & GST_COLOR_TRACK_DRAW_BOX)
+      canvas.boxOutline(boxes[i], colour, o.state == colortrack::TrackState::Coasting ? 1 : kBoxThickness);
+    if (settings.draw & GST_COLOR_TRACK_DRAW_LABEL) {
+      char text[64];
+      std::snprintf(text, sizeof text, "%d %.0f %s", o.id, o.area, colortrack::toString(o.state));
+      canvas.label(text, cv::Point(boxes[i].x, boxes[i].y - 4));
+    }
+  }
+}
+
+// One frame in threshold mode: segment, clean, label, associate; meta, overlay and message per track.
+static GstFlowReturn threshold_frame(GstColorTrack *self, GstVideoFrame *frame, const Settings &snapshot,
+                                     const std::optional<cv::Rect> &initBox, guint64 frameNumber, double dt) {
+  State &state = stateOf(self);
+  const cv::Size size(GST_VIDEO_FRAME_WIDTH(frame), GST_VIDEO_FRAME_HEIGHT(frame));
+  colortrack::BlobDetector &detector = *state.blobDetector;
+
+  if (snapshot.blobs.minArea > size.area()) {
+    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
+                      ("Property 'min-area' %d is larger than the %dx%d frame (%d pixels): nothing can be found.",
+                       snapshot.blobs.minArea, size.width, size.height, size.area()),
+                      (nullptr));
+    return GST_FLOW_ERROR;
+  }
+  if (snapshot.blobsGeneration != state.appliedBlobsGeneration) {
+    detector.setSettings(snapshot.blobs);
+    state.appliedBlobsGeneration = snapshot.blobsGeneration;
+  }
+  state.multiTracker.setSettings(multi_tracker_settings(snapshot));
+  if (state.capsChanged || self->priv->resetRequested.exchange(false)) {
+    state.capsChanged = false;
+    state.multiTracker.reset();
+    state.trails.clear();
+  }
+
+  if (initBox) {
+    if ((*initBox & cv::Rect(cv::Point(), size)) != *initBox) {
+      if (snapshot.initBoxSetWhileStreaming) {
+        GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS,
+                            ("Property 'init-box' '%s' does not fit in the %dx%d frame: ignored.",
+                             snapshot.initBox.text.c_str(), size.width, size.height),
+                            (nullptr));
+      } else {
+        GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
+                          ("Property 'init-box' '%s' does not fit in the %dx%d frame.", snapshot.initBox.text.c_str(),
+                           size.width, size.height),
+                          (nullptr));
+        return GST_FLOW_ERROR;
+      }
+    } else {
+      // Learn the range from the box; the properties then report it, so it can be reused in a launch line.
+      const colortrack::HsvRange learnt = colortrack::learnRange(colortrack::FrameView(frame), *initBox);
+      GST_OBJECT_LOCK(self);
+      Settings &shared = settingsOf(self);
+      shared.blobs.range = learnt;
+      shared.hsvLower = TextSetting{colortrack::formatHsv(learnt.lower), {}};
+      shared.hsvUpper = TextSetting{colortrack::formatHsv(learnt.upper), {}};
+      ++shared.blobsGeneration;
+      const colortrack::BlobSettings blobs = shared.blobs;
+      state.appliedBlobsGeneration = shared.blobsGeneration;
+      GST_OBJECT_UNLOCK(self);
+      detector.setSettings(blobs);
+      state.multiTracker.reset();
+      state.trails.clear();
+      GST_INFO_OBJECT(self, "learnt hsv-lower %s hsv-upper %s from init-box %s",
+                      colortrack::formatHsv(learnt.lower).c_str(), colortrack::formatHsv(learnt.upper).c_str(),
+                      snapshot.initBox.text.c_str());
+      g_object_notify(G_OBJECT(self), "hsv-lower");
+      g_object_notify(G_OBJECT(self), "hsv-upper");
+    }
+  }
+
+  const std::vector<colortrack::Blob> blobs = detector.detect(sampled_frame(frame));
+  const std::vector<colortrack::TrackedObject> objects = state.multiTracker.update(blobs, size, dt);
+
+  // Trails per id; those of tracks that ended go.
+  for (auto it = state.trails.begin(); it != state.trails.end();) {
+    const bool alive = std::any_of(objects.begin(), objects.end(),
+                                   [&](const colortrack::TrackedObject &o) { return o.id == it->first; });
+    it = alive ? std::next(it) : state.trails.erase(it);
+  }
+  std::vector<cv::Rect> boxes;
+  for (const colortrack::TrackedObject &o : objects) {
+    if (snapshot.trailLength > 0) {
+      std::deque<cv::Point2d> &trail = state.trails[o.id];
+      trail.push_back(o.centre);
+      while (trail.size() > snapshot.trailLength) trail.pop_front();
+    }
+    boxes.push_back(roundedClippedBox(o.box, size));
+    if (!boxes.back().empty()) attach_object_meta(frame->buffer, o, boxes.back());
+  }
+  draw_threshold_overlay(frame, snapshot, state, objects, boxes);
+  if (snapshot.postMessages)
+    post_track_message(self, frame->buffer, frameNumber, primary_output(objects), &objects);
+  return GST_FLOW_OK;
+}
+
 static GstFlowReturn gst_color_track_transform_frame_ip(GstVideoFilter *filter, GstVideoFrame *frame) {
   GstColorTrack *self = GST_COLOR_TRACK(filter);
   State &state = stateOf(self);
@@ -815,10 +1171,12 @@ static GstFlowReturn gst_color_track_transform_frame_ip(GstVideoFilter *filter, 
   const double dt = frame_step(self, filter, buffer);
 
   try {
-    if (!state.tracker) {
+    if (!state.tracker || !state.blobDetector) {
       GST_ELEMENT_ERROR(self, CORE, FAILED, ("colortrack was not started."), (nullptr));
       return GST_FLOW_ERROR;
     }
+    if (snapshot.mode == GST_COLOR_TRACK_MODE_THRESHOLD)
+      return threshold_frame(self, frame, snapshot, initBox, frameNumber, dt);
     const colortrack::FrameView view(frame);
     if (!apply_settings(self, snapshot, initBox, snapshot.initBoxSetWhileStreaming, snapshot.initBox.text, view))
       return GST_FLOW_ERROR;
@@ -888,7 +1246,9 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
 
   g_object_class_install_property(
       gobject_class, PROP_MODE,
-      g_param_spec_enum("mode", "Mode", "How the object is defined (only 'template' for now)",
+      g_param_spec_enum("mode", "Mode",
+                        "How the object is defined: 'template' follows one object like a template; 'threshold' "
+                        "follows every blob of pixels inside an HSV range, each with its own id",
                         GST_TYPE_COLOR_TRACK_MODE, GST_COLOR_TRACK_MODE_TEMPLATE, rw));
   g_object_class_install_property(
       gobject_class, PROP_TEMPLATE_LOCATION,
@@ -900,7 +1260,8 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
       gobject_class, PROP_INIT_BOX,
       g_param_spec_string("init-box", "Initial box",
                           "\"x,y,w,h\" in pixels: the template is taken from this box of the next frame, where "
-                          "tracking starts; cleared once used",
+                          "tracking starts (mode=threshold: hsv-lower/hsv-upper are learnt from the object in it); "
+                          "cleared once used",
                           nullptr, live));
   g_object_class_install_property(
       gobject_class, PROP_METHOD,
@@ -995,6 +1356,37 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
       gobject_class, PROP_TRAIL_LENGTH,
       g_param_spec_uint("trail-length", "Trail length", "Frames of box-centre history in the trail", 0, 10000,
                         kDefaultTrailLength, live));
+  const colortrack::BlobSettings blobDefaults;
+  g_object_class_install_property(
+      gobject_class, PROP_HSV_LOWER,
+      g_param_spec_string("hsv-lower", "HSV lower bound",
+                          "mode=threshold: lower end of the colour range, \"h,s,v\" with h in degrees 0-360 and s, v "
+                          "0-1. A lower hue above the upper one wraps through 0 (340 to 20 is red); 0 to 360 is "
+                          "every hue. Set by init-box when it learns a range",
+                          colortrack::formatHsv(blobDefaults.range.lower).c_str(), live));
+  g_object_class_install_property(
+      gobject_class, PROP_HSV_UPPER,
+      g_param_spec_string("hsv-upper", "HSV upper bound",
+                          "mode=threshold: upper end of the colour range, \"h,s,v\" (h 0-360, s and v 0-1; s and v "
+                          "not below hsv-lower's)",
+                          colortrack::formatHsv(blobDefaults.range.upper).c_str(), live));
+  g_object_class_install_property(
+      gobject_class, PROP_MORPH_SIZE,
+      g_param_spec_int("morph-size", "Morphology size",
+                       "mode=threshold: side in pixels of the square opening (removes specks) then closing (fills "
+                       "small holes) applied to the colour mask; 0 disables",
+                       0, 255, blobDefaults.morphSize, live));
+  g_object_class_install_property(
+      gobject_class, PROP_MIN_AREA,
+      g_param_spec_int("min-area", "Minimum area",
+                       "mode=threshold: smallest blob, in pixels, that counts as an object (must not exceed the "
+                       "frame's pixel count)",
+                       1, G_MAXINT, blobDefaults.minArea, live));
+  g_object_class_install_property(
+      gobject_class, PROP_MAX_OBJECTS,
+      g_param_spec_int("max-objects", "Maximum objects",
+                       "mode=threshold: at most this many blobs (the largest) are tracked per frame", 1, 64,
+                       blobDefaults.maxObjects, live));
   g_object_class_install_property(
       gobject_class, PROP_POST_MESSAGES,
       g_param_spec_boolean("post-messages", "Post messages",
@@ -1037,4 +1429,6 @@ static void gst_color_track_init(GstColorTrack *self) {
   Settings &s = self->priv->settings;
   s.bins.text = colortrack::formatBins(s.tracker.bins);
   s.weights.text = colortrack::formatWeights(s.tracker.weights);
+  s.hsvLower.text = colortrack::formatHsv(s.blobs.range.lower);
+  s.hsvUpper.text = colortrack::formatHsv(s.blobs.range.upper);
 }

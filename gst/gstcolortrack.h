@@ -18,11 +18,14 @@ typedef struct _GstColorTrackClass GstColorTrackClass;
 /**
  * GstColorTrackMode:
  * @GST_COLOR_TRACK_MODE_TEMPLATE: track the object described by a template (a file or a box of a frame)
+ * @GST_COLOR_TRACK_MODE_THRESHOLD: track every blob of pixels inside an HSV range (#GstColorTrack:hsv-lower,
+ *     #GstColorTrack:hsv-upper, or learnt from #GstColorTrack:init-box), each with its own id
  *
  * How the object to track is defined.
  */
 typedef enum {
   GST_COLOR_TRACK_MODE_TEMPLATE = 0,
+  GST_COLOR_TRACK_MODE_THRESHOLD = 1,
 } GstColorTrackMode;
 
 /**
@@ -68,12 +71,14 @@ typedef enum {
  * @GST_COLOR_TRACK_DRAW_TRAIL: the path of the box centre (red)
  * @GST_COLOR_TRACK_DRAW_SEARCH_WINDOW: the region searched in this frame (blue)
  * @GST_COLOR_TRACK_DRAW_LABEL: "id score state" above the box
+ * @GST_COLOR_TRACK_DRAW_MASK: mode=threshold: the pixels inside the HSV range, tinted magenta (for tuning)
  */
 typedef enum {
   GST_COLOR_TRACK_DRAW_BOX = (1 << 0),
   GST_COLOR_TRACK_DRAW_TRAIL = (1 << 1),
   GST_COLOR_TRACK_DRAW_SEARCH_WINDOW = (1 << 2),
   GST_COLOR_TRACK_DRAW_LABEL = (1 << 3),
+  GST_COLOR_TRACK_DRAW_MASK = (1 << 4),
 } GstColorTrackDraw;
 
 // C++ data (settings and streaming state); defined in gstcolortrack.cpp.

@@ -18,6 +18,22 @@ Yuv rgbToYuv601(const Rgb &rgb) {
   return yuv;
 }
 
+Rgb idColour(int id) {
+  const double hue = std::fmod(id * 137.508, 360.0) / 60.0;  // golden angle: successive ids spread out
+  const double x = 1 - std::abs(std::fmod(hue, 2.0) - 1);
+  double r = 0, g = 0, b = 0;
+  switch (static_cast<int>(hue)) {
+    case 0: r = 1; g = x; break;
+    case 1: r = x; g = 1; break;
+    case 2: g = 1; b = x; break;
+    case 3: g = x; b = 1; break;
+    case 4: r = x; b = 1; break;
+    default: r = 1; b = x; break;
+  }
+  const auto byte = [](double c) { return static_cast<std::uint8_t>(std::lround(c * 255)); };
+  return Rgb{byte(r), byte(g), byte(b)};
+}
+
 FrameCanvas::FrameCanvas(GstVideoFrame *frame)
     : size_(GST_VIDEO_FRAME_WIDTH(frame), GST_VIDEO_FRAME_HEIGHT(frame)) {
   const cv::Size half((size_.width + 1) / 2, (size_.height + 1) / 2);
@@ -141,6 +157,22 @@ void FrameCanvas::label(const std::string &text, cv::Point origin) {
   }
   cv::putText(textTarget_, text, origin, font, scale, dark, 3, cv::LINE_8);
   cv::putText(textTarget_, text, origin, font, scale, light, 1, cv::LINE_8);
+}
+
+void FrameCanvas::tintMask(const cv::Mat &mask, int step, const Rgb &colour) {
+  if (mask.empty()) return;
+  cv::Mat planeMask, tinted;
+  for (const Plane &plane : planes_) {
+    // The mask's grid onto this plane's samples (nearest neighbour keeps it binary).
+    const double fx = static_cast<double>(step) / plane.xDiv, fy = static_cast<double>(step) / plane.yDiv;
+    const cv::Size target(std::min(plane.mat.cols, cvRound(mask.cols * fx)), std::min(plane.mat.rows, cvRound(mask.rows * fy)));
+    if (target.empty()) continue;
+    cv::resize(mask, planeMask, target, 0, 0, cv::INTER_NEAREST);
+    cv::Mat region = plane.mat(cv::Rect(cv::Point(), target));
+    const cv::Mat solid(target, region.type(), colourFor(plane, colour));
+    cv::addWeighted(region, 0.5, solid, 0.5, 0.0, tinted);
+    tinted.copyTo(region, planeMask);
+  }
 }
 
 }  // namespace colortrack

@@ -19,7 +19,11 @@ constexpr Rgb kRed{255, 0, 0};        // colour-only match; the trail
 constexpr Rgb kGreen{0, 255, 0};      // match confirmed by the edge check
 constexpr Rgb kOrange{255, 160, 0};   // coasting on the prediction
 constexpr Rgb kBlue{0, 96, 255};      // search window
+constexpr Rgb kMagenta{255, 0, 255};  // threshold mask
 }  // namespace colors
+
+// A bright colour per track id, neighbouring ids far apart in hue (golden-angle steps).
+Rgb idColour(int id);
 
 // BT.601 limited range ("studio swing"), the matrix of SD video and of OpenCV's YUV conversions.
 struct Yuv {
@@ -41,6 +45,9 @@ class FrameCanvas {
   void polyline(const std::vector<cv::Point> &points, const Rgb &colour, int thickness);
   // Light text with a dark outline, readable on any background. Luma only on YUV formats.
   void label(const std::string &text, cv::Point origin);
+  // Blends `colour` half way into the pixels where `mask` (CV_8UC1 on a grid of every `step`-th frame pixel)
+  // is set: shows what a colour threshold selects.
+  void tintMask(const cv::Mat &mask, int step, const Rgb &colour);
 
  private:
   enum class PlaneKind { Packed, Luma, ChromaU, ChromaV, ChromaUV, Yuy2 };

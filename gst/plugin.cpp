@@ -2,11 +2,13 @@
 #include <gst/gst.h>
 
 #include "gstcolortrack.h"
+#include "gstrobotctl.h"
 
 // Add later elements here (GST_ELEMENT_REGISTER(robotctl, plugin), ...).
 static gboolean plugin_init(GstPlugin *plugin) {
   gboolean ok = FALSE;
   ok |= GST_ELEMENT_REGISTER(colortrack, plugin);
+  ok |= GST_ELEMENT_REGISTER(robotctl, plugin);
   return ok;
 }
 

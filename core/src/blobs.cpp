@@ -4,6 +4,8 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <string_view>
 
 #include <opencv2/imgproc.hpp>
@@ -220,22 +222,50 @@ std::vector<Blob> BlobDetector::detect(const SampledFrame &frame) {
   }
   cleanMask(mask_, kernel);
 
-  const int count = cv::connectedComponentsWithStats(mask_, labels_, stats_, centroids_, 8, CV_32S);
+  // Labels only, then the measures from the foreground pixels alone: OpenCV's WithStats variant visits every
+  // pixel's statistics and costs ~10x more on a mostly empty mask (3.4 vs 0.25 ms at 960x540).
+  const int count = cv::connectedComponents(mask_, labels_, 8, CV_32S);
+  moments_.assign(count, ComponentMoments{});
+  for (int y = 0; y < mask_.rows; ++y) {
+    const std::uint8_t *m = mask_.ptr(y);
+    const int *l = labels_.ptr<int>(y);
+    int x = 0;
+    while (x < mask_.cols) {
+      // Skip empty runs eight samples at a time.
+      if (x + 8 <= mask_.cols) {
+        std::uint64_t word;
+        std::memcpy(&word, m + x, sizeof word);
+        if (word == 0) {
+          x += 8;
+          continue;
+        }
+      }
+      if (m[x]) {
+        ComponentMoments &c = moments_[l[x]];
+        ++c.count;
+        c.sumX += x;
+        c.sumY += y;
+        c.minX = std::min(c.minX, x);
+        c.maxX = std::max(c.maxX, x);
+        c.minY = std::min(c.minY, y);
+        c.maxY = std::max(c.maxY, y);
+      }
+      ++x;
+    }
+  }
   const double cellArea = static_cast<double>(d) * d;
   std::vector<Blob> blobs;
   for (int label = 1; label < count; ++label) {  // 0 is the background
-    const int *s = stats_.ptr<int>(label);
-    const double area = s[cv::CC_STAT_AREA] * cellArea;
-    if (area < settings_.minArea) continue;
+    const ComponentMoments &c = moments_[label];
+    const double area = c.count * cellArea;
+    if (c.count == 0 || area < settings_.minArea) continue;
     Blob blob;
     blob.area = area;
     // Grid sample (x, y) is frame pixel (x d, y d): centroids scale without offset.
-    blob.centroid = cv::Point2d(centroids_.at<double>(label, 0) * d, centroids_.at<double>(label, 1) * d);
-    blob.box = cv::Rect(s[cv::CC_STAT_LEFT] * d, s[cv::CC_STAT_TOP] * d, s[cv::CC_STAT_WIDTH] * d,
-                        s[cv::CC_STAT_HEIGHT] * d) &
-               cv::Rect(cv::Point(), frame.size);
-    blob.fill = static_cast<double>(s[cv::CC_STAT_AREA]) / (static_cast<double>(s[cv::CC_STAT_WIDTH]) *
-                                                           s[cv::CC_STAT_HEIGHT]);
+    blob.centroid = cv::Point2d(static_cast<double>(c.sumX) / c.count * d, static_cast<double>(c.sumY) / c.count * d);
+    const int width = c.maxX - c.minX + 1, height = c.maxY - c.minY + 1;
+    blob.box = cv::Rect(c.minX * d, c.minY * d, width * d, height * d) & cv::Rect(cv::Point(), frame.size);
+    blob.fill = static_cast<double>(c.count) / (static_cast<double>(width) * height);
     blobs.push_back(blob);
   }
   std::sort(blobs.begin(), blobs.end(), [](const Blob &a, const Blob &b) { return a.area > b.area; });

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -114,10 +115,14 @@ class BlobDetector {
 
  private:
   const RangeLut &lutFor(PixelEncoding encoding);
+  struct ComponentMoments {
+    long long count = 0, sumX = 0, sumY = 0;
+    int minX = std::numeric_limits<int>::max(), maxX = -1, minY = std::numeric_limits<int>::max(), maxY = -1;
+  };
   BlobSettings settings_;
   std::optional<RangeLut> rgbLut_, yuvLut_;
-  cv::Mat mask_, scratch_, labels_, stats_, centroids_;
-  std::vector<int> columns_[3];
+  cv::Mat mask_, labels_;
+  std::vector<ComponentMoments> moments_;
   int lastDecimation_ = 1;
   cv::Mat bgr_;
 };

@@ -1,0 +1,91 @@
+// Threshold mode, tracking side: one Kalman track per object, blobs assigned to tracks frame to frame, stable
+// ids through crossings and short disappearances.
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "colortrack/blobs.hpp"
+#include "colortrack/kalman.hpp"
+#include "colortrack/track.hpp"
+
+namespace colortrack {
+
+struct MultiTrackerSettings {
+  KalmanParams kalman;
+  int confirmFrames = 3;    // consecutive detections before a new track is reported (and gets its id)
+  int maxCoastFrames = 10;  // frames without a detection before a reported track is dropped
+  // Association gate: a blob may feed a track when its centroid lies within
+  //   max(minGate, gateSize * half the predicted box diagonal) + 3 sigma of the prediction
+  //   + coastGrowth * half diagonal per frame the track has coasted,
+  // and its area is within maxAreaRatio of the track's.
+  double minGate = 12.0;
+  double gateSize = 1.0;
+  double coastGrowth = 0.25;
+  double maxAreaRatio = 8.0;
+  // A blob this much larger than the track it is assigned to, that also lies in the gate of another
+  // reported track, is taken as objects merged: none is corrected by its centroid, all coast on their
+  // predictions without counting misses until they part.
+  double mergeAreaRatio = 1.3;
+};
+
+// One track as reported.
+struct TrackedObject {
+  int id = 0;              // >= 1 once confirmed; 0 while tentative
+  bool confirmed = false;
+  TrackState state = TrackState::Tracking;  // tracking: measured this frame; coasting: on the prediction
+  cv::Point2d centre;      // filtered centroid
+  cv::Rect2d box;          // filtered box around it
+  double area = 0;         // pixel count of the last blob that fed the track
+  double score = 0;        // this frame's blob fill ratio (area / box area); 0 when not measured
+  double scale = 1.0;      // filtered size relative to the size at acquisition
+  double vx = 0, vy = 0;   // filtered velocity, px/frame
+  int hits = 0;            // frames measured since creation
+  int misses = 0;          // consecutive frames without a measurement
+};
+
+class MultiTracker {
+ public:
+  MultiTracker();
+  explicit MultiTracker(const MultiTrackerSettings &settings);
+  ~MultiTracker();
+  MultiTracker(const MultiTracker &);
+  MultiTracker &operator=(const MultiTracker &);
+  MultiTracker(MultiTracker &&) noexcept;
+  MultiTracker &operator=(MultiTracker &&) noexcept;
+  void setSettings(const MultiTrackerSettings &settings);
+  const MultiTrackerSettings &settings() const { return settings_; }
+
+  // Advances every track by dt frames, assigns the blobs (confirmed tracks first, then tentative ones, each
+  // by minimum total cost), corrects, creates and drops tracks. Returns the confirmed tracks, by id.
+  std::vector<TrackedObject> update(const std::vector<Blob> &blobs, cv::Size frame, double dt = 1.0);
+
+  // Every live track, tentative ones included (tests, debugging).
+  std::vector<TrackedObject> allTracks() const;
+
+  // Forgets every track; ids keep growing, so an id is never reused within one element's life.
+  void reset();
+
+ private:
+  struct Track;
+  void predict(Track &track, cv::Size frame, double dt) const;
+  double gateRadius(const Track &track) const;
+  double cost(const Track &track, const Blob &blob) const;
+  TrackedObject report(const Track &track) const;
+
+  MultiTrackerSettings settings_;
+  std::vector<Track> tracks_;
+  cv::Size frame_;
+  int nextId_ = 1;
+};
+
+// The report with the largest area (the primary target), or -1 when empty.
+int primaryIndex(const std::vector<TrackedObject> &objects);
+
+// Minimum-cost assignment (Hungarian method with potentials, O(n^2 m)) for a rows x cols CV_64F cost matrix.
+// Returns, per row, the column assigned to it, or -1 for the rows left over when rows > cols. Every cost
+// must be finite; give forbidden pairs a large cost and discard them afterwards.
+std::vector<int> solveAssignment(const cv::Mat &cost);
+
+}  // namespace colortrack

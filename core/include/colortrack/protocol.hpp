@@ -1,0 +1,66 @@
+// Wire formats of drive commands (bytes out; no I/O). Layouts are documented in docs/robotctl.md.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "colortrack/controller.hpp"
+
+namespace colortrack {
+
+enum class Protocol {
+  ZoneChar,  // one byte per command: the command's character
+  Text,      // "L=<int> R=<int>\n", wheel speeds scaled by outputScale
+  Binary,    // framed packet: start byte, sequence, length, payload, CRC-8
+};
+
+// Characters for stop, forward, backward, left, right, in the order of the `zone-chars` text "FBLRS".
+struct ZoneChars {
+  char forward = 'F', backward = 'B', left = 'L', right = 'R', stop = 'S';
+  char of(DriveCommand command) const;
+};
+// Exactly five distinct printable characters in the order forward, backward, left, right, stop.
+std::optional<ZoneChars> parseZoneChars(const std::string &text, std::string *error = nullptr);
+std::string formatZoneChars(const ZoneChars &chars);
+
+struct ProtocolSettings {
+  Protocol protocol = Protocol::ZoneChar;
+  ZoneChars zoneChars;
+  int outputScale = 255;  // wheel speed 1.0 in the text and binary protocols
+};
+
+namespace binary {
+constexpr std::uint8_t kStart = 0xA5;
+constexpr std::uint8_t kPayloadLength = 6;  // command, flags, left (int16 LE), right (int16 LE)
+constexpr std::size_t kPacketLength = 4 + kPayloadLength;  // start, sequence, length, payload, crc
+constexpr std::uint8_t kFlagTargetVisible = 0x01;
+// Command codes in the payload.
+std::uint8_t commandCode(DriveCommand command);
+}  // namespace binary
+
+// CRC-8, polynomial 0x07, initial value 0, no reflection (CRC-8/SMBUS): small enough for any microcontroller.
+std::uint8_t crc8(const std::uint8_t *data, std::size_t size);
+
+// A wheel speed in [-1, 1] as the integer sent: round(speed * scale), clamped to +-scale.
+int scaledSpeed(double speed, int scale);
+
+class ProtocolEncoder {
+ public:
+  explicit ProtocolEncoder(const ProtocolSettings &settings = ProtocolSettings()) : settings_(settings) {}
+  void setSettings(const ProtocolSettings &settings) { settings_ = settings; }
+  const ProtocolSettings &settings() const { return settings_; }
+
+  // The bytes of one command. The binary protocol numbers its packets (wrapping at 256) so a receiver can
+  // tell lost packets; every call is one packet.
+  std::vector<std::uint8_t> encode(const DriveOutput &output);
+  std::uint8_t nextSequence() const { return sequence_; }
+
+ private:
+  ProtocolSettings settings_;
+  std::uint8_t sequence_ = 0;
+};
+
+}  // namespace colortrack

@@ -1,0 +1,289 @@
+#include "colortrack/multi_tracker.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace colortrack {
+
+namespace {
+
+// Cost of a pair outside the gate: large enough that the solver only uses it when nothing else is left.
+constexpr double kForbidden = 1e9;
+// How fast the box's aspect ratio follows the blobs (the Kalman state has one size, not two).
+constexpr double kAspectRate = 0.3;
+constexpr double kAreaRate = 0.5;
+
+}  // namespace
+
+struct MultiTracker::Track {
+  KalmanFilter9 filter;
+  int id = 0;
+  bool confirmed = false;
+  bool measured = false;  // corrected by a blob this frame
+  double referenceSide = 1;  // sqrt(box area) at acquisition: scale 1
+  double aspect = 1;         // box width / height, smoothed
+  double area = 0;           // smoothed blob area
+  double lastArea = 0;
+  double score = 0;
+  int hits = 0, misses = 0;
+
+  double side() const { return filter.scale() * referenceSide; }
+  cv::Size2d size() const {
+    const double root = std::sqrt(std::max(aspect, 1e-3));
+    return cv::Size2d(std::max(1.0, side() * root), std::max(1.0, side() / root));
+  }
+};
+
+std::vector<int> solveAssignment(const cv::Mat &costIn) {
+  CV_Assert(costIn.type() == CV_64FC1);
+  const bool transposed = costIn.rows > costIn.cols;
+  const cv::Mat cost = transposed ? cv::Mat(costIn.t()) : costIn;
+  const int n = cost.rows, m = cost.cols;  // n <= m
+  std::vector<int> rowOf(m + 1, 0);        // rowOf[j]: 1-based row assigned to column j (0 = none)
+  if (n > 0) {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    std::vector<double> u(n + 1, 0), v(m + 1, 0);
+    std::vector<int> way(m + 1, 0);
+    // Rows enter one at a time; each grows the matching by a shortest augmenting path in reduced costs
+    // (Dijkstra over columns, column 0 standing for the new row), keeping the potentials feasible.
+    for (int i = 1; i <= n; ++i) {
+      rowOf[0] = i;
+      int j0 = 0;
+      std::vector<double> minv(m + 1, inf);
+      std::vector<char> used(m + 1, 0);
+      do {
+        used[j0] = 1;
+        const int i0 = rowOf[j0];
+        double delta = inf;
+        int j1 = 0;
+        const double *row = cost.ptr<double>(i0 - 1);
+        for (int j = 1; j <= m; ++j) {
+          if (used[j]) continue;
+          const double reduced = row[j - 1] - u[i0] - v[j];
+          if (reduced < minv[j]) {
+            minv[j] = reduced;
+            way[j] = j0;
+          }
+          if (minv[j] < delta) {
+            delta = minv[j];
+            j1 = j;
+          }
+        }
+        for (int j = 0; j <= m; ++j) {
+          if (used[j]) {
+            u[rowOf[j]] += delta;
+            v[j] -= delta;
+          } else {
+            minv[j] -= delta;
+          }
+        }
+        j0 = j1;
+      } while (rowOf[j0] != 0);
+      do {  // flip the augmenting path
+        const int j1 = way[j0];
+        rowOf[j0] = rowOf[j1];
+        j0 = j1;
+      } while (j0 != 0);
+    }
+  }
+  std::vector<int> columnOfRow(n, -1);
+  for (int j = 1; j <= m; ++j)
+    if (rowOf[j] > 0) columnOfRow[rowOf[j] - 1] = j - 1;
+  if (!transposed) return columnOfRow;
+  std::vector<int> result(costIn.rows, -1);  // rows of the input were columns of the solved matrix
+  for (int r = 0; r < n; ++r)
+    if (columnOfRow[r] >= 0) result[columnOfRow[r]] = r;
+  return result;
+}
+
+int primaryIndex(const std::vector<TrackedObject> &objects) {
+  int best = -1;
+  for (int i = 0; i < static_cast<int>(objects.size()); ++i)
+    if (best < 0 || objects[i].area > objects[best].area) best = i;
+  return best;
+}
+
+MultiTracker::MultiTracker() = default;
+MultiTracker::MultiTracker(const MultiTrackerSettings &settings) : settings_(settings) {}
+MultiTracker::~MultiTracker() = default;
+MultiTracker::MultiTracker(const MultiTracker &) = default;
+MultiTracker &MultiTracker::operator=(const MultiTracker &) = default;
+MultiTracker::MultiTracker(MultiTracker &&) noexcept = default;
+MultiTracker &MultiTracker::operator=(MultiTracker &&) noexcept = default;
+
+void MultiTracker::setSettings(const MultiTrackerSettings &settings) {
+  settings_ = settings;
+  for (Track &t : tracks_) t.filter.setParams(settings.kalman);
+}
+
+void MultiTracker::reset() { tracks_.clear(); }
+
+void MultiTracker::predict(Track &track, cv::Size frame, double dt) const {
+  // A track not measured last frame (coasting or merged) keeps velocity and size but no acceleration.
+  if (!track.measured) track.filter.holdForCoasting();
+  track.filter.predict(dt);
+  // An object that left the frame is most likely to come back where it left: a coasting track whose
+  // prediction runs out of the frame waits at the border instead (position clamped, velocity dropped).
+  if (!track.measured) {
+    const double x = track.filter.x(), y = track.filter.y();
+    const double cx = std::clamp(x, 0.0, frame.width - 1.0), cy = std::clamp(y, 0.0, frame.height - 1.0);
+    if (cx != x || cy != y) track.filter.init(cx, cy, track.filter.scale());
+  }
+}
+
+double MultiTracker::gateRadius(const Track &track) const {
+  const cv::Size2d size = track.size();
+  const double halfDiagonal = 0.5 * std::hypot(size.width, size.height);
+  const double sigma = std::max(track.filter.stdX(), track.filter.stdY());
+  return std::max(settings_.minGate, settings_.gateSize * halfDiagonal) + 3.0 * sigma +
+         settings_.coastGrowth * halfDiagonal * track.misses;
+}
+
+double MultiTracker::cost(const Track &track, const Blob &blob) const {
+  const double gate = gateRadius(track);
+  const double distance = std::hypot(blob.centroid.x - track.filter.x(), blob.centroid.y - track.filter.y());
+  if (distance > gate) return kForbidden;
+  const double ratio = std::max(blob.area, 1.0) / std::max(track.area, 1.0);
+  const double logLimit = std::log(std::max(settings_.maxAreaRatio, 1.0001));
+  // A blob cut by the frame's edge (an object leaving or coming back) may be any amount smaller.
+  const bool clipped = blob.box.x <= 0 || blob.box.y <= 0 || blob.box.x + blob.box.width >= frame_.width ||
+                       blob.box.y + blob.box.height >= frame_.height;
+  const double logRatio = clipped && ratio < 1 ? 0.0 : std::abs(std::log(ratio));
+  if (logRatio > logLimit) return kForbidden;
+  // Distance dominates; size breaks ties between blobs at similar distances.
+  const double d = distance / gate, a = logRatio / logLimit;
+  return d * d + 0.25 * a * a;
+}
+
+TrackedObject MultiTracker::report(const Track &track) const {
+  TrackedObject o;
+  o.id = track.id;
+  o.confirmed = track.confirmed;
+  o.state = track.measured ? TrackState::Tracking : TrackState::Coasting;
+  o.centre = cv::Point2d(track.filter.x(), track.filter.y());
+  const cv::Size2d size = track.size();
+  o.box = cv::Rect2d(o.centre.x - size.width / 2, o.centre.y - size.height / 2, size.width, size.height);
+  o.area = track.lastArea;
+  o.score = track.measured ? track.score : 0;
+  o.scale = track.filter.scale();
+  o.vx = track.filter.vx();
+  o.vy = track.filter.vy();
+  o.hits = track.hits;
+  o.misses = track.misses;
+  return o;
+}
+
+std::vector<TrackedObject> MultiTracker::update(const std::vector<Blob> &blobs, cv::Size frame, double dt) {
+  frame_ = frame;
+  for (Track &t : tracks_) {
+    predict(t, frame, dt);
+    t.measured = false;
+  }
+
+  // Confirmed tracks choose first, so a noise blob next to a real object never steals it; tentative tracks
+  // get what is left; the rest start new tentative tracks.
+  std::vector<int> blobTrack(blobs.size(), -1);
+  const auto associate = [&](bool confirmed) {
+    std::vector<int> rows, cols;
+    for (int i = 0; i < static_cast<int>(tracks_.size()); ++i)
+      if (tracks_[i].confirmed == confirmed) rows.push_back(i);
+    for (int j = 0; j < static_cast<int>(blobs.size()); ++j)
+      if (blobTrack[j] < 0) cols.push_back(j);
+    if (rows.empty() || cols.empty()) return;
+    cv::Mat costs(static_cast<int>(rows.size()), static_cast<int>(cols.size()), CV_64FC1);
+    for (int r = 0; r < costs.rows; ++r)
+      for (int c = 0; c < costs.cols; ++c) costs.at<double>(r, c) = cost(tracks_[rows[r]], blobs[cols[c]]);
+    const std::vector<int> assignment = solveAssignment(costs);
+    for (int r = 0; r < costs.rows; ++r)
+      if (assignment[r] >= 0 && costs.at<double>(r, assignment[r]) < kForbidden)
+        blobTrack[cols[assignment[r]]] = rows[r];
+  };
+  associate(true);
+
+  // Two objects crossing make one blob whose centroid lies between them. Correcting the track it was given
+  // would drag that track towards the other object and swap ids when they part, so while a blob is much
+  // larger than its track and also lies in another reported track's gate, both tracks ride on their
+  // predictions.
+  // The merged objects are still seen, so these tracks coast without counting misses.
+  std::vector<char> merged(blobs.size(), 0), occluded(tracks_.size(), 0);
+  for (int j = 0; j < static_cast<int>(blobs.size()); ++j) {
+    const int owner = blobTrack[j];
+    if (owner < 0 || blobs[j].area < settings_.mergeAreaRatio * tracks_[owner].area) continue;
+    for (int i = 0; i < static_cast<int>(tracks_.size()); ++i) {
+      if (i == owner || !tracks_[i].confirmed) continue;
+      if (std::find(blobTrack.begin(), blobTrack.end(), i) != blobTrack.end()) continue;  // has its own blob
+      if (std::hypot(blobs[j].centroid.x - tracks_[i].filter.x(), blobs[j].centroid.y - tracks_[i].filter.y()) <
+          gateRadius(tracks_[i])) {
+        merged[j] = 1;
+        occluded[owner] = occluded[i] = 1;
+      }
+    }
+  }
+  associate(false);
+
+  std::vector<char> used(blobs.size(), 0);
+  for (int j = 0; j < static_cast<int>(blobs.size()); ++j) {
+    const int owner = blobTrack[j];
+    if (owner < 0) continue;
+    used[j] = 1;
+    if (merged[j]) continue;  // the owner coasts, see above
+    Track &t = tracks_[owner];
+    const Blob &b = blobs[j];
+    const double side = std::sqrt(static_cast<double>(b.box.area()));
+    t.filter.correct(b.centroid.x, b.centroid.y, side / t.referenceSide);
+    t.aspect += kAspectRate * (static_cast<double>(b.box.width) / std::max(1, b.box.height) - t.aspect);
+    t.area += kAreaRate * (b.area - t.area);
+    t.lastArea = b.area;
+    t.score = b.fill;
+    t.measured = true;
+    ++t.hits;
+    t.misses = 0;
+    if (!t.confirmed && t.hits >= settings_.confirmFrames) {
+      t.confirmed = true;
+      t.id = nextId_++;
+    }
+  }
+  for (int i = 0; i < static_cast<int>(tracks_.size()); ++i)
+    if (!tracks_[i].measured && !occluded[i]) ++tracks_[i].misses;
+
+  // Tentative tracks must be seen every frame; reported ones may coast for maxCoastFrames.
+  tracks_.erase(std::remove_if(tracks_.begin(), tracks_.end(),
+                               [&](const Track &t) {
+                                 return t.confirmed ? t.misses > settings_.maxCoastFrames : t.misses > 0;
+                               }),
+                tracks_.end());
+
+  for (int j = 0; j < static_cast<int>(blobs.size()); ++j) {
+    if (used[j]) continue;
+    const Blob &b = blobs[j];
+    Track t;
+    t.filter.setParams(settings_.kalman);
+    t.referenceSide = std::max(1.0, std::sqrt(static_cast<double>(b.box.area())));
+    t.filter.init(b.centroid.x, b.centroid.y, 1.0);
+    t.aspect = static_cast<double>(b.box.width) / std::max(1, b.box.height);
+    t.area = t.lastArea = b.area;
+    t.score = b.fill;
+    t.measured = true;
+    t.hits = 1;
+    if (settings_.confirmFrames <= 1) {
+      t.confirmed = true;
+      t.id = nextId_++;
+    }
+    tracks_.push_back(t);
+  }
+
+  std::vector<TrackedObject> out;
+  for (const Track &t : tracks_)
+    if (t.confirmed) out.push_back(report(t));
+  std::sort(out.begin(), out.end(), [](const TrackedObject &a, const TrackedObject &b) { return a.id < b.id; });
+  return out;
+}
+
+std::vector<TrackedObject> MultiTracker::allTracks() const {
+  std::vector<TrackedObject> out;
+  for (const Track &t : tracks_) out.push_back(report(t));
+  return out;
+}
+
+}  // namespace colortrack

@@ -1,0 +1,72 @@
+#!/usr/bin/env python3
+"""Test of colortrack_app.py: runs it on videotestsrc's ball and checks its JSON lines (one per frame, every
+field there with its type) and that the box follows the ball. Exit code 77 (meson: skipped) without PyGObject."""
+import json
+import math
+import subprocess
+import sys
+
+FRAMES = 150
+WIDTH, HEIGHT, RADIUS = 320, 240, 20
+
+
+def ball_centre(frame):
+    # videotestsrc pattern=ball, animation-mode=frames: a Lissajous path over the frame.
+    x = RADIUS + (0.5 + 0.5 * math.sin(2 * math.pi * frame / 200)) * (WIDTH - 2 * RADIUS)
+    y = RADIUS + (0.5 + 0.5 * math.sin(2 * math.pi * math.sqrt(2) * frame / 200)) * (HEIGHT - 2 * RADIUS)
+    return x, y
+
+
+def main():
+    try:
+        import gi
+        gi.require_version("Gst", "1.0")
+        gi.require_version("GstVideo", "1.0")
+        from gi.repository import Gst, GstVideo  # noqa: F401
+    except (ImportError, ValueError) as e:
+        print(f"skipped: PyGObject with Gst and GstVideo typelibs is not available ({e})")
+        return 77
+
+    out = subprocess.run([sys.executable, sys.argv[1], "--frames", str(FRAMES)], capture_output=True, text=True,
+                         timeout=60)
+    sys.stderr.write(out.stderr)
+    if out.returncode != 0:
+        print(f"colortrack_app.py exited with {out.returncode}")
+        return 1
+    errors, tracked, with_meta = [], 0, 0
+    lines = out.stdout.splitlines()
+    if len(lines) != FRAMES:
+        errors.append(f"{len(lines)} lines for {FRAMES} frames")
+    for number, line in enumerate(lines):
+        try:
+            r = json.loads(line)
+        except json.JSONDecodeError:
+            errors.append(f"line {number} is not JSON: {line!r}")
+            continue
+        if not (r.get("frame") == number and isinstance(r.get("time"), float) and abs(r["time"] - number / 30) < 1e-3
+                and isinstance(r.get("id"), int) and r.get("state") in ("searching", "tracking", "coasting", "lost")
+                and isinstance(r.get("score"), float) and isinstance(r.get("verified"), bool)):
+            errors.append(f"line {number}: fields missing or of the wrong type: {line}")
+            continue
+        if r["box"] is None:
+            continue
+        with_meta += r["meta"]
+        x, y, w, h = r["box"]
+        cx, cy = ball_centre(number)
+        if math.hypot(x + w / 2 - cx, y + h / 2 - cy) <= 6 and 25 <= w <= 60 and 25 <= h <= 60:
+            tracked += 1
+        else:
+            print(f"frame {number}: box {r['box']} off the ball at ({cx:.0f}, {cy:.0f})")
+    print(f"{tracked}/{len(lines)} frames with the box on the ball (centre within 6 px), {with_meta} read from "
+          "the ROI meta")
+    if tracked < 0.9 * FRAMES:
+        errors.append(f"the box followed the ball in only {tracked} of {FRAMES} frames")
+    if with_meta != tracked and tracked:
+        errors.append("boxes without a ROI meta")
+    for e in errors[:10]:
+        print("FAIL:", e)
+    return 1 if errors else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

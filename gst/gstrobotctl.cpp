@@ -1,0 +1,1231 @@
+/**
+ * SECTION:element-robotctl
+ * @title: robotctl
+ *
+ * Drives a robot towards a tracked target. Each video buffer's #GstVideoRegionOfInterestMeta (by default
+ * the "colortrack" ROI with the lowest id, see #GstRobotCtl:roi-type and #GstRobotCtl:target-id) gives where
+ * the target is; a controller turns that into a drive command and the command goes out on a serial port
+ * (#GstRobotCtl:device) or to a file, FIFO, pseudo-terminal or stdout (#GstRobotCtl:location).
+ *
+ * Two controllers (#GstRobotCtl:controller): "zone" splits the frame into left / centre / right by the
+ * target's horizontal offset and into too-far / right / too-close by its size (or the height of its bottom
+ * edge, #GstRobotCtl:distance-cue) and sends forward, backward, left, right or stop, with a deadband and
+ * hysteresis against chatter; "proportional" turns at a rate proportional to the offset and drives at a
+ * speed proportional to the distance error, with gains, deadbands, limits and an acceleration limit, as
+ * left/right wheel speeds.
+ *
+ * Three protocols (#GstRobotCtl:protocol): "zone-char" (one character per command, #GstRobotCtl:zone-chars,
+ * default "FBLRS"), "text" ("L=<int> R=<int>\n", wheel speeds times #GstRobotCtl:output-scale) and "binary"
+ * (0xA5, sequence, length, command, flags, left, right, CRC-8; see docs/robotctl.md).
+ *
+ * Commands go out at a fixed #GstRobotCtl:rate from a writer thread, repeated when unchanged so a watchdog
+ * on the robot stays fed; the streaming thread only leaves the newest command for it and never waits for the
+ * port. The robot is sent stop on EOS, on a flush, when going from PLAYING to PAUSED and from PAUSED to
+ * READY, a last one when the port is closed (READY to NULL), when no confirmed target was seen for #GstRobotCtl:lost-timeout ms, when upstream delivers no
+ * buffer for that long, and when the element is disposed. A port that fails while running (a USB adapter
+ * unplugged) posts a warning and is reopened with back-off; the first command after reconnecting is stop.
+ *
+ * With #GstRobotCtl:post-messages, every command sent is also posted as an element message "robotctl" with
+ * command (string), left and right (int, as sent), linear and angular (double), target-visible (boolean),
+ * timestamp (the buffer the decision came from, or GST_CLOCK_TIME_NONE) and reason ("target", "no-target",
+ * "stalled", "eos", "flush", "paused", "ready", "start", "reconnected", "shutdown").
+ *
+ * ## Example launch lines
+ * |[
+ * gst-launch-1.0 v4l2src ! videoconvert ! colortrack template-location=ball.png ! \
+ *     robotctl device=/dev/ttyUSB0 baud-rate=9600
+ * ]| Follows the ball of ball.png with the zone controller, one character per command at 10 Hz.
+ * |[
+ * gst-launch-1.0 v4l2src ! videoconvert ! colortrack template-location=ball.png ! \
+ *     robotctl device=/dev/ttyACM0 baud-rate=115200 controller=proportional protocol=text set-point=0.25
+ * ]| Wheel speeds as text lines, keeping the ball at a quarter of the frame height.
+ * |[
+ * gst-launch-1.0 filesrc location=clip.mp4 ! decodebin ! videoconvert ! colortrack init-box=120,80,64,64 ! \
+ *     robotctl location=- rate=5
+ * ]| A dry run: the commands are printed on stdout.
+ * |[
+ * gst-launch-1.0 v4l2src ! videoconvert ! cvtracker object-initial-x=100 object-initial-y=80 \
+ *     object-initial-width=60 object-initial-height=60 ! robotctl roi-type=object location=/tmp/commands.txt
+ * ]| Follows the box of gst-plugins-bad's cvtracker.
+ */
+
+#include "gstrobotctl.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <condition_variable>
+#include <cstring>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gst/video/video.h>
+#include <libserialport.h>
+
+#include "colortrack/controller.hpp"
+#include "colortrack/protocol.hpp"
+
+GST_DEBUG_CATEGORY_STATIC(gst_robot_ctl_debug);
+#define GST_CAT_DEFAULT gst_robot_ctl_debug
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+constexpr const char *kDefaultRoiType = "colortrack";
+constexpr const char *kDefaultZoneChars = "FBLRS";
+constexpr guint kDefaultBaudRate = 9600;
+constexpr gint kDefaultDataBits = 8;
+constexpr gint kDefaultStopBits = 1;
+constexpr gint kDefaultOutputScale = 255;
+constexpr gdouble kDefaultRate = 10.0;
+constexpr guint kDefaultLostTimeoutMs = 500;
+constexpr gint kDefaultTargetId = -1;
+// Reconnection back-off: from the first to the longest wait between attempts to reopen a lost port.
+constexpr auto kFirstRetry = std::chrono::milliseconds(100);
+constexpr auto kLongestRetry = std::chrono::milliseconds(2000);
+// The final stop may wait this long for a slow port before the element gives up on it.
+constexpr int kFinalStopTimeoutMs = 250;
+
+// The rates a serial port can be set to portably (termios' Bxxx constants).
+constexpr guint kStandardBaudRates[] = {50,     75,     110,    134,    150,    200,    300,    600,
+                                        1200,   1800,   2400,   4800,   9600,   19200,  38400,  57600,
+                                        115200, 230400, 460800, 500000, 576000, 921600, 1000000, 1152000,
+                                        1500000, 2000000, 2500000, 3000000, 3500000, 4000000};
+
+bool isStandardBaudRate(guint rate) {
+  return std::find(std::begin(kStandardBaudRates), std::end(kStandardBaudRates), rate) !=
+         std::end(kStandardBaudRates);
+}
+
+double monotonicSeconds() { return static_cast<double>(g_get_monotonic_time()) / G_USEC_PER_SEC; }
+
+// A text property checked at start: what the user wrote and, if it does not parse, why.
+struct TextSetting {
+  std::string text;
+  std::string error;
+};
+
+// What the properties say. Written by set_property, copied under GST_OBJECT_LOCK by start() and by the
+// streaming thread; never touched by the writer thread (it gets its own copy at start).
+struct Settings {
+  std::string device, location;
+  guint baudRate = kDefaultBaudRate;
+  gint dataBits = kDefaultDataBits;
+  GstRobotCtlParity parity = GST_ROBOT_CTL_PARITY_NONE;
+  gint stopBits = kDefaultStopBits;
+  GstRobotCtlFlowControl flowControl = GST_ROBOT_CTL_FLOW_CONTROL_NONE;
+  GstRobotCtlProtocol protocol = GST_ROBOT_CTL_PROTOCOL_ZONE_CHAR;
+  TextSetting zoneChars{kDefaultZoneChars, {}};
+  gint outputScale = kDefaultOutputScale;
+  gdouble rate = kDefaultRate;
+  colortrack::ControllerSettings controller;
+  colortrack::FailsafeSettings failsafe;
+  guint64 controllerGeneration = 0;  // bumped on every change of `controller` or `failsafe`
+  std::string roiType = kDefaultRoiType;
+  gint targetId = kDefaultTargetId;
+  bool postMessages = false;
+  std::string turnGainError, driveGainError;  // a negative gain that was refused (reported at start)
+  bool running = false;                       // between start() and stop()
+};
+
+// ---------------------------------------------------------------------------------------------------------
+// Ports: where the bytes go.
+
+enum class WriteResult { Written, Busy, Failed };
+
+class Port {
+ public:
+  virtual ~Port() = default;
+  virtual bool open(std::string &why) = 0;
+  virtual void close() = 0;
+  virtual bool isOpen() const = 0;
+  // Writes all of `bytes` within `timeoutMs`. Busy: the reader did not take them in time (they are dropped).
+  virtual WriteResult write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::string &why) = 0;
+  virtual std::string describe() const = 0;
+};
+
+// A file, FIFO, pseudo-terminal or stdout ("-"), written without blocking.
+class FilePort : public Port {
+ public:
+  explicit FilePort(std::string path) : path_(std::move(path)) {}
+  ~FilePort() override { close(); }
+
+  bool open(std::string &why) override {
+    if (path_ == "-") {
+      fd_ = dup(STDOUT_FILENO);  // our own descriptor, so closing it leaves stdout alone
+      if (fd_ < 0) return fail(why);
+      return true;
+    }
+    struct stat st;
+    const bool exists = stat(path_.c_str(), &st) == 0;
+    int flags = O_WRONLY | O_NOCTTY | O_NONBLOCK | O_CLOEXEC;
+    // A new or regular file starts empty the first time; reopened after an error, it is appended to.
+    if (!exists || S_ISREG(st.st_mode)) flags |= O_CREAT | (openedBefore_ ? O_APPEND : O_TRUNC);
+    fd_ = ::open(path_.c_str(), flags, 0644);
+    if (fd_ < 0) {
+      if (errno == ENXIO) {
+        why = "no process has the FIFO open for reading";
+        return false;
+      }
+      return fail(why);
+    }
+    openedBefore_ = true;
+    // A terminal (a pty) would turn "\n" into "\r\n" and echo: send the bytes as they are.
+    struct termios tio;
+    if (isatty(fd_) && tcgetattr(fd_, &tio) == 0) {
+      cfmakeraw(&tio);
+      tcsetattr(fd_, TCSANOW, &tio);
+    }
+    return true;
+  }
+
+  void close() override {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
+  }
+  bool isOpen() const override { return fd_ >= 0; }
+
+  WriteResult write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::string &why) override {
+    const auto deadline = Clock::now() + std::chrono::milliseconds(timeoutMs);
+    std::size_t done = 0;
+    while (done < bytes.size()) {
+      const ssize_t n = ::write(fd_, bytes.data() + done, bytes.size() - done);
+      if (n > 0) {
+        done += static_cast<std::size_t>(n);
+        continue;
+      }
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK) {
+        if (errno == EPIPE) consumeSigpipe();
+        fail(why);
+        return WriteResult::Failed;
+      }
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+      if (left <= 0) return WriteResult::Busy;
+      struct pollfd pfd = {fd_, POLLOUT, 0};
+      const int ready = poll(&pfd, 1, static_cast<int>(left));
+      if (ready == 0) return WriteResult::Busy;
+      // POLLERR/POLLHUP: the next write reports the error.
+    }
+    return WriteResult::Written;
+  }
+
+  std::string describe() const override { return path_ == "-" ? "stdout" : "'" + path_ + "'"; }
+
+ private:
+  static bool fail(std::string &why) {
+    why = g_strerror(errno);
+    return false;
+  }
+  // The writer thread blocks SIGPIPE (a FIFO or pipe whose reader went away); take the pending one.
+  static void consumeSigpipe() {
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGPIPE);
+    struct timespec zero = {0, 0};
+    sigtimedwait(&set, nullptr, &zero);
+  }
+
+  std::string path_;
+  int fd_ = -1;
+  bool openedBefore_ = false;
+};
+
+struct SerialConfig {
+  std::string device;
+  guint baudRate;
+  gint dataBits, stopBits;
+  GstRobotCtlParity parity;
+  GstRobotCtlFlowControl flowControl;
+};
+
+// A serial port through libserialport.
+class SerialPort : public Port {
+ public:
+  explicit SerialPort(SerialConfig config) : config_(std::move(config)) {}
+  ~SerialPort() override { close(); }
+
+  bool open(std::string &why) override {
+    if (sp_get_port_by_name(config_.device.c_str(), &port_) != SP_OK) {
+      port_ = nullptr;
+      why = "no such serial port";
+      return false;
+    }
+    if (!check(sp_open(port_, SP_MODE_WRITE), "open", why)) {
+      sp_free_port(port_);
+      port_ = nullptr;
+      return false;
+    }
+    const bool configured =
+        check(sp_set_baudrate(port_, static_cast<int>(config_.baudRate)), "set the baud rate", why) &&
+        check(sp_set_bits(port_, config_.dataBits), "set the data bits", why) &&
+        check(sp_set_parity(port_, toParity(config_.parity)), "set the parity", why) &&
+        check(sp_set_stopbits(port_, config_.stopBits), "set the stop bits", why) &&
+        check(sp_set_flowcontrol(port_, toFlowControl(config_.flowControl)), "set the flow control", why);
+    if (!configured) close();
+    return configured;
+  }
+
+  void close() override {
+    if (!port_) return;
+    sp_close(port_);
+    sp_free_port(port_);
+    port_ = nullptr;
+  }
+  bool isOpen() const override { return port_ != nullptr; }
+
+  WriteResult write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::string &why) override {
+    const sp_return n = sp_blocking_write(port_, bytes.data(), bytes.size(), static_cast<unsigned>(timeoutMs));
+    if (n < 0) {
+      check(n, "write", why);
+      return WriteResult::Failed;
+    }
+    return static_cast<std::size_t>(n) == bytes.size() ? WriteResult::Written : WriteResult::Busy;
+  }
+
+  std::string describe() const override { return "serial port '" + config_.device + "'"; }
+
+ private:
+  static bool check(sp_return result, const char *what, std::string &why) {
+    if (result >= 0) return true;
+    char *message = result == SP_ERR_FAIL ? sp_last_error_message() : nullptr;
+    why = std::string("could not ") + what + ": " +
+          (message ? message : result == SP_ERR_SUPP ? "not supported by this port" : "invalid argument");
+    if (message) sp_free_error_message(message);
+    return false;
+  }
+  static sp_parity toParity(GstRobotCtlParity parity) {
+    switch (parity) {
+      case GST_ROBOT_CTL_PARITY_ODD:
+        return SP_PARITY_ODD;
+      case GST_ROBOT_CTL_PARITY_EVEN:
+        return SP_PARITY_EVEN;
+      case GST_ROBOT_CTL_PARITY_MARK:
+        return SP_PARITY_MARK;
+      case GST_ROBOT_CTL_PARITY_SPACE:
+        return SP_PARITY_SPACE;
+      case GST_ROBOT_CTL_PARITY_NONE:
+        break;
+    }
+    return SP_PARITY_NONE;
+  }
+  static sp_flowcontrol toFlowControl(GstRobotCtlFlowControl flow) {
+    switch (flow) {
+      case GST_ROBOT_CTL_FLOW_CONTROL_XONXOFF:
+        return SP_FLOWCONTROL_XONXOFF;
+      case GST_ROBOT_CTL_FLOW_CONTROL_RTSCTS:
+        return SP_FLOWCONTROL_RTSCTS;
+      case GST_ROBOT_CTL_FLOW_CONTROL_DTRDSR:
+        return SP_FLOWCONTROL_DTRDSR;
+      case GST_ROBOT_CTL_FLOW_CONTROL_NONE:
+        break;
+    }
+    return SP_FLOWCONTROL_NONE;
+  }
+
+  SerialConfig config_;
+  sp_port *port_ = nullptr;
+};
+
+// ---------------------------------------------------------------------------------------------------------
+// The writer: a thread that sends the newest command at a fixed rate.
+
+struct Command {
+  colortrack::DriveOutput output;        // default: stop
+  GstClockTime timestamp = GST_CLOCK_TIME_NONE;  // of the buffer it was decided on
+  const char *reason = "start";
+};
+
+struct WriterConfig {
+  colortrack::ProtocolSettings protocol;
+  double rate = kDefaultRate;
+  double stallTimeout = kDefaultLostTimeoutMs / 1000.0;  // seconds without a buffer while playing
+  bool postMessages = false;
+};
+
+class CommandWriter {
+ public:
+  CommandWriter(GstElement *element, std::unique_ptr<Port> port, const WriterConfig &config)
+      : element_(element), port_(std::move(port)), config_(config), encoder_(config.protocol),
+        bufferWatchdog_(config.stallTimeout) {}
+
+  ~CommandWriter() { shutdown(); }
+
+  void start() { thread_ = std::thread([this] { run(); }); }
+
+  // The streaming thread's decision; replaces any command not sent yet (a queue of one: newest wins).
+  void submit(const Command &command) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    pending_ = command;
+    bufferWatchdog_.feed(monotonicSeconds());
+  }
+
+  // Stop now, not at the next tick.
+  void stopNow(const char *reason) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      pending_ = Command{};
+      pending_.reason = reason;
+      urgent_ = true;
+    }
+    wake_.notify_one();
+  }
+
+  // Only a playing pipeline is expected to deliver buffers.
+  void setPlaying(bool playing) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    playing_ = playing;
+    if (playing) bufferWatchdog_.feed(monotonicSeconds());
+  }
+
+  // Sends a last stop, ends the thread and closes the port. Idempotent.
+  void shutdown() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      quit_ = true;
+    }
+    wake_.notify_one();
+    if (thread_.joinable()) thread_.join();
+    port_->close();
+  }
+
+ private:
+  void run() {
+    // A reader that goes away must come back as EPIPE, not as a signal that kills the process.
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGPIPE);
+    pthread_sigmask(SIG_BLOCK, &set, nullptr);
+
+    const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / config_.rate));
+    auto nextTick = Clock::now();
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (true) {
+      wake_.wait_until(lock, nextTick, [this] { return quit_ || urgent_; });
+      if (quit_) break;
+      const bool urgent = urgent_;
+      urgent_ = false;
+      if (playing_ && bufferWatchdog_.expired(monotonicSeconds()) &&
+          pending_.output.command != colortrack::DriveCommand::Stop) {
+        GST_INFO_OBJECT(element_, "no buffer for %.0f ms: stopping", config_.stallTimeout * 1000);
+        pending_ = Command{};
+        pending_.reason = "stalled";
+      }
+      const Command command = pending_;
+      lock.unlock();
+      send(command, writeTimeoutMs(period));
+      lock.lock();
+      const auto now = Clock::now();
+      // An urgent stop restarts the rhythm; a tick that fell far behind (a slow port) does not burst to catch up.
+      nextTick = urgent || nextTick + period < now ? now + period : nextTick + period;
+    }
+    lock.unlock();
+    Command last;
+    last.reason = "shutdown";
+    send(last, kFinalStopTimeoutMs);
+  }
+
+  static int writeTimeoutMs(Clock::duration period) {
+    const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(period).count();
+    return static_cast<int>(std::clamp<long long>(ms, 5, 100));
+  }
+
+  void send(const Command &command, int timeoutMs) {
+    std::string why;
+    if (!port_->isOpen()) {
+      if (Clock::now() < retryAt_) return;
+      if (!port_->open(why)) {
+        retryDelay_ = std::min(retryDelay_ * 2, std::chrono::duration_cast<Clock::duration>(kLongestRetry));
+        retryAt_ = Clock::now() + retryDelay_;
+        GST_DEBUG_OBJECT(element_, "could not reopen %s: %s (next try in %lld ms)", port_->describe().c_str(),
+                         why.c_str(),
+                         static_cast<long long>(
+                             std::chrono::duration_cast<std::chrono::milliseconds>(retryDelay_).count()));
+        return;
+      }
+      GST_ELEMENT_INFO(element_, RESOURCE, WRITE, ("Reconnected to %s.", port_->describe().c_str()), (nullptr));
+      // Whatever the robot did while it was cut off, it hears stop first.
+      Command stop;
+      stop.reason = "reconnected";
+      if (!write(stop, timeoutMs)) return;
+      if (command.output.command == colortrack::DriveCommand::Stop) return;
+    }
+    write(command, timeoutMs);
+  }
+
+  bool write(const Command &command, int timeoutMs) {
+    const std::vector<std::uint8_t> bytes = encoder_.encode(command.output);
+    std::string why;
+    switch (port_->write(bytes, timeoutMs, why)) {
+      case WriteResult::Written:
+        retryDelay_ = kFirstRetry;
+        if (config_.postMessages) post(command);
+        return true;
+      case WriteResult::Busy:
+        GST_LOG_OBJECT(element_, "%s is not taking data: command dropped", port_->describe().c_str());
+        return false;
+      case WriteResult::Failed:
+        break;
+    }
+    GST_ELEMENT_WARNING(element_, RESOURCE, WRITE,
+                        ("Lost the connection to %s: %s. Retrying.", port_->describe().c_str(), why.c_str()),
+                        (nullptr));
+    port_->close();
+    retryDelay_ = kFirstRetry;
+    retryAt_ = Clock::now() + retryDelay_;
+    return false;
+  }
+
+  void post(const Command &command) {
+    const colortrack::DriveOutput &out = command.output;
+    const bool stop = out.command == colortrack::DriveCommand::Stop;
+    const int scale = config_.protocol.outputScale;
+    GstStructure *s = gst_structure_new(
+        "robotctl", "command", G_TYPE_STRING, colortrack::toString(out.command), "left", G_TYPE_INT,
+        stop ? 0 : colortrack::scaledSpeed(out.left, scale), "right", G_TYPE_INT,
+        stop ? 0 : colortrack::scaledSpeed(out.right, scale), "linear", G_TYPE_DOUBLE, out.linear, "angular",
+        G_TYPE_DOUBLE, out.angular, "target-visible", G_TYPE_BOOLEAN, static_cast<gboolean>(out.targetVisible),
+        "timestamp", G_TYPE_UINT64, static_cast<guint64>(command.timestamp), "reason", G_TYPE_STRING,
+        command.reason, nullptr);
+    gst_element_post_message(element_, gst_message_new_element(GST_OBJECT(element_), s));
+  }
+
+  GstElement *element_;
+  std::unique_ptr<Port> port_;
+  WriterConfig config_;
+  colortrack::ProtocolEncoder encoder_;  // writer thread only
+  Clock::duration retryDelay_ = kFirstRetry;
+  Clock::time_point retryAt_;
+  std::thread thread_;
+
+  std::mutex mutex_;  // guards what follows; never held during I/O
+  std::condition_variable wake_;
+  Command pending_;
+  bool urgent_ = false, quit_ = false, playing_ = false;
+  colortrack::Watchdog bufferWatchdog_;
+};
+
+// What the streaming thread owns (and start()/stop(), which never run concurrently with it).
+struct State {
+  std::unique_ptr<colortrack::RobotController> controller;
+  guint64 appliedControllerGeneration = 0;
+  cv::Size frameSize;
+  std::string roiType;
+};
+
+}  // namespace
+
+struct _GstRobotCtlPrivate {
+  Settings settings;
+  State state;
+  std::unique_ptr<CommandWriter> writer;  // between start() and stop()
+  std::atomic<bool> resetRequested{false};
+};
+
+enum {
+  PROP_0,
+  PROP_DEVICE,
+  PROP_BAUD_RATE,
+  PROP_DATA_BITS,
+  PROP_PARITY,
+  PROP_STOP_BITS,
+  PROP_FLOW_CONTROL,
+  PROP_LOCATION,
+  PROP_PROTOCOL,
+  PROP_ZONE_CHARS,
+  PROP_OUTPUT_SCALE,
+  PROP_RATE,
+  PROP_CONTROLLER,
+  PROP_DISTANCE_CUE,
+  PROP_SET_POINT,
+  PROP_TURN_DEADBAND,
+  PROP_DISTANCE_DEADBAND,
+  PROP_HYSTERESIS,
+  PROP_TURN_GAIN,
+  PROP_DRIVE_GAIN,
+  PROP_MAX_LINEAR,
+  PROP_MAX_ANGULAR,
+  PROP_MAX_LINEAR_ACCEL,
+  PROP_MAX_ANGULAR_ACCEL,
+  PROP_LOST_TIMEOUT,
+  PROP_MIN_SCORE,
+  PROP_SEARCH_TURN,
+  PROP_SEARCH_SPEED,
+  PROP_ROI_TYPE,
+  PROP_TARGET_ID,
+  PROP_POST_MESSAGES,
+};
+
+// Any video: only the frame size is used, never the pixels.
+static GstStaticPadTemplate sink_template =
+    GST_STATIC_PAD_TEMPLATE("sink", GST_PAD_SINK, GST_PAD_ALWAYS, GST_STATIC_CAPS("video/x-raw(ANY)"));
+
+#define gst_robot_ctl_parent_class parent_class
+G_DEFINE_TYPE(GstRobotCtl, gst_robot_ctl, GST_TYPE_BASE_SINK);
+GST_ELEMENT_REGISTER_DEFINE(robotctl, "robotctl", GST_RANK_NONE, GST_TYPE_ROBOT_CTL);
+
+// ---------------------------------------------------------------------------------------------------------
+// Enum types
+
+#define DEFINE_ENUM_TYPE(function, name, ...)                                                       \
+  GType function(void) {                                                                            \
+    static gsize type = 0;                                                                          \
+    static const GEnumValue values[] = {__VA_ARGS__, {0, nullptr, nullptr}};                        \
+    if (g_once_init_enter(&type)) g_once_init_leave(&type, g_enum_register_static(name, values));    \
+    return type;                                                                                    \
+  }
+
+DEFINE_ENUM_TYPE(gst_robot_ctl_protocol_get_type, "GstRobotCtlProtocol",
+                 {GST_ROBOT_CTL_PROTOCOL_ZONE_CHAR, "One character per command (zone-chars)", "zone-char"},
+                 {GST_ROBOT_CTL_PROTOCOL_TEXT, "One line \"L=<int> R=<int>\" per command", "text"},
+                 {GST_ROBOT_CTL_PROTOCOL_BINARY, "Framed packet with sequence number and CRC-8", "binary"})
+DEFINE_ENUM_TYPE(gst_robot_ctl_controller_get_type, "GstRobotCtlController",
+                 {GST_ROBOT_CTL_CONTROLLER_ZONE, "Forward/backward/left/right/stop by frame zone", "zone"},
+                 {GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL, "Wheel speeds proportional to the errors",
+                  "proportional"})
+DEFINE_ENUM_TYPE(gst_robot_ctl_distance_cue_get_type, "GstRobotCtlDistanceCue",
+                 {GST_ROBOT_CTL_DISTANCE_CUE_SIZE, "Box height / frame height", "size"},
+                 {GST_ROBOT_CTL_DISTANCE_CUE_POSITION, "Box bottom / frame height", "position"})
+DEFINE_ENUM_TYPE(gst_robot_ctl_parity_get_type, "GstRobotCtlParity",
+                 {GST_ROBOT_CTL_PARITY_NONE, "None", "none"}, {GST_ROBOT_CTL_PARITY_ODD, "Odd", "odd"},
+                 {GST_ROBOT_CTL_PARITY_EVEN, "Even", "even"}, {GST_ROBOT_CTL_PARITY_MARK, "Mark", "mark"},
+                 {GST_ROBOT_CTL_PARITY_SPACE, "Space", "space"})
+DEFINE_ENUM_TYPE(gst_robot_ctl_flow_control_get_type, "GstRobotCtlFlowControl",
+                 {GST_ROBOT_CTL_FLOW_CONTROL_NONE, "None", "none"},
+                 {GST_ROBOT_CTL_FLOW_CONTROL_XONXOFF, "Software (XON/XOFF)", "xonxoff"},
+                 {GST_ROBOT_CTL_FLOW_CONTROL_RTSCTS, "Hardware (RTS/CTS)", "rtscts"},
+                 {GST_ROBOT_CTL_FLOW_CONTROL_DTRDSR, "Hardware (DTR/DSR)", "dtrdsr"})
+
+// ---------------------------------------------------------------------------------------------------------
+// GObject
+
+namespace {
+
+Settings &settingsOf(GstRobotCtl *self) { return self->priv->settings; }
+State &stateOf(GstRobotCtl *self) { return self->priv->state; }
+
+// Where a double property lives in the settings, and whether it is a controller setting.
+double *doubleSetting(Settings &s, guint prop_id) {
+  colortrack::ControllerSettings &c = s.controller;
+  switch (prop_id) {
+    case PROP_SET_POINT:
+      return &c.setPoint;
+    case PROP_TURN_DEADBAND:
+      return &c.turnDeadband;
+    case PROP_DISTANCE_DEADBAND:
+      return &c.distanceDeadband;
+    case PROP_HYSTERESIS:
+      return &c.hysteresis;
+    case PROP_TURN_GAIN:
+      return &c.turnGain;
+    case PROP_DRIVE_GAIN:
+      return &c.driveGain;
+    case PROP_MAX_LINEAR:
+      return &c.maxLinear;
+    case PROP_MAX_ANGULAR:
+      return &c.maxAngular;
+    case PROP_MAX_LINEAR_ACCEL:
+      return &c.maxLinearAccel;
+    case PROP_MAX_ANGULAR_ACCEL:
+      return &c.maxAngularAccel;
+    case PROP_MIN_SCORE:
+      return &s.failsafe.minScore;
+    case PROP_SEARCH_SPEED:
+      return &s.failsafe.searchSpeed;
+    default:
+      return nullptr;
+  }
+}
+
+}  // namespace
+
+static void gst_robot_ctl_set_property(GObject *object, guint prop_id, const GValue *value, GParamSpec *pspec) {
+  GstRobotCtl *self = GST_ROBOT_CTL(object);
+  GST_OBJECT_LOCK(self);
+  Settings &s = settingsOf(self);
+  if (prop_id == PROP_TURN_GAIN || prop_id == PROP_DRIVE_GAIN) {
+    // A negative gain drives away from the target: refused, with a reason (an error at start; while
+    // running a warning, and the previous gain stays).
+    const double gain = g_value_get_double(value);
+    std::string &error = prop_id == PROP_TURN_GAIN ? s.turnGainError : s.driveGainError;
+    if (gain < 0) {
+      const char *name = prop_id == PROP_TURN_GAIN ? "turn-gain" : "drive-gain";
+      const std::string why = std::string("Invalid value ") + std::to_string(gain) + " for property '" + name +
+                              "': a gain must not be negative (it would steer away from the target)";
+      const bool running = s.running;
+      const double kept = *doubleSetting(s, prop_id);
+      if (!running) error = why;
+      GST_OBJECT_UNLOCK(self);
+      if (running) GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS, ("%s. Keeping %g.", why.c_str(), kept), (nullptr));
+      return;
+    }
+    error.clear();
+  }
+  if (double *setting = doubleSetting(s, prop_id)) {
+    *setting = g_value_get_double(value);
+    ++s.controllerGeneration;
+    GST_OBJECT_UNLOCK(self);
+    return;
+  }
+  switch (prop_id) {
+    case PROP_DEVICE:
+      s.device = g_value_get_string(value) ? g_value_get_string(value) : "";
+      break;
+    case PROP_BAUD_RATE:
+      s.baudRate = g_value_get_uint(value);
+      break;
+    case PROP_DATA_BITS:
+      s.dataBits = g_value_get_int(value);
+      break;
+    case PROP_PARITY:
+      s.parity = static_cast<GstRobotCtlParity>(g_value_get_enum(value));
+      break;
+    case PROP_STOP_BITS:
+      s.stopBits = g_value_get_int(value);
+      break;
+    case PROP_FLOW_CONTROL:
+      s.flowControl = static_cast<GstRobotCtlFlowControl>(g_value_get_enum(value));
+      break;
+    case PROP_LOCATION:
+      s.location = g_value_get_string(value) ? g_value_get_string(value) : "";
+      break;
+    case PROP_PROTOCOL:
+      s.protocol = static_cast<GstRobotCtlProtocol>(g_value_get_enum(value));
+      break;
+    case PROP_ZONE_CHARS: {
+      const char *text = g_value_get_string(value);
+      s.zoneChars.text = text ? text : "";
+      s.zoneChars.error.clear();
+      colortrack::parseZoneChars(s.zoneChars.text, &s.zoneChars.error);
+      break;
+    }
+    case PROP_OUTPUT_SCALE:
+      s.outputScale = g_value_get_int(value);
+      break;
+    case PROP_RATE:
+      s.rate = g_value_get_double(value);
+      break;
+    case PROP_CONTROLLER:
+      s.controller.kind = g_value_get_enum(value) == GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL
+                              ? colortrack::ControllerKind::Proportional
+                              : colortrack::ControllerKind::Zone;
+      ++s.controllerGeneration;
+      break;
+    case PROP_DISTANCE_CUE:
+      s.controller.distanceCue = g_value_get_enum(value) == GST_ROBOT_CTL_DISTANCE_CUE_POSITION
+                                     ? colortrack::DistanceCue::Position
+                                     : colortrack::DistanceCue::Size;
+      ++s.controllerGeneration;
+      break;
+    case PROP_LOST_TIMEOUT:
+      s.failsafe.lostTimeout = g_value_get_uint(value) / 1000.0;
+      ++s.controllerGeneration;
+      break;
+    case PROP_SEARCH_TURN:
+      s.failsafe.searchTurn = g_value_get_boolean(value);
+      ++s.controllerGeneration;
+      break;
+    case PROP_ROI_TYPE:
+      s.roiType = g_value_get_string(value) ? g_value_get_string(value) : "";
+      break;
+    case PROP_TARGET_ID:
+      s.targetId = g_value_get_int(value);
+      break;
+    case PROP_POST_MESSAGES:
+      s.postMessages = g_value_get_boolean(value);
+      break;
+    default:
+      G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
+      break;
+  }
+  GST_OBJECT_UNLOCK(self);
+}
+
+static void gst_robot_ctl_get_property(GObject *object, guint prop_id, GValue *value, GParamSpec *pspec) {
+  GstRobotCtl *self = GST_ROBOT_CTL(object);
+  GST_OBJECT_LOCK(self);
+  Settings &s = settingsOf(self);
+  if (double *setting = doubleSetting(s, prop_id)) {
+    g_value_set_double(value, *setting);
+    GST_OBJECT_UNLOCK(self);
+    return;
+  }
+  auto stringOrNull = [](const std::string &text) { return text.empty() ? nullptr : text.c_str(); };
+  switch (prop_id) {
+    case PROP_DEVICE:
+      g_value_set_string(value, stringOrNull(s.device));
+      break;
+    case PROP_BAUD_RATE:
+      g_value_set_uint(value, s.baudRate);
+      break;
+    case PROP_DATA_BITS:
+      g_value_set_int(value, s.dataBits);
+      break;
+    case PROP_PARITY:
+      g_value_set_enum(value, s.parity);
+      break;
+    case PROP_STOP_BITS:
+      g_value_set_int(value, s.stopBits);
+      break;
+    case PROP_FLOW_CONTROL:
+      g_value_set_enum(value, s.flowControl);
+      break;
+    case PROP_LOCATION:
+      g_value_set_string(value, stringOrNull(s.location));
+      break;
+    case PROP_PROTOCOL:
+      g_value_set_enum(value, s.protocol);
+      break;
+    case PROP_ZONE_CHARS:
+      g_value_set_string(value, s.zoneChars.text.c_str());
+      break;
+    case PROP_OUTPUT_SCALE:
+      g_value_set_int(value, s.outputScale);
+      break;
+    case PROP_RATE:
+      g_value_set_double(value, s.rate);
+      break;
+    case PROP_CONTROLLER:
+      g_value_set_enum(value, s.controller.kind == colortrack::ControllerKind::Proportional
+                                  ? GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL
+                                  : GST_ROBOT_CTL_CONTROLLER_ZONE);
+      break;
+    case PROP_DISTANCE_CUE:
+      g_value_set_enum(value, s.controller.distanceCue == colortrack::DistanceCue::Position
+                                  ? GST_ROBOT_CTL_DISTANCE_CUE_POSITION
+                                  : GST_ROBOT_CTL_DISTANCE_CUE_SIZE);
+      break;
+    case PROP_LOST_TIMEOUT:
+      g_value_set_uint(value, static_cast<guint>(std::lround(s.failsafe.lostTimeout * 1000)));
+      break;
+    case PROP_SEARCH_TURN:
+      g_value_set_boolean(value, s.failsafe.searchTurn);
+      break;
+    case PROP_ROI_TYPE:
+      g_value_set_string(value, s.roiType.c_str());
+      break;
+    case PROP_TARGET_ID:
+      g_value_set_int(value, s.targetId);
+      break;
+    case PROP_POST_MESSAGES:
+      g_value_set_boolean(value, s.postMessages);
+      break;
+    default:
+      G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
+      break;
+  }
+  GST_OBJECT_UNLOCK(self);
+}
+
+// Whatever happens, a robot that was moving is told to stop before the element goes away.
+static void gst_robot_ctl_dispose(GObject *object) {
+  GstRobotCtl *self = GST_ROBOT_CTL(object);
+  if (self->priv && self->priv->writer) {
+    self->priv->writer->shutdown();
+    self->priv->writer.reset();
+  }
+  G_OBJECT_CLASS(parent_class)->dispose(object);
+}
+
+static void gst_robot_ctl_finalize(GObject *object) {
+  GstRobotCtl *self = GST_ROBOT_CTL(object);
+  delete self->priv;
+  self->priv = nullptr;
+  G_OBJECT_CLASS(parent_class)->finalize(object);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Streaming
+
+static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
+  GstRobotCtl *self = GST_ROBOT_CTL(sink);
+  GST_OBJECT_LOCK(self);
+  const Settings s = settingsOf(self);
+  GST_OBJECT_UNLOCK(self);
+
+  if (s.device.empty() && s.location.empty()) {
+    GST_ELEMENT_ERROR(self, RESOURCE, NOT_FOUND,
+                      ("No output: set 'device' (a serial port) or 'location' (a file, FIFO, pseudo-terminal, "
+                       "or '-' for stdout)."),
+                      (nullptr));
+    return FALSE;
+  }
+  if (!s.device.empty() && !s.location.empty()) {
+    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
+                      ("Set either 'device' ('%s') or 'location' ('%s'), not both.", s.device.c_str(),
+                       s.location.c_str()),
+                      (nullptr));
+    return FALSE;
+  }
+  if (!s.device.empty() && !isStandardBaudRate(s.baudRate)) {
+    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
+                      ("Unsupported baud rate %u (property 'baud-rate'): use a standard rate such as 9600, "
+                       "19200, 38400, 57600 or 115200.",
+                       s.baudRate),
+                      (nullptr));
+    return FALSE;
+  }
+  for (const std::string *error : {&s.turnGainError, &s.driveGainError}) {
+    if (!error->empty()) {
+      GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("%s.", error->c_str()), (nullptr));
+      return FALSE;
+    }
+  }
+  const std::optional<colortrack::ZoneChars> zoneChars = colortrack::parseZoneChars(s.zoneChars.text);
+  if (!zoneChars) {
+    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
+                      ("Invalid value '%s' for property 'zone-chars': %s", s.zoneChars.text.c_str(),
+                       s.zoneChars.error.c_str()),
+                      (nullptr));
+    return FALSE;
+  }
+
+  std::unique_ptr<Port> port;
+  if (!s.device.empty())
+    port = std::make_unique<SerialPort>(SerialConfig{s.device, s.baudRate, s.dataBits, s.stopBits, s.parity,
+                                                     s.flowControl});
+  else
+    port = std::make_unique<FilePort>(s.location);
+  std::string why;
+  if (!port->open(why)) {
+    if (!s.device.empty())
+      GST_ELEMENT_ERROR(self, RESOURCE, OPEN_WRITE,
+                        ("Could not open serial port '%s' (property 'device'): %s", s.device.c_str(), why.c_str()),
+                        (nullptr));
+    else
+      GST_ELEMENT_ERROR(self, RESOURCE, OPEN_WRITE,
+                        ("Could not open '%s' (property 'location') for writing: %s", s.location.c_str(),
+                         why.c_str()),
+                        (nullptr));
+    return FALSE;
+  }
+  GST_INFO_OBJECT(self, "writing to %s", port->describe().c_str());
+
+  WriterConfig config;
+  config.protocol.protocol = s.protocol == GST_ROBOT_CTL_PROTOCOL_TEXT     ? colortrack::Protocol::Text
+                             : s.protocol == GST_ROBOT_CTL_PROTOCOL_BINARY ? colortrack::Protocol::Binary
+                                                                           : colortrack::Protocol::ZoneChar;
+  config.protocol.zoneChars = *zoneChars;
+  config.protocol.outputScale = s.outputScale;
+  config.rate = s.rate;
+  config.stallTimeout = s.failsafe.lostTimeout;
+  config.postMessages = s.postMessages;
+
+  State &state = stateOf(self);
+  state = State{};
+  state.controller = std::make_unique<colortrack::RobotController>(s.controller, s.failsafe);
+  state.appliedControllerGeneration = s.controllerGeneration;
+  self->priv->resetRequested = false;
+
+  // The robot hears stop from the start, at the rate, until there is something to follow.
+  self->priv->writer = std::make_unique<CommandWriter>(GST_ELEMENT(self), std::move(port), config);
+  self->priv->writer->start();
+  GST_OBJECT_LOCK(self);
+  settingsOf(self).running = true;
+  GST_OBJECT_UNLOCK(self);
+  return TRUE;
+}
+
+static gboolean gst_robot_ctl_stop(GstBaseSink *sink) {
+  GstRobotCtl *self = GST_ROBOT_CTL(sink);
+  GST_OBJECT_LOCK(self);
+  settingsOf(self).running = false;
+  GST_OBJECT_UNLOCK(self);
+  if (self->priv->writer) {
+    self->priv->writer->shutdown();  // sends the final stop
+    self->priv->writer.reset();
+  }
+  stateOf(self) = State{};
+  return TRUE;
+}
+
+static gboolean gst_robot_ctl_set_caps(GstBaseSink *sink, GstCaps *caps) {
+  GstRobotCtl *self = GST_ROBOT_CTL(sink);
+  GstVideoInfo info;
+  if (!gst_video_info_from_caps(&info, caps)) {
+    GST_WARNING_OBJECT(self, "caps without a frame size: %" GST_PTR_FORMAT, caps);
+    return FALSE;
+  }
+  stateOf(self).frameSize = cv::Size(GST_VIDEO_INFO_WIDTH(&info), GST_VIDEO_INFO_HEIGHT(&info));
+  GST_DEBUG_OBJECT(self, "frame size %dx%d", stateOf(self).frameSize.width, stateOf(self).frameSize.height);
+  return TRUE;
+}
+
+static gboolean gst_robot_ctl_event(GstBaseSink *sink, GstEvent *event) {
+  GstRobotCtl *self = GST_ROBOT_CTL(sink);
+  CommandWriter *writer = self->priv->writer.get();
+  switch (GST_EVENT_TYPE(event)) {
+    case GST_EVENT_EOS:
+      GST_DEBUG_OBJECT(self, "EOS: stop");
+      if (writer) writer->stopNow("eos");
+      break;
+    case GST_EVENT_FLUSH_START:
+      GST_DEBUG_OBJECT(self, "flush: stop");
+      if (writer) writer->stopNow("flush");
+      break;
+    case GST_EVENT_FLUSH_STOP:
+      self->priv->resetRequested = true;  // what comes after a seek has nothing to do with before
+      break;
+    default:
+      break;
+  }
+  return GST_BASE_SINK_CLASS(parent_class)->event(sink, event);
+}
+
+namespace {
+
+colortrack::TrackState parseState(const char *text) {
+  if (!text) return colortrack::TrackState::Tracking;
+  if (!std::strcmp(text, "searching")) return colortrack::TrackState::Searching;
+  if (!std::strcmp(text, "coasting")) return colortrack::TrackState::Coasting;
+  if (!std::strcmp(text, "lost")) return colortrack::TrackState::Lost;
+  return colortrack::TrackState::Tracking;
+}
+
+// The selected ROI of a buffer: of type `roiType`, with id `targetId` (or the lowest id when it is < 0).
+// Other elements' boxes carry no state or score: they count as tracking with score 1.
+void readTarget(GstBuffer *buffer, GQuark roiType, gint targetId, colortrack::Observation &o) {
+  const GstVideoRegionOfInterestMeta *chosen = nullptr;
+  gpointer iter = nullptr;
+  while (GstMeta *meta = gst_buffer_iterate_meta_filtered(buffer, &iter, GST_VIDEO_REGION_OF_INTEREST_META_API_TYPE)) {
+    auto *roi = reinterpret_cast<GstVideoRegionOfInterestMeta *>(meta);
+    if (roi->roi_type != roiType) continue;
+    if (targetId >= 0 ? roi->id == targetId : (!chosen || roi->id < chosen->id)) chosen = roi;
+  }
+  if (!chosen) return;
+  o.box = cv::Rect2d(chosen->x, chosen->y, chosen->w, chosen->h);
+  o.state = colortrack::TrackState::Tracking;
+  o.score = 1.0;
+  const GstStructure *params =
+      gst_video_region_of_interest_meta_get_param(const_cast<GstVideoRegionOfInterestMeta *>(chosen), "colortrack");
+  if (params) {
+    o.state = parseState(gst_structure_get_string(params, "state"));
+    gst_structure_get_double(params, "score", &o.score);
+  }
+}
+
+}  // namespace
+
+static GstFlowReturn gst_robot_ctl_render(GstBaseSink *sink, GstBuffer *buffer) {
+  GstRobotCtl *self = GST_ROBOT_CTL(sink);
+  State &state = stateOf(self);
+  CommandWriter *writer = self->priv->writer.get();
+  if (!writer || !state.controller) {
+    GST_ELEMENT_ERROR(self, CORE, FAILED, ("robotctl was not started."), (nullptr));
+    return GST_FLOW_ERROR;
+  }
+
+  GST_OBJECT_LOCK(self);
+  const Settings &shared = settingsOf(self);
+  const guint64 generation = shared.controllerGeneration;
+  const colortrack::ControllerSettings controllerSettings = shared.controller;
+  const colortrack::FailsafeSettings failsafeSettings = shared.failsafe;
+  const GQuark roiType = g_quark_from_string(shared.roiType.c_str());
+  const gint targetId = shared.targetId;
+  GST_OBJECT_UNLOCK(self);
+
+  if (generation != state.appliedControllerGeneration) {
+    state.controller = std::make_unique<colortrack::RobotController>(controllerSettings, failsafeSettings);
+    state.appliedControllerGeneration = generation;
+  } else if (self->priv->resetRequested.exchange(false)) {
+    state.controller->reset();
+  }
+
+  colortrack::Observation o;
+  o.frameSize = state.frameSize;
+  // Stream time drives the controller, so a file plays back the same decisions whatever the load.
+  const GstClockTime pts = GST_BUFFER_PTS(buffer);
+  const GstClockTime running =
+      GST_CLOCK_TIME_IS_VALID(pts) ? gst_segment_to_running_time(&sink->segment, GST_FORMAT_TIME, pts)
+                                   : GST_CLOCK_TIME_NONE;
+  o.time = GST_CLOCK_TIME_IS_VALID(running) ? static_cast<double>(running) / GST_SECOND : monotonicSeconds();
+  readTarget(buffer, roiType, targetId, o);
+
+  Command command;
+  command.output = state.controller->update(o);
+  command.timestamp = pts;
+  command.reason = command.output.targetVisible ? "target" : "no-target";
+  GST_LOG_OBJECT(self, "%s: %s left %.3f right %.3f", o.box ? "target" : "no target",
+                 colortrack::toString(command.output.command), command.output.left, command.output.right);
+  writer->submit(command);
+  return GST_FLOW_OK;
+}
+
+static GstStateChangeReturn gst_robot_ctl_change_state(GstElement *element, GstStateChange transition) {
+  GstRobotCtl *self = GST_ROBOT_CTL(element);
+  // Before the base class: the stop goes out before anything else of the pause happens.
+  if (transition == GST_STATE_CHANGE_PLAYING_TO_PAUSED && self->priv->writer) {
+    self->priv->writer->setPlaying(false);
+    self->priv->writer->stopNow("paused");
+  }
+  // GstBaseSink opens the port (start) from NULL to READY and closes it (stop, a final stop) from READY to
+  // NULL; in READY the robot keeps hearing stop at the rate.
+  if (transition == GST_STATE_CHANGE_PAUSED_TO_READY && self->priv->writer) {
+    self->priv->writer->setPlaying(false);
+    self->priv->writer->stopNow("ready");
+  }
+  const GstStateChangeReturn ret = GST_ELEMENT_CLASS(parent_class)->change_state(element, transition);
+  if (ret == GST_STATE_CHANGE_FAILURE) return ret;
+  if (transition == GST_STATE_CHANGE_PAUSED_TO_PLAYING && self->priv->writer) self->priv->writer->setPlaying(true);
+  return ret;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Class
+
+static void gst_robot_ctl_class_init(GstRobotCtlClass *klass) {
+  GObjectClass *gobject_class = G_OBJECT_CLASS(klass);
+  GstElementClass *element_class = GST_ELEMENT_CLASS(klass);
+  GstBaseSinkClass *sink_class = GST_BASE_SINK_CLASS(klass);
+
+  GST_DEBUG_CATEGORY_INIT(gst_robot_ctl_debug, "robotctl", 0, "Robot control from track metadata");
+
+  gobject_class->set_property = gst_robot_ctl_set_property;
+  gobject_class->get_property = gst_robot_ctl_get_property;
+  gobject_class->dispose = gst_robot_ctl_dispose;
+  gobject_class->finalize = gst_robot_ctl_finalize;
+
+  const colortrack::ControllerSettings c;
+  const colortrack::FailsafeSettings f;
+  constexpr auto rw = static_cast<GParamFlags>(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS);
+  // Read when the port opens (NULL to READY): changes apply from the next start.
+  constexpr auto ready = rw;
+  // Applied from the next buffer.
+  constexpr auto live = static_cast<GParamFlags>(rw | GST_PARAM_MUTABLE_PLAYING);
+  auto install = [gobject_class](guint id, GParamSpec *spec) { g_object_class_install_property(gobject_class, id, spec); };
+
+  install(PROP_DEVICE, g_param_spec_string("device", "Device",
+                                           "Serial port to send the commands to (e.g. /dev/ttyUSB0, COM3); "
+                                           "exclusive with 'location'",
+                                           nullptr, ready));
+  install(PROP_BAUD_RATE, g_param_spec_uint("baud-rate", "Baud rate",
+                                            "Serial port speed in bit/s; one of the standard rates 50 ... 4000000",
+                                            50, 4000000, kDefaultBaudRate, ready));
+  install(PROP_DATA_BITS,
+          g_param_spec_int("data-bits", "Data bits", "Serial port data bits", 5, 8, kDefaultDataBits, ready));
+  install(PROP_PARITY, g_param_spec_enum("parity", "Parity", "Serial port parity", GST_TYPE_ROBOT_CTL_PARITY,
+                                         GST_ROBOT_CTL_PARITY_NONE, ready));
+  install(PROP_STOP_BITS,
+          g_param_spec_int("stop-bits", "Stop bits", "Serial port stop bits", 1, 2, kDefaultStopBits, ready));
+  install(PROP_FLOW_CONTROL, g_param_spec_enum("flow-control", "Flow control", "Serial port flow control",
+                                               GST_TYPE_ROBOT_CTL_FLOW_CONTROL, GST_ROBOT_CTL_FLOW_CONTROL_NONE,
+                                               ready));
+  install(PROP_LOCATION, g_param_spec_string("location", "Location",
+                                             "File, FIFO or pseudo-terminal to write the commands to, '-' for "
+                                             "stdout (dry runs, tests); exclusive with 'device'",
+                                             nullptr, ready));
+  install(PROP_PROTOCOL, g_param_spec_enum("protocol", "Protocol", "How commands are encoded",
+                                           GST_TYPE_ROBOT_CTL_PROTOCOL, GST_ROBOT_CTL_PROTOCOL_ZONE_CHAR, ready));
+  install(PROP_ZONE_CHARS, g_param_spec_string("zone-chars", "Zone characters",
+                                               "The zone-char protocol's characters for forward, backward, left, "
+                                               "right and stop, in that order (five distinct printable characters)",
+                                               kDefaultZoneChars, ready));
+  install(PROP_OUTPUT_SCALE, g_param_spec_int("output-scale", "Output scale",
+                                              "Integer sent for full wheel speed by the text and binary protocols",
+                                              1, 32767, kDefaultOutputScale, ready));
+  install(PROP_RATE, g_param_spec_double("rate", "Rate",
+                                         "Commands per second; the current command is repeated at this rate",
+                                         0.5, 1000.0, kDefaultRate, ready));
+  install(PROP_CONTROLLER, g_param_spec_enum("controller", "Controller", "How commands are decided",
+                                             GST_TYPE_ROBOT_CTL_CONTROLLER, GST_ROBOT_CTL_CONTROLLER_ZONE, live));
+  install(PROP_DISTANCE_CUE, g_param_spec_enum("distance-cue", "Distance cue", "What tells how far the target is",
+                                               GST_TYPE_ROBOT_CTL_DISTANCE_CUE, GST_ROBOT_CTL_DISTANCE_CUE_SIZE,
+                                               live));
+  install(PROP_SET_POINT, g_param_spec_double("set-point", "Set-point",
+                                              "Wanted distance cue: box height (or box bottom) as a fraction of the "
+                                              "frame height",
+                                              0.01, 1.0, c.setPoint, live));
+  install(PROP_TURN_DEADBAND, g_param_spec_double("turn-deadband", "Turn deadband",
+                                                  "Horizontal offset (fraction of half the frame width) within "
+                                                  "which the target counts as centred",
+                                                  0.0, 1.0, c.turnDeadband, live));
+  install(PROP_DISTANCE_DEADBAND, g_param_spec_double("distance-deadband", "Distance deadband",
+                                                      "Relative distance error within which the distance counts "
+                                                      "as right",
+                                                      0.0, 1.0, c.distanceDeadband, live));
+  install(PROP_HYSTERESIS, g_param_spec_double("hysteresis", "Hysteresis",
+                                               "Zone controller: how far inside a deadband the error must come "
+                                               "back before a turn or drive ends",
+                                               0.0, 1.0, c.hysteresis, live));
+  install(PROP_TURN_GAIN, g_param_spec_double("turn-gain", "Turn gain",
+                                              "Proportional controller: angular speed per unit horizontal offset, 0-100 (a negative "
+                                              "value is refused)",
+                                              -100.0, 100.0, c.turnGain, live));
+  install(PROP_DRIVE_GAIN, g_param_spec_double("drive-gain", "Drive gain",
+                                               "Proportional controller: linear speed per unit relative distance "
+                                               "error, 0-100 (a negative value is refused)",
+                                               -100.0, 100.0, c.driveGain, live));
+  install(PROP_MAX_LINEAR, g_param_spec_double("max-linear", "Maximum linear speed",
+                                               "Largest forward/backward speed (fraction of full speed); the zone "
+                                               "controller's driving speed",
+                                               0.0, 1.0, c.maxLinear, live));
+  install(PROP_MAX_ANGULAR, g_param_spec_double("max-angular", "Maximum angular speed",
+                                                "Largest turn speed (fraction of full wheel speed); the zone "
+                                                "controller's turning speed",
+                                                0.0, 1.0, c.maxAngular, live));
+  install(PROP_MAX_LINEAR_ACCEL, g_param_spec_double("max-linear-accel", "Maximum linear acceleration",
+                                                     "Proportional controller: largest change of the linear speed "
+                                                     "per second (0 = unlimited)",
+                                                     0.0, 1000.0, c.maxLinearAccel, live));
+  install(PROP_MAX_ANGULAR_ACCEL, g_param_spec_double("max-angular-accel", "Maximum angular acceleration",
+                                                      "Proportional controller: largest change of the angular "
+                                                      "speed per second (0 = unlimited)",
+                                                      0.0, 1000.0, c.maxAngularAccel, live));
+  install(PROP_LOST_TIMEOUT, g_param_spec_uint("lost-timeout", "Lost timeout",
+                                               "Milliseconds without a confirmed target, or without any buffer, "
+                                               "before the robot is stopped",
+                                               1, 600000, kDefaultLostTimeoutMs, live));
+  install(PROP_MIN_SCORE, g_param_spec_double("min-score", "Minimum score",
+                                              "A target with a lower score counts as not seen", 0.0, 1.0, f.minScore,
+                                              live));
+  install(PROP_SEARCH_TURN, g_param_spec_boolean("search-turn", "Search turn",
+                                                 "After lost-timeout turn slowly towards where the target was last "
+                                                 "seen instead of standing still",
+                                                 f.searchTurn, live));
+  install(PROP_SEARCH_SPEED, g_param_spec_double("search-speed", "Search speed",
+                                                 "Angular speed of the search turn (fraction of full wheel speed)",
+                                                 0.0, 1.0, f.searchSpeed, live));
+  install(PROP_ROI_TYPE, g_param_spec_string("roi-type", "ROI type",
+                                             "Type of the region-of-interest meta to follow (\"object\" for "
+                                             "cvtracker)",
+                                             kDefaultRoiType, live));
+  install(PROP_TARGET_ID, g_param_spec_int("target-id", "Target id",
+                                           "Id of the region of interest to follow; -1 = the lowest id", -1,
+                                           G_MAXINT, kDefaultTargetId, live));
+  install(PROP_POST_MESSAGES, g_param_spec_boolean("post-messages", "Post messages",
+                                                   "Post a \"robotctl\" element message for every command sent",
+                                                   FALSE, ready));
+
+  gst_element_class_set_static_metadata(element_class, "Robot controller", "Sink/Video/Analyzer",
+                                        "Drives a robot towards the tracked target: serial commands from "
+                                        "region-of-interest meta, with failsafe stop",
+                                        "colortrack developers");
+  gst_element_class_add_static_pad_template(element_class, &sink_template);
+
+  element_class->change_state = GST_DEBUG_FUNCPTR(gst_robot_ctl_change_state);
+  sink_class->start = GST_DEBUG_FUNCPTR(gst_robot_ctl_start);
+  sink_class->stop = GST_DEBUG_FUNCPTR(gst_robot_ctl_stop);
+  sink_class->set_caps = GST_DEBUG_FUNCPTR(gst_robot_ctl_set_caps);
+  sink_class->event = GST_DEBUG_FUNCPTR(gst_robot_ctl_event);
+  sink_class->render = GST_DEBUG_FUNCPTR(gst_robot_ctl_render);
+
+  gst_type_mark_as_plugin_api(GST_TYPE_ROBOT_CTL_PROTOCOL, static_cast<GstPluginAPIFlags>(0));
+  gst_type_mark_as_plugin_api(GST_TYPE_ROBOT_CTL_CONTROLLER, static_cast<GstPluginAPIFlags>(0));
+  gst_type_mark_as_plugin_api(GST_TYPE_ROBOT_CTL_DISTANCE_CUE, static_cast<GstPluginAPIFlags>(0));
+  gst_type_mark_as_plugin_api(GST_TYPE_ROBOT_CTL_PARITY, static_cast<GstPluginAPIFlags>(0));
+  gst_type_mark_as_plugin_api(GST_TYPE_ROBOT_CTL_FLOW_CONTROL, static_cast<GstPluginAPIFlags>(0));
+}
+
+static void gst_robot_ctl_init(GstRobotCtl *self) { self->priv = new GstRobotCtlPrivate(); }

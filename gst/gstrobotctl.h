@@ -1,0 +1,104 @@
+// GstRobotCtl: the `robotctl` element, a GstBaseSink that turns track metadata into robot drive commands.
+#pragma once
+
+#include <gst/base/gstbasesink.h>
+#include <gst/gst.h>
+
+G_BEGIN_DECLS
+
+#define GST_TYPE_ROBOT_CTL (gst_robot_ctl_get_type())
+#define GST_ROBOT_CTL(obj) (G_TYPE_CHECK_INSTANCE_CAST((obj), GST_TYPE_ROBOT_CTL, GstRobotCtl))
+#define GST_IS_ROBOT_CTL(obj) (G_TYPE_CHECK_INSTANCE_TYPE((obj), GST_TYPE_ROBOT_CTL))
+
+/**
+ * GstRobotCtlProtocol:
+ * @GST_ROBOT_CTL_PROTOCOL_ZONE_CHAR: one character per command (#GstRobotCtl:zone-chars)
+ * @GST_ROBOT_CTL_PROTOCOL_TEXT: one line "L=<int> R=<int>\n" per command
+ * @GST_ROBOT_CTL_PROTOCOL_BINARY: a 10-byte packet: 0xA5, sequence, length 6, command, flags, left and
+ *   right (int16 little-endian), CRC-8
+ */
+typedef enum {
+  GST_ROBOT_CTL_PROTOCOL_ZONE_CHAR = 0,
+  GST_ROBOT_CTL_PROTOCOL_TEXT = 1,
+  GST_ROBOT_CTL_PROTOCOL_BINARY = 2,
+} GstRobotCtlProtocol;
+
+/**
+ * GstRobotCtlController:
+ * @GST_ROBOT_CTL_CONTROLLER_ZONE: five commands from the zone of the frame the target is in
+ * @GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL: wheel speeds proportional to the offset and the distance error
+ */
+typedef enum {
+  GST_ROBOT_CTL_CONTROLLER_ZONE = 0,
+  GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL = 1,
+} GstRobotCtlController;
+
+/**
+ * GstRobotCtlDistanceCue:
+ * @GST_ROBOT_CTL_DISTANCE_CUE_SIZE: the box height (a closer target looks bigger)
+ * @GST_ROBOT_CTL_DISTANCE_CUE_POSITION: the box bottom (on a flat floor a closer target sits lower)
+ */
+typedef enum {
+  GST_ROBOT_CTL_DISTANCE_CUE_SIZE = 0,
+  GST_ROBOT_CTL_DISTANCE_CUE_POSITION = 1,
+} GstRobotCtlDistanceCue;
+
+/**
+ * GstRobotCtlParity:
+ * @GST_ROBOT_CTL_PARITY_NONE: no parity bit
+ * @GST_ROBOT_CTL_PARITY_ODD: odd parity
+ * @GST_ROBOT_CTL_PARITY_EVEN: even parity
+ * @GST_ROBOT_CTL_PARITY_MARK: parity bit always 1
+ * @GST_ROBOT_CTL_PARITY_SPACE: parity bit always 0
+ */
+typedef enum {
+  GST_ROBOT_CTL_PARITY_NONE = 0,
+  GST_ROBOT_CTL_PARITY_ODD = 1,
+  GST_ROBOT_CTL_PARITY_EVEN = 2,
+  GST_ROBOT_CTL_PARITY_MARK = 3,
+  GST_ROBOT_CTL_PARITY_SPACE = 4,
+} GstRobotCtlParity;
+
+/**
+ * GstRobotCtlFlowControl:
+ * @GST_ROBOT_CTL_FLOW_CONTROL_NONE: no flow control
+ * @GST_ROBOT_CTL_FLOW_CONTROL_XONXOFF: software (XON/XOFF)
+ * @GST_ROBOT_CTL_FLOW_CONTROL_RTSCTS: hardware (RTS/CTS)
+ * @GST_ROBOT_CTL_FLOW_CONTROL_DTRDSR: hardware (DTR/DSR)
+ */
+typedef enum {
+  GST_ROBOT_CTL_FLOW_CONTROL_NONE = 0,
+  GST_ROBOT_CTL_FLOW_CONTROL_XONXOFF = 1,
+  GST_ROBOT_CTL_FLOW_CONTROL_RTSCTS = 2,
+  GST_ROBOT_CTL_FLOW_CONTROL_DTRDSR = 3,
+} GstRobotCtlFlowControl;
+
+GType gst_robot_ctl_protocol_get_type(void);
+GType gst_robot_ctl_controller_get_type(void);
+GType gst_robot_ctl_distance_cue_get_type(void);
+GType gst_robot_ctl_parity_get_type(void);
+GType gst_robot_ctl_flow_control_get_type(void);
+#define GST_TYPE_ROBOT_CTL_PROTOCOL (gst_robot_ctl_protocol_get_type())
+#define GST_TYPE_ROBOT_CTL_CONTROLLER (gst_robot_ctl_controller_get_type())
+#define GST_TYPE_ROBOT_CTL_DISTANCE_CUE (gst_robot_ctl_distance_cue_get_type())
+#define GST_TYPE_ROBOT_CTL_PARITY (gst_robot_ctl_parity_get_type())
+#define GST_TYPE_ROBOT_CTL_FLOW_CONTROL (gst_robot_ctl_flow_control_get_type())
+
+typedef struct _GstRobotCtl GstRobotCtl;
+typedef struct _GstRobotCtlClass GstRobotCtlClass;
+typedef struct _GstRobotCtlPrivate GstRobotCtlPrivate;
+
+struct _GstRobotCtl {
+  GstBaseSink parent;
+  GstRobotCtlPrivate *priv;
+};
+
+struct _GstRobotCtlClass {
+  GstBaseSinkClass parent_class;
+};
+
+GType gst_robot_ctl_get_type(void);
+
+GST_ELEMENT_REGISTER_DECLARE(robotctl);
+
+G_END_DECLS

@@ -1,0 +1,66 @@
+// Synthetic scenes for threshold mode: shaded balls of given colours moving along piecewise-linear paths over
+// a cluttered background, with optional salt-and-pepper noise, a specular highlight (a hole in the colour
+// blob) and a global brightness change. Exact ground truth per ball and frame.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace colortrack::balls {
+
+struct Waypoint {
+  int frame;
+  cv::Point2d centre;
+};
+
+struct Ball {
+  double hue = 0, saturation = 0.85, value = 0.85;  // h in degrees, at the ball's centre
+  double radius = 20;
+  // Linear between waypoints, held before the first and after the last. May leave the frame.
+  std::vector<Waypoint> path;
+  double highlight = 0;  // radius of a white specular spot, off-centre (0 = none)
+};
+
+struct BallSceneConfig {
+  cv::Size frameSize{640, 480};
+  std::uint32_t seed = 1;
+  // Background: grey texture plus `clutterPatches` coloured rectangles whose hue keeps at least
+  // `clutterHueClearance` degrees from every ball's hue (saturation up to clutterSaturation).
+  int clutterPatches = 40;
+  double clutterHueClearance = 60;
+  double clutterSaturation = 0.9;
+  double saltPepper = 0;      // fraction of pixels replaced, per frame, by ball 0's colour, white or black
+  double brightness = 0;      // the whole frame's brightness varies by +- this fraction
+  int brightnessPeriod = 60;  // frames per brightness cycle
+};
+
+struct BallTruth {
+  cv::Point2d centre;
+  double radius = 0;
+  bool fullyVisible = false;  // the whole disc lies inside the frame
+  bool visible = false;       // some of it does
+};
+
+class BallScene {
+ public:
+  BallScene(const BallSceneConfig &config, std::vector<Ball> balls);
+  const BallSceneConfig &config() const { return config_; }
+  const std::vector<Ball> &balls() const { return balls_; }
+
+  // Frame `index` (deterministic) and, optionally, every ball's ground truth in that frame.
+  cv::Mat render(int index, std::vector<BallTruth> *truth = nullptr) const;
+  BallTruth truthOf(int ball, int index) const;
+  // The ball's bounding box in frame `index`, rounded to whole pixels (an init-box a user would draw).
+  cv::Rect boxOf(int ball, int index) const;
+
+ private:
+  BallSceneConfig config_;
+  std::vector<Ball> balls_;
+  cv::Mat background_;
+};
+
+cv::Vec3b bgrOfHsv(double hue, double saturation, double value);
+
+}  // namespace colortrack::balls

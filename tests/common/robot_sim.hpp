@@ -1,0 +1,81 @@
+// A simulated differential-drive robot with a forward camera, in a flat world with one coloured ball. It
+// renders what the camera sees (pinhole model) and drives from wheel speeds, so robotctl can be tested in a
+// closed loop. It also decodes robotctl's three protocols, independently of core/ (from docs/robotctl.md).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace colortrack::sim {
+
+struct RobotSimConfig {
+  cv::Size frameSize{320, 240};
+  double horizontalFovDegrees = 60;
+  double cameraHeight = 0.25;     // m above the floor, looking level
+  double ballRadius = 0.15;       // m; the ball rests on the floor
+  cv::Point2d ball{3.0, 0.0};     // m, world position of the ball
+  double fullWheelSpeed = 1.0;    // m/s at wheel speed 1
+  double wheelBase = 0.4;         // m between the wheels
+};
+
+// Position (m) and heading (rad, 0 = +x, counter-clockwise).
+struct Pose {
+  double x = 0, y = 0, heading = 0;
+};
+
+class RobotSim {
+ public:
+  RobotSim(const RobotSimConfig &config, const Pose &start);
+
+  // The camera view: sky, a checkered floor, the ball (BGR, CV_8UC3).
+  cv::Mat render() const;
+  // Where the ball appears (ground truth); empty when hidden or behind the camera.
+  cv::Rect2d ballBox() const;
+  void setBallHidden(bool hidden) { hidden_ = hidden; }
+
+  // Moves for dt seconds with wheel speeds in [-1, 1] (exact arc of a differential drive).
+  void drive(double left, double right, double dt);
+
+  const Pose &pose() const { return pose_; }
+  double focalLength() const { return focal_; }
+  const RobotSimConfig &config() const { return config_; }
+
+ private:
+  // World point to camera coordinates: forward, left, up (m).
+  cv::Point3d toCamera(double x, double y, double z) const;
+
+  RobotSimConfig config_;
+  Pose pose_;
+  double focal_;
+  bool hidden_ = false;
+};
+
+// One decoded command: wheel speeds in [-1, 1] (and the character of zone-char).
+struct WheelCommand {
+  char zone = 0;
+  double left = 0, right = 0;
+  int sequence = -1;  // binary only
+  bool stop() const { return left == 0 && right == 0; }
+};
+
+class CommandDecoder {
+ public:
+  enum class Protocol { ZoneChar, Text, Binary };
+  // zoneLinear / zoneAngular: the wheel speeds the robot's firmware uses for the zone characters "FBLRS";
+  // outputScale: the integer of full wheel speed in the text and binary protocols.
+  CommandDecoder(Protocol protocol, double zoneLinear, double zoneAngular, int outputScale);
+  std::vector<WheelCommand> feed(const std::uint8_t *data, std::size_t size);
+  int rejected() const { return rejected_; }  // bad characters, lines or packets
+
+ private:
+  Protocol protocol_;
+  double zoneLinear_, zoneAngular_;
+  int outputScale_;
+  std::vector<std::uint8_t> pending_;
+  int rejected_ = 0;
+};
+
+}  // namespace colortrack::sim

@@ -1,0 +1,99 @@
+// Wire formats: exact bytes of every protocol.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "colortrack/protocol.hpp"
+
+namespace colortrack {
+namespace {
+
+using Bytes = std::vector<std::uint8_t>;
+
+DriveOutput command(DriveCommand c, double left, double right, bool visible = true) {
+  DriveOutput out;
+  out.command = c;
+  out.left = left;
+  out.right = right;
+  out.targetVisible = visible;
+  return out;
+}
+
+std::string text(const Bytes &bytes) { return std::string(bytes.begin(), bytes.end()); }
+
+TEST(Protocol, ZoneCharDefaultAndCustom) {
+  ProtocolEncoder encoder;
+  EXPECT_EQ(text(encoder.encode(command(DriveCommand::Forward, 0.5, 0.5))), "F");
+  EXPECT_EQ(text(encoder.encode(command(DriveCommand::Backward, -0.5, -0.5))), "B");
+  EXPECT_EQ(text(encoder.encode(command(DriveCommand::Left, -0.3, 0.3))), "L");
+  EXPECT_EQ(text(encoder.encode(command(DriveCommand::Right, 0.3, -0.3))), "R");
+  EXPECT_EQ(text(encoder.encode(command(DriveCommand::Stop, 0, 0))), "S");
+
+  ProtocolSettings s;
+  s.zoneChars = *parseZoneChars("wsadx");
+  encoder.setSettings(s);
+  EXPECT_EQ(text(encoder.encode(command(DriveCommand::Left, -0.3, 0.3))), "a");
+  EXPECT_EQ(text(encoder.encode(command(DriveCommand::Stop, 0, 0))), "x");
+  EXPECT_EQ(formatZoneChars(s.zoneChars), "wsadx");
+}
+
+TEST(Protocol, ZoneCharsRejected) {
+  std::string why;
+  EXPECT_FALSE(parseZoneChars("FBLR", &why));
+  EXPECT_NE(why.find("five"), std::string::npos);
+  EXPECT_FALSE(parseZoneChars("FFLRS", &why));
+  EXPECT_NE(why.find("differ"), std::string::npos);
+  EXPECT_FALSE(parseZoneChars("F LRS", &why));
+  EXPECT_TRUE(parseZoneChars("12345"));
+}
+
+TEST(Protocol, TextLines) {
+  ProtocolSettings s;
+  s.protocol = Protocol::Text;
+  ProtocolEncoder encoder(s);
+  EXPECT_EQ(text(encoder.encode(command(DriveCommand::Forward, 0.45, 0.15))), "L=115 R=38\n");  // 114.75, 38.25
+  EXPECT_EQ(text(encoder.encode(command(DriveCommand::Left, -0.2, 0.6))), "L=-51 R=153\n");
+  EXPECT_EQ(text(encoder.encode(command(DriveCommand::Stop, 0.001, 0))), "L=0 R=0\n");  // a stop is zero
+  s.outputScale = 1000;
+  encoder.setSettings(s);
+  EXPECT_EQ(text(encoder.encode(command(DriveCommand::Backward, -1.5, -0.25))), "L=-1000 R=-250\n");
+}
+
+TEST(Protocol, Crc8CheckValue) {
+  // The published check value of CRC-8/SMBUS.
+  const std::string check = "123456789";
+  EXPECT_EQ(crc8(reinterpret_cast<const std::uint8_t *>(check.data()), check.size()), 0xF4);
+}
+
+TEST(Protocol, BinaryPackets) {
+  ProtocolSettings s;
+  s.protocol = Protocol::Binary;
+  ProtocolEncoder encoder(s);
+  EXPECT_EQ(encoder.encode(command(DriveCommand::Forward, 0.5, 0.5)),
+            (Bytes{0xA5, 0x00, 0x06, 0x01, 0x01, 0x80, 0x00, 0x80, 0x00, 0x00}));  // 127.5 rounds to 128
+  EXPECT_EQ(encoder.encode(command(DriveCommand::Right, 0.3, -0.3)),
+            (Bytes{0xA5, 0x01, 0x06, 0x04, 0x01, 0x4D, 0x00, 0xB3, 0xFF, 0xFF}));  // +77, -77
+  EXPECT_EQ(encoder.encode(command(DriveCommand::Stop, 0, 0, false)),
+            (Bytes{0xA5, 0x02, 0x06, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xEA}));
+  EXPECT_EQ(binary::kPacketLength, 10u);
+}
+
+TEST(Protocol, BinarySequenceWrapsAndCrcCoversPacket) {
+  ProtocolSettings s;
+  s.protocol = Protocol::Binary;
+  ProtocolEncoder encoder(s);
+  Bytes last;
+  for (int i = 0; i < 257; ++i) last = encoder.encode(command(DriveCommand::Left, -0.2, 0.6));
+  EXPECT_EQ(last[1], 0x00);  // packet 256 (the 257th) wraps
+  EXPECT_EQ(last.back(), crc8(last.data() + 1, last.size() - 2));
+  // Any single-bit error is caught.
+  for (std::size_t byte = 1; byte + 1 < last.size(); ++byte) {
+    Bytes corrupt = last;
+    corrupt[byte] ^= 0x10;
+    EXPECT_NE(crc8(corrupt.data() + 1, corrupt.size() - 2), last.back()) << byte;
+  }
+}
+
+}  // namespace
+}  // namespace colortrack
