@@ -65,8 +65,11 @@ void FrameView::bgr(const cv::Rect &rect, cv::Mat &out) const {
 }
 
 void FrameView::packedToBgr(const cv::Rect &rect, cv::Mat &out) const {
+  packedToBgr(planeMat(frame_, 0, size_, CV_8UC(packed_.pixelBytes))(rect), out);
+}
+
+void FrameView::packedToBgr(const cv::Mat &roi, cv::Mat &out) const {
   const PackedLayout &p = packed_;
-  const cv::Mat roi = planeMat(frame_, 0, size_, CV_8UC(p.pixelBytes))(rect);
   const bool bgrOrder = p.blue == 0 && p.green == 1 && p.red == 2;
   const bool rgbOrder = p.red == 0 && p.green == 1 && p.blue == 2;
   if (p.pixelBytes == 3 && bgrOrder) {
@@ -79,10 +82,72 @@ void FrameView::packedToBgr(const cv::Rect &rect, cv::Mat &out) const {
     cv::cvtColor(roi, out, cv::COLOR_RGBA2BGR);
   } else {
     // xRGB, ARGB, xBGR, ABGR: the padding byte comes first, which cvtColor has no code for.
-    out.create(rect.size(), CV_8UC3);
+    out.create(roi.size(), CV_8UC3);
     const int fromTo[] = {p.blue, 0, p.green, 1, p.red, 2};
     cv::mixChannels(&roi, 1, &out, 1, fromTo, 3);
   }
+}
+
+void FrameView::sampledBgr(const cv::Rect &rect, int step, cv::Mat &out) const {
+  CV_Assert((rect & cv::Rect(cv::Point(), size_)) == rect && !rect.empty());
+  if (step <= 1) return bgr(rect, out);
+  const cv::Size target(std::max(1, rect.width / step), std::max(1, rect.height / step));
+  if (GST_VIDEO_FORMAT_INFO_IS_RGB(frame_->info.finfo)) {
+    cv::Mat sample;
+    cv::resize(planeMat(frame_, 0, size_, CV_8UC(packed_.pixelBytes))(rect), sample, target, 0, 0,
+               cv::INTER_NEAREST);
+    packedToBgr(sample, out);
+    return;
+  }
+  // YUV: gather every step-th luma pixel and the chroma sample under it into a small I420 image, then let
+  // OpenCV convert that, so the sample goes through the very matrix bgr() uses (cvtColor's BT.601 I420).
+  const cv::Size even(target.width + (target.width & 1), target.height + (target.height & 1));
+  cv::Mat yuv(even.height * 3 / 2, even.width, CV_8UC1);
+  uchar *uOut = yuv.ptr(even.height), *vOut = uOut + even.area() / 4;
+  const int maxX = size_.width - 1, maxY = size_.height - 1;
+  auto lumaX = [&](int i) { return std::min(rect.x + i * step, maxX); };
+  auto lumaY = [&](int j) { return std::min(rect.y + j * step, maxY); };
+  const guint8 *base0 = static_cast<const guint8 *>(GST_VIDEO_FRAME_PLANE_DATA(frame_, 0));
+  const int stride0 = GST_VIDEO_FRAME_PLANE_STRIDE(frame_, 0);
+  if (format_ == GST_VIDEO_FORMAT_YUY2) {
+    for (int j = 0; j < even.height; ++j) {
+      const guint8 *row = base0 + static_cast<size_t>(lumaY(j)) * stride0;
+      uchar *yRow = yuv.ptr(j);
+      for (int i = 0; i < even.width; ++i) yRow[i] = row[2 * lumaX(i)];
+      if (j & 1) continue;
+      uchar *uRow = uOut + (j / 2) * (even.width / 2), *vRow = vOut + (j / 2) * (even.width / 2);
+      for (int i = 0; i < even.width / 2; ++i) {
+        const guint8 *macro = row + 4 * (lumaX(2 * i) / 2);
+        uRow[i] = macro[1];
+        vRow[i] = macro[3];
+      }
+    }
+  } else {
+    const guint8 *base1 = static_cast<const guint8 *>(GST_VIDEO_FRAME_PLANE_DATA(frame_, 1));
+    const int stride1 = GST_VIDEO_FRAME_PLANE_STRIDE(frame_, 1);
+    const bool nv12 = format_ == GST_VIDEO_FORMAT_NV12;
+    const guint8 *base2 = nv12 ? nullptr : static_cast<const guint8 *>(GST_VIDEO_FRAME_PLANE_DATA(frame_, 2));
+    const int stride2 = nv12 ? 0 : GST_VIDEO_FRAME_PLANE_STRIDE(frame_, 2);
+    for (int j = 0; j < even.height; ++j) {
+      const guint8 *row = base0 + static_cast<size_t>(lumaY(j)) * stride0;
+      uchar *yRow = yuv.ptr(j);
+      for (int i = 0; i < even.width; ++i) yRow[i] = row[lumaX(i)];
+    }
+    for (int j = 0; j < even.height / 2; ++j) {
+      const int chromaRow = lumaY(2 * j) / 2;
+      const guint8 *row1 = base1 + static_cast<size_t>(chromaRow) * stride1;
+      const guint8 *row2 = nv12 ? nullptr : base2 + static_cast<size_t>(chromaRow) * stride2;
+      uchar *uRow = uOut + j * (even.width / 2), *vRow = vOut + j * (even.width / 2);
+      for (int i = 0; i < even.width / 2; ++i) {
+        const int c = lumaX(2 * i) / 2;
+        uRow[i] = nv12 ? row1[2 * c] : row1[c];
+        vRow[i] = nv12 ? row1[2 * c + 1] : row2[c];
+      }
+    }
+  }
+  cv::Mat converted;
+  cv::cvtColor(yuv, converted, cv::COLOR_YUV2BGR_I420);
+  converted(cv::Rect(cv::Point(), target)).copyTo(out);
 }
 
 void FrameView::planarToBgr(const cv::Rect &rect, cv::Mat &out) const {

@@ -39,11 +39,14 @@ class FrameView : public ImageSource {
 
   cv::Size size() const override { return size_; }
   void bgr(const cv::Rect &rect, cv::Mat &out) const override;
+  // Samples first and converts only the sample: a 1080p frame reduced 4x costs 1/16 of its conversion.
+  void sampledBgr(const cv::Rect &rect, int step, cv::Mat &out) const override;
 
  private:
   void packedToBgr(const cv::Rect &rect, cv::Mat &out) const;
   void planarToBgr(const cv::Rect &rect, cv::Mat &out) const;  // I420 and NV12
   void yuy2ToBgr(const cv::Rect &rect, cv::Mat &out) const;
+  void packedToBgr(const cv::Mat &pixels, cv::Mat &out) const;
 
   const GstVideoFrame *frame_;
   GstVideoFormat format_;

@@ -24,6 +24,14 @@
  * orange while coasting on the prediction, the path of the box centre in red, the search window in blue
  * and an "id score state" label. YUV input is read and drawn with the BT.601 matrix.
  *
+ * Click to track (#GstColorTrack:click-to-track): a left click in the window of a video sink that sends
+ * GstNavigation events (xvimagesink, glimagesink, autovideosink ...) takes the template from the
+ * #GstColorTrack:click-box-size square around the click on the next frame and tracks from there, as
+ * #GstColorTrack:init-box does (mode=threshold: learns the colour there). Another left click re-targets
+ * with a new id. A right click stops: no meta and no overlay, and messages report state "idle", until a left
+ * click, init-box, template-location or (mode=threshold) hsv-lower/hsv-upper gives a new target. A
+ * videoscale between the element and the sink maps the click back to this element's frame.
+ *
  * ## Example launch lines
  * |[
  * gst-launch-1.0 v4l2src ! videoconvert ! colortrack template-location=ball.png ! videoconvert ! autovideosink
@@ -33,6 +41,9 @@
  *     colortrack init-box=120,80,64,64 post-messages=true draw=box+search-window ! \
  *     videoconvert ! autovideosink
  * ]| Takes the template from the box 120,80 64x64 of the first frame and posts one message per frame.
+ * |[
+ * gst-launch-1.0 v4l2src ! videoconvert ! colortrack click-box-size=48 ! videoconvert ! xvimagesink
+ * ]| Tracks whatever is left-clicked in the window; a right click stops.
  */
 
 #include "gstcolortrack.h"
@@ -65,6 +76,12 @@ namespace {
 constexpr guint kDefaultDraw = GST_COLOR_TRACK_DRAW_BOX | GST_COLOR_TRACK_DRAW_TRAIL | GST_COLOR_TRACK_DRAW_LABEL;
 constexpr guint kDefaultTrailLength = 30;
 constexpr gboolean kDefaultPostMessages = FALSE;
+constexpr gboolean kDefaultClickToTrack = TRUE;
+constexpr int kDefaultClickBoxSize = 64;
+constexpr int kMinClickBoxSize = 8;  // smaller boxes hold too few pixels for a histogram
+constexpr int kLeftButton = 1, kRightButton = 3;
+// The state reported in messages after a right click, until a new target is given.
+constexpr const char *kIdleState = "idle";
 constexpr int kBoxThickness = 2;
 constexpr int kTrailThickness = 2;
 
@@ -73,6 +90,13 @@ constexpr int kTrailThickness = 2;
 struct TextSetting {
   std::string text;
   std::string error;
+};
+
+// A mouse click from a GstNavigation event, waiting for the next frame: a left click starts tracking at
+// `point` (element frame coordinates), a right click stops.
+struct ClickRequest {
+  enum class Kind { Track, Stop } kind = Kind::Track;
+  cv::Point2d point;
 };
 
 // What the properties say. Written by set_property, read by the streaming thread as a snapshot; both under
@@ -88,6 +112,10 @@ struct Settings {
   // does not fit the frame is a warning, not an error).
   std::optional<cv::Rect> pendingInitBox;
   bool initBoxSetWhileStreaming = false;
+  // The latest click not yet applied. A click and an init-box replace each other: the latest request wins.
+  std::optional<ClickRequest> pendingClick;
+  bool clickToTrack = kDefaultClickToTrack;
+  int clickBoxSize = kDefaultClickBoxSize;
   guint draw = kDefaultDraw;
   guint trailLength = kDefaultTrailLength;
   bool postMessages = kDefaultPostMessages;
@@ -96,6 +124,7 @@ struct Settings {
   colortrack::BlobSettings blobs;
   TextSetting hsvLower, hsvUpper;
   guint64 blobsGeneration = 0;  // bumped on every change of `blobs`
+  guint64 rangeGeneration = 0;  // bumped when hsv-lower/hsv-upper are set (a new target: ends idle)
   cv::Size frameSize;           // from the caps (empty before), to judge min-area set while playing
 };
 
@@ -110,11 +139,15 @@ struct State {
   guint64 frameCount = 0;
   bool warnedNoTemplate = false;
   bool capsChanged = false;
+  // After a right click: nothing is tracked (no meta, no overlay) until a left click, init-box,
+  // template-location (template mode) or hsv-lower/hsv-upper (threshold mode) gives a new target.
+  bool idle = false;
   GstClockTime lastPts = GST_CLOCK_TIME_NONE;
   // mode=threshold.
   std::unique_ptr<colortrack::BlobDetector> blobDetector;
   colortrack::MultiTracker multiTracker;
   guint64 appliedBlobsGeneration = 0;
+  guint64 appliedRangeGeneration = 0;
   std::map<int, std::deque<cv::Point2d>> trails;  // per track id
 };
 
@@ -156,6 +189,8 @@ enum {
   PROP_MORPH_SIZE,
   PROP_MIN_AREA,
   PROP_MAX_OBJECTS,
+  PROP_CLICK_TO_TRACK,
+  PROP_CLICK_BOX_SIZE,
 };
 
 enum { SIGNAL_RESET, LAST_SIGNAL };
@@ -355,6 +390,17 @@ cv::Rect roundedClippedBox(const cv::Rect2d &box, cv::Size frame) {
   return cv::Rect(cv::Point(x0, y0), cv::Point(x1, y1)) & cv::Rect(cv::Point(), frame);
 }
 
+// The square of side `side` centred on `point`, clipped to the frame (so it stays centred on what was
+// clicked, only smaller, near an edge). Empty when the point lies outside the frame, e.g. a click on a
+// sink's letterbox border.
+cv::Rect boxAround(const cv::Point2d &point, int side, cv::Size frame) {
+  const cv::Rect frameRect(cv::Point(), frame);
+  if (!(point.x >= 0 && point.y >= 0 && point.x < frame.width && point.y < frame.height)) return cv::Rect();
+  const cv::Point topLeft(static_cast<int>(std::lround(point.x - side / 2.0)),
+                          static_cast<int>(std::lround(point.y - side / 2.0)));
+  return cv::Rect(topLeft, cv::Size(side, side)) & frameRect;
+}
+
 // hsv-lower / hsv-upper. Each end is parsed alone; the pair must also make sense (lower s and v not above
 // upper). Before streaming a bad value is kept and reported at start (the other end may still be set after
 // it); while streaming it is rejected with a warning and the previous range stays.
@@ -380,6 +426,7 @@ void setHsvProperty(GstColorTrack *self, bool lower, const GValue *value) {
     setting.error.clear();
     s.blobs.range = candidate;
     ++s.blobsGeneration;
+    ++s.rangeGeneration;
   } else if (!s.streaming) {
     setting.text = text;
     setting.error = error;
@@ -481,6 +528,7 @@ static void gst_color_track_set_property(GObject *object, guint prop_id, const G
           [streaming](Settings &s, const cv::Rect &box) {
             s.pendingInitBox = box;
             s.initBoxSetWhileStreaming = streaming;
+            s.pendingClick.reset();  // the latest request wins
           });
       return;
     }
@@ -570,6 +618,14 @@ static void gst_color_track_set_property(GObject *object, guint prop_id, const G
     case PROP_MAX_OBJECTS:
       s.blobs.maxObjects = g_value_get_int(value);
       ++s.blobsGeneration;
+      trackerChanged = false;
+      break;
+    case PROP_CLICK_TO_TRACK:
+      s.clickToTrack = g_value_get_boolean(value);
+      trackerChanged = false;
+      break;
+    case PROP_CLICK_BOX_SIZE:
+      s.clickBoxSize = g_value_get_int(value);
       trackerChanged = false;
       break;
     default:
@@ -672,6 +728,12 @@ static void gst_color_track_get_property(GObject *object, guint prop_id, GValue 
     case PROP_MAX_OBJECTS:
       g_value_set_int(value, s.blobs.maxObjects);
       break;
+    case PROP_CLICK_TO_TRACK:
+      g_value_set_boolean(value, s.clickToTrack);
+      break;
+    case PROP_CLICK_BOX_SIZE:
+      g_value_set_int(value, s.clickBoxSize);
+      break;
     default:
       G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
       break;
@@ -729,6 +791,7 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
     state.appliedTemplateGeneration = snapshot.templateGeneration;
     state.blobDetector = std::make_unique<colortrack::BlobDetector>(snapshot.blobs);
     state.appliedBlobsGeneration = snapshot.blobsGeneration;
+    state.appliedRangeGeneration = snapshot.rangeGeneration;
     // Threshold mode has no template: a template-location is not even read.
     if (snapshot.mode == GST_COLOR_TRACK_MODE_TEMPLATE && !snapshot.templateLocation.empty()) {
       cv::Mat bgr, mask;
@@ -794,6 +857,43 @@ static gboolean gst_color_track_sink_event(GstBaseTransform *trans, GstEvent *ev
   return GST_BASE_TRANSFORM_CLASS(parent_class)->sink_event(trans, event);
 }
 
+// Click to track: a mouse-button press travelling upstream from a video sink's window. Runs on whatever
+// thread the sink sends it from, so it only records the request; the streaming thread applies it to the next
+// frame. The coordinates are this element's frame coordinates: a videoscale between here and the sink maps
+// them back in its own src_event.
+static void handle_navigation(GstColorTrack *self, GstEvent *event) {
+  if (gst_navigation_event_get_type(event) != GST_NAVIGATION_EVENT_MOUSE_BUTTON_PRESS) return;
+  gint button = 0;
+  gdouble x = 0, y = 0;
+  if (!gst_navigation_event_parse_mouse_button_event(event, &button, &x, &y)) return;
+  if (button != kLeftButton && button != kRightButton) return;
+
+  GST_OBJECT_LOCK(self);
+  Settings &s = settingsOf(self);
+  const bool enabled = s.clickToTrack;
+  if (enabled) {
+    ClickRequest click;
+    click.kind = button == kLeftButton ? ClickRequest::Kind::Track : ClickRequest::Kind::Stop;
+    click.point = cv::Point2d(x, y);
+    s.pendingClick = click;
+    // The latest request wins over an init-box that has not been used yet.
+    if (s.pendingInitBox) {
+      s.pendingInitBox.reset();
+      s.initBox = TextSetting{};
+    }
+  }
+  GST_OBJECT_UNLOCK(self);
+  if (enabled)
+    GST_INFO_OBJECT(self, "mouse button %d pressed at %.1f,%.1f: %s on the next frame", button, x, y,
+                    button == kLeftButton ? "tracking from there" : "stopping");
+}
+
+static gboolean gst_color_track_src_event(GstBaseTransform *trans, GstEvent *event) {
+  if (GST_EVENT_TYPE(event) == GST_EVENT_NAVIGATION) handle_navigation(GST_COLOR_TRACK(trans), event);
+  // Always forwarded: other elements upstream (a DVD menu, another filter) may want it too.
+  return GST_BASE_TRANSFORM_CLASS(parent_class)->src_event(trans, event);
+}
+
 // Time since the previous frame in frame periods, 1 when the timestamps do not tell.
 static double frame_step(GstColorTrack *self, GstVideoFilter *filter, GstBuffer *buffer) {
   State &state = stateOf(self);
@@ -821,9 +921,11 @@ static void attach_meta(GstBuffer *buffer, const colortrack::TrackOutput &out, c
 }
 
 // `objects` (threshold mode) adds the "objects" field: a GST_TYPE_LIST of "colortrack-object" structures.
+// `stateName` replaces the tracker's state (kIdleState after a right click).
 static void post_track_message(GstColorTrack *self, GstBuffer *buffer, guint64 frame,
                                const colortrack::TrackOutput &out,
-                               const std::vector<colortrack::TrackedObject> *objects = nullptr) {
+                               const std::vector<colortrack::TrackedObject> *objects = nullptr,
+                               const char *stateName = nullptr) {
   const GstSegment *segment = &GST_BASE_TRANSFORM(self)->segment;
   const GstClockTime pts = GST_BUFFER_PTS(buffer);
   GstClockTime streamTime = GST_CLOCK_TIME_NONE, runningTime = GST_CLOCK_TIME_NONE;
@@ -836,7 +938,8 @@ static void post_track_message(GstColorTrack *self, GstBuffer *buffer, guint64 f
       "colortrack", "timestamp", G_TYPE_UINT64, static_cast<guint64>(pts), "stream-time", G_TYPE_UINT64,
       static_cast<guint64>(streamTime), "running-time", G_TYPE_UINT64, static_cast<guint64>(runningTime),
       "duration", G_TYPE_UINT64, static_cast<guint64>(GST_BUFFER_DURATION(buffer)), "frame", G_TYPE_UINT64, frame,
-      "id", G_TYPE_INT, out.id, "state", G_TYPE_STRING, colortrack::toString(out.state), "x", G_TYPE_DOUBLE, box.x,
+      "id", G_TYPE_INT, out.id, "state", G_TYPE_STRING, stateName ? stateName : colortrack::toString(out.state),
+      "x", G_TYPE_DOUBLE, box.x,
       "y", G_TYPE_DOUBLE, box.y, "width", G_TYPE_DOUBLE, box.width, "height", G_TYPE_DOUBLE, box.height, "score",
       G_TYPE_DOUBLE, out.score, "verified", G_TYPE_BOOLEAN, static_cast<gboolean>(out.verified), "scale",
       G_TYPE_DOUBLE, out.scale, nullptr);
@@ -910,6 +1013,7 @@ static bool apply_settings(GstColorTrack *self, const Settings &snapshot, const 
         state.templateOrigin = "template-location '" + snapshot.templateLocation + "'";
         state.trail.clear();
         state.warnedNoTemplate = false;
+        state.idle = false;
       } else {
         // Not fatal while streaming: the previous template keeps working.
         GST_ELEMENT_WARNING(self, RESOURCE, OPEN_READ,
@@ -948,9 +1052,42 @@ static bool apply_settings(GstColorTrack *self, const Settings &snapshot, const 
       state.templateOrigin = "init-box '" + initBoxText + "'";
       state.trail.clear();
       state.warnedNoTemplate = false;
+      state.idle = false;
     }
   }
   return true;
+}
+
+static std::string describeClick(const ClickRequest &click, const cv::Rect &box) {
+  char text[96];
+  std::snprintf(text, sizeof text, "the click at %.0f,%.0f (box %d,%d,%d,%d)", click.point.x, click.point.y, box.x,
+                box.y, box.width, box.height);
+  return text;
+}
+
+// Template mode: a left click takes the template from the box around it and starts tracking there, exactly
+// as init-box does; a right click stops until a new target is given.
+static void apply_click(GstColorTrack *self, const ClickRequest &click, int boxSize,
+                        const colortrack::FrameView &view) {
+  State &state = stateOf(self);
+  if (click.kind == ClickRequest::Kind::Stop) {
+    state.tracker->reset();
+    state.trail.clear();
+    state.idle = true;
+    return;
+  }
+  const cv::Rect box = boxAround(click.point, boxSize, view.size());
+  if (box.empty()) {
+    GST_INFO_OBJECT(self, "click at %.1f,%.1f lies outside the %dx%d frame: ignored", click.point.x, click.point.y,
+                    view.size().width, view.size().height);
+    return;
+  }
+  state.tracker->setTemplateFromBox(view, box);
+  state.templateOrigin = describeClick(click, box);
+  state.trail.clear();
+  state.warnedNoTemplate = false;
+  state.idle = false;
+  GST_INFO_OBJECT(self, "template from %s", state.templateOrigin.c_str());
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -1064,9 +1201,34 @@ static void draw_threshold_overlay(GstVideoFrame *frame, const Settings &setting
   }
 }
 
+// Learns hsv-lower/hsv-upper from the pixels of `box` (init-box or a click) and starts over with that range;
+// the properties then report it, so it can be reused in a launch line.
+static void learn_range(GstColorTrack *self, GstVideoFrame *frame, const cv::Rect &box, const std::string &origin) {
+  State &state = stateOf(self);
+  const colortrack::HsvRange learnt = colortrack::learnRange(colortrack::FrameView(frame), box);
+  GST_OBJECT_LOCK(self);
+  Settings &shared = settingsOf(self);
+  shared.blobs.range = learnt;
+  shared.hsvLower = TextSetting{colortrack::formatHsv(learnt.lower), {}};
+  shared.hsvUpper = TextSetting{colortrack::formatHsv(learnt.upper), {}};
+  ++shared.blobsGeneration;
+  const colortrack::BlobSettings blobs = shared.blobs;
+  state.appliedBlobsGeneration = shared.blobsGeneration;
+  GST_OBJECT_UNLOCK(self);
+  state.blobDetector->setSettings(blobs);
+  state.multiTracker.reset();
+  state.trails.clear();
+  state.idle = false;
+  GST_INFO_OBJECT(self, "learnt hsv-lower %s hsv-upper %s from %s", colortrack::formatHsv(learnt.lower).c_str(),
+                  colortrack::formatHsv(learnt.upper).c_str(), origin.c_str());
+  g_object_notify(G_OBJECT(self), "hsv-lower");
+  g_object_notify(G_OBJECT(self), "hsv-upper");
+}
+
 // One frame in threshold mode: segment, clean, label, associate; meta, overlay and message per track.
 static GstFlowReturn threshold_frame(GstColorTrack *self, GstVideoFrame *frame, const Settings &snapshot,
-                                     const std::optional<cv::Rect> &initBox, guint64 frameNumber, double dt) {
+                                     const std::optional<cv::Rect> &initBox,
+                                     const std::optional<ClickRequest> &click, guint64 frameNumber, double dt) {
   State &state = stateOf(self);
   const cv::Size size(GST_VIDEO_FRAME_WIDTH(frame), GST_VIDEO_FRAME_HEIGHT(frame));
   colortrack::BlobDetector &detector = *state.blobDetector;
@@ -1081,6 +1243,10 @@ static GstFlowReturn threshold_frame(GstColorTrack *self, GstVideoFrame *frame, 
   if (snapshot.blobsGeneration != state.appliedBlobsGeneration) {
     detector.setSettings(snapshot.blobs);
     state.appliedBlobsGeneration = snapshot.blobsGeneration;
+  }
+  if (snapshot.rangeGeneration != state.appliedRangeGeneration) {
+    state.appliedRangeGeneration = snapshot.rangeGeneration;
+    state.idle = false;  // a new range is a new target
   }
   state.multiTracker.setSettings(multi_tracker_settings(snapshot));
   if (state.capsChanged || self->priv->resetRequested.exchange(false)) {
@@ -1104,26 +1270,31 @@ static GstFlowReturn threshold_frame(GstColorTrack *self, GstVideoFrame *frame, 
         return GST_FLOW_ERROR;
       }
     } else {
-      // Learn the range from the box; the properties then report it, so it can be reused in a launch line.
-      const colortrack::HsvRange learnt = colortrack::learnRange(colortrack::FrameView(frame), *initBox);
-      GST_OBJECT_LOCK(self);
-      Settings &shared = settingsOf(self);
-      shared.blobs.range = learnt;
-      shared.hsvLower = TextSetting{colortrack::formatHsv(learnt.lower), {}};
-      shared.hsvUpper = TextSetting{colortrack::formatHsv(learnt.upper), {}};
-      ++shared.blobsGeneration;
-      const colortrack::BlobSettings blobs = shared.blobs;
-      state.appliedBlobsGeneration = shared.blobsGeneration;
-      GST_OBJECT_UNLOCK(self);
-      detector.setSettings(blobs);
-      state.multiTracker.reset();
-      state.trails.clear();
-      GST_INFO_OBJECT(self, "learnt hsv-lower %s hsv-upper %s from init-box %s",
-                      colortrack::formatHsv(learnt.lower).c_str(), colortrack::formatHsv(learnt.upper).c_str(),
-                      snapshot.initBox.text.c_str());
-      g_object_notify(G_OBJECT(self), "hsv-lower");
-      g_object_notify(G_OBJECT(self), "hsv-upper");
+      learn_range(self, frame, *initBox, "init-box " + snapshot.initBox.text);
     }
+  }
+
+  if (click && click->kind == ClickRequest::Kind::Stop) {
+    state.multiTracker.reset();
+    state.trails.clear();
+    state.idle = true;
+  } else if (click) {
+    // The colour is sampled from the middle half of the box: a click lands near an object's centre, and a
+    // sample that reached past a small object's edge would learn the background's colours too.
+    const cv::Rect sample = boxAround(click->point, std::max(1, snapshot.clickBoxSize / 2), size);
+    if (sample.empty())
+      GST_INFO_OBJECT(self, "click at %.1f,%.1f lies outside the %dx%d frame: ignored", click->point.x,
+                      click->point.y, size.width, size.height);
+    else
+      learn_range(self, frame, sample, describeClick(*click, sample));
+  }
+
+  if (state.idle) {
+    if (snapshot.postMessages) {
+      const std::vector<colortrack::TrackedObject> none;
+      post_track_message(self, frame->buffer, frameNumber, colortrack::TrackOutput(), &none, kIdleState);
+    }
+    return GST_FLOW_OK;
   }
 
   const std::vector<colortrack::Blob> blobs = detector.detect(sampled_frame(frame));
@@ -1165,6 +1336,8 @@ static GstFlowReturn gst_color_track_transform_frame_ip(GstVideoFilter *filter, 
     shared.pendingInitBox.reset();
     shared.initBox = TextSetting{};
   }
+  const std::optional<ClickRequest> click = shared.pendingClick;
+  shared.pendingClick.reset();
   GST_OBJECT_UNLOCK(self);
 
   const guint64 frameNumber = state.frameCount++;
@@ -1176,17 +1349,25 @@ static GstFlowReturn gst_color_track_transform_frame_ip(GstVideoFilter *filter, 
       return GST_FLOW_ERROR;
     }
     if (snapshot.mode == GST_COLOR_TRACK_MODE_THRESHOLD)
-      return threshold_frame(self, frame, snapshot, initBox, frameNumber, dt);
+      return threshold_frame(self, frame, snapshot, initBox, click, frameNumber, dt);
     const colortrack::FrameView view(frame);
     if (!apply_settings(self, snapshot, initBox, snapshot.initBoxSetWhileStreaming, snapshot.initBox.text, view))
       return GST_FLOW_ERROR;
+    if (click) apply_click(self, *click, snapshot.clickBoxSize, view);
+
+    if (state.idle) {
+      if (snapshot.postMessages)
+        post_track_message(self, buffer, frameNumber, colortrack::TrackOutput(), nullptr, kIdleState);
+      return GST_FLOW_OK;
+    }
 
     colortrack::Tracker &tracker = *state.tracker;
     if (!tracker.hasTemplate()) {
       if (!state.warnedNoTemplate) {
         state.warnedNoTemplate = true;
         GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS,
-                            ("No template: set 'template-location' or 'init-box'. Passing video through."),
+                            ("No template: set 'template-location' or 'init-box', or click the object in the "
+                             "video window. Passing video through."),
                             (nullptr));
       }
       return GST_FLOW_OK;
@@ -1388,6 +1569,20 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
                        "mode=threshold: at most this many blobs (the largest) are tracked per frame", 1, 64,
                        blobDefaults.maxObjects, live));
   g_object_class_install_property(
+      gobject_class, PROP_CLICK_TO_TRACK,
+      g_param_spec_boolean("click-to-track", "Click to track",
+                           "Follow mouse clicks in the video window (GstNavigation events from the sink): a left "
+                           "click starts tracking what was clicked (mode=threshold: learns its colour), a right "
+                           "click stops until a new target is given. The events are passed upstream either way",
+                           kDefaultClickToTrack, live));
+  g_object_class_install_property(
+      gobject_class, PROP_CLICK_BOX_SIZE,
+      g_param_spec_int("click-box-size", "Click box size",
+                       "Side in pixels (of this element's frames) of the square centred on a left click, clipped "
+                       "to the frame, from which the template is taken (mode=threshold: the colour is learnt from "
+                       "its middle half)",
+                       kMinClickBoxSize, 8192, kDefaultClickBoxSize, live));
+  g_object_class_install_property(
       gobject_class, PROP_POST_MESSAGES,
       g_param_spec_boolean("post-messages", "Post messages",
                            "Post a \"colortrack\" element message with the track for every frame",
@@ -1397,7 +1592,8 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
    * GstColorTrack::reset:
    * @colortrack: the element
    *
-   * Forgets the track (the template stays): the next frame searches the whole frame.
+   * Forgets the track (the template stays): the next frame searches the whole frame. After a right click
+   * (see #GstColorTrack:click-to-track) there is no target and the element stays idle.
    */
   gst_color_track_signals[SIGNAL_RESET] =
       g_signal_new("reset", G_TYPE_FROM_CLASS(klass), static_cast<GSignalFlags>(G_SIGNAL_RUN_LAST | G_SIGNAL_ACTION),
@@ -1414,6 +1610,7 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
   trans_class->start = GST_DEBUG_FUNCPTR(gst_color_track_start);
   trans_class->stop = GST_DEBUG_FUNCPTR(gst_color_track_stop);
   trans_class->sink_event = GST_DEBUG_FUNCPTR(gst_color_track_sink_event);
+  trans_class->src_event = GST_DEBUG_FUNCPTR(gst_color_track_src_event);
   filter_class->set_info = GST_DEBUG_FUNCPTR(gst_color_track_set_info);
   filter_class->transform_frame_ip = GST_DEBUG_FUNCPTR(gst_color_track_transform_frame_ip);
 

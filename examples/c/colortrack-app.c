@@ -22,6 +22,7 @@
 #include <gst/gst.h>
 #include <gst/video/video.h>
 
+/* Installed as <colortrack/colortrack-meta.h>; this build compiles against the source tree's gst/. */
 #include <colortrack-meta.h>
 
 /* videotestsrc draws a ball of radius 20 whose centre is the frame centre at frame 0. */
