@@ -40,6 +40,8 @@ struct Options {
   int frames = -1;  // -1: kSceneFrames for the scene, until EOS for real inputs
   std::string initBox;
   std::string templatePath;
+  std::string robotDevice;                            // serial port of a real robot (robotctl device=)
+  std::string robotOutput = "colortrack-demo-robot.txt";  // else the commands go here (robotctl location=)
 };
 
 enum class InputKind { Scene, Device, Uri };
@@ -67,7 +69,8 @@ std::string toUri(const std::string &input) {
 }
 
 Options parseOptions(int &argc, char **&argv) {
-  gchar *output = nullptr, *initBox = nullptr, *templatePath = nullptr;
+  gchar *output = nullptr, *initBox = nullptr, *templatePath = nullptr, *robotDevice = nullptr,
+        *robotOutput = nullptr;
   gchar **positional = nullptr;
   gint frames = -1;
   const GOptionEntry entries[] = {
@@ -77,6 +80,11 @@ Options parseOptions(int &argc, char **&argv) {
        "Frames to process (default 300 for the scene, until end of stream otherwise)", "N"},
       {"init-box", 'b', 0, G_OPTION_ARG_STRING, &initBox, "Object box in the first frame", "X,Y,W,H"},
       {"template", 't', 0, G_OPTION_ARG_FILENAME, &templatePath, "Template image of the object (PNG/JPEG)",
+       "FILE"},
+      {"robot", 'r', 0, G_OPTION_ARG_FILENAME, &robotDevice,
+       "Serial port of a robot to drive (robotctl device=), e.g. /dev/ttyUSB0", "DEVICE"},
+      {"robot-output", 0, 0, G_OPTION_ARG_FILENAME, &robotOutput,
+       "Without --robot, write the robot commands here, '-' for stdout (default colortrack-demo-robot.txt)",
        "FILE"},
       {G_OPTION_REMAINING, 0, 0, G_OPTION_ARG_FILENAME_ARRAY, &positional, nullptr, nullptr},
       {nullptr, 0, 0, G_OPTION_ARG_NONE, nullptr, nullptr, nullptr}};
@@ -100,6 +108,8 @@ Options parseOptions(int &argc, char **&argv) {
   if (output) options.output = output;
   if (initBox) options.initBox = initBox;
   if (templatePath) options.templatePath = templatePath;
+  if (robotDevice) options.robotDevice = robotDevice;
+  if (robotOutput) options.robotOutput = robotOutput;
   options.frames = frames;
   if (positional && positional[0]) {
     options.input = positional[0];
@@ -108,6 +118,8 @@ Options parseOptions(int &argc, char **&argv) {
   g_free(output);
   g_free(initBox);
   g_free(templatePath);
+  g_free(robotDevice);
+  g_free(robotOutput);
   g_strfreev(positional);
 
   if (!problem.empty()) throw DemoError(problem + " (see --help)");
@@ -187,6 +199,8 @@ struct RunState {
   std::string errorText;
   int framesTrackedOnBus = 0;  // "colortrack" messages with state "tracking"
   int messagesOnBus = 0;
+  GstElement *robot = nullptr;
+  std::map<std::string, int> robotCommands;  // "robotctl" messages by command
 
   // Scene input.
   const scene::Scene *scene = nullptr;
@@ -375,6 +389,9 @@ gboolean onBusMessage(GstBus * /*bus*/, GstMessage *message, gpointer userData) 
           break;
         ++run.messagesOnBus;
         if (stateOf(s) == "tracking") ++run.framesTrackedOnBus;
+      } else if (GST_MESSAGE_SRC(message) == GST_OBJECT(run.robot) && gst_structure_has_name(s, "robotctl")) {
+        const char *command = gst_structure_get_string(s, "command");
+        ++run.robotCommands[command ? command : "?"];
       }
       break;
     }
@@ -456,6 +473,21 @@ int run(const Options &options) {
       setProperty(run.tracker, "template-location", options.templatePath);
     }
     g_object_set(sink, "location", options.output.c_str(), nullptr);
+    // The robot branch: what a robot would be told, next to the annotated video.
+    GstElement *tee = makeElement("tee");
+    GstElement *videoQueue = makeElement("queue");
+    GstElement *robotQueue = makeElement("queue");
+    run.robot = makeElement("robotctl");
+    setProperty(run.robot, "post-messages", "true");
+    // In step with the frames' timestamps, as with a camera: the robot is told at its `rate` what it would
+    // be told live (the 300-frame scene takes 10 s).
+    setProperty(run.robot, "sync", "true");
+    if (!options.robotDevice.empty()) {
+      setProperty(run.robot, "device", options.robotDevice);
+    } else {
+      setProperty(run.robot, "protocol", "text");
+      setProperty(run.robot, "location", options.robotOutput);
+    }
 
     std::vector<GstElement *> chain;
     switch (run.kind) {
@@ -495,8 +527,10 @@ int run(const Options &options) {
         break;
       }
     }
-    chain.insert(chain.end(), {run.tracker, convertOut, encoder, muxer, sink});
+    chain.insert(chain.end(), {run.tracker, tee, videoQueue, convertOut, encoder, muxer, sink});
     addAndLink(pipeline, chain);
+    addAndLink(pipeline, {robotQueue, run.robot});
+    if (!gst_element_link(tee, robotQueue)) throw DemoError("cannot link the robot branch");
   } catch (...) {
     gst_object_unref(pipeline);
     throw;
@@ -562,6 +596,11 @@ int run(const Options &options) {
     g_print("mean IoU         : n/a (no ground truth for a real input)\n");
   }
   g_print("output           : %s\n", options.output.c_str());
+  std::string commands;
+  for (const auto &[command, count] : run.robotCommands)
+    commands += (commands.empty() ? "" : ", ") + command + " " + std::to_string(count);
+  g_print("robot commands   : %s (to %s)\n", commands.empty() ? "none" : commands.c_str(),
+          options.robotDevice.empty() ? options.robotOutput.c_str() : options.robotDevice.c_str());
   if (run.framesProcessed == 0) throw DemoError("no frame reached the tracker");
   return 0;
 }

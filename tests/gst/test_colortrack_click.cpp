@@ -265,16 +265,18 @@ GST_START_TEST(test_click_properties) {
     h.click(kLeft, inWindow(centre));
     const FrameResult r = h.process(scene.render(2).bgr);
     fail_unless_equals_int(r.ids.size(), 1);
-    // The first box is the click square: 40x40 centred on the click (exact in the message).
-    fail_unless(std::abs(r.messageBox.width - 40) < 1e-6 && std::abs(r.messageBox.height - 40) < 1e-6,
+    // The track starts from the 40x40 click square (the first frame's search may refine it a little).
+    fail_unless(std::abs(r.messageBox.width - 40) <= 4 && std::abs(r.messageBox.height - 40) <= 4,
                 "first box %.1fx%.1f", r.messageBox.width, r.messageBox.height);
-    fail_unless(cv::norm(centreOf(r.messageBox) - centre) <= 1.5, "first box not centred on the click");
+    // A 40 px square inside the 72 px object may slide a little when the first frame is searched.
+    fail_unless(cv::norm(centreOf(r.messageBox) - centre) <= 8, "first box centre %.1f,%.1f, click %.1f,%.1f",
+                centreOf(r.messageBox).x, centreOf(r.messageBox).y, centre.x, centre.y);
   }
 }
 GST_END_TEST;
 
 // Threshold mode: a left click learns the clicked ball's colour (only that ball is tracked), a second left
-// click the other ball's (new id), a right click stops.
+// click the other ball's (new id), a right click stops until hsv-lower/hsv-upper are set.
 GST_START_TEST(test_threshold_click_retarget_stop) {
   BallSceneConfig config;
   std::vector<Ball> balls(2);
@@ -325,6 +327,16 @@ GST_START_TEST(test_threshold_click_retarget_stop) {
     const FrameResult r = h.process(scene.render(index));
     fail_unless(r.ids.empty(), "a meta after the right click");
     fail_unless_equals_string(r.state.c_str(), "idle");
+  }
+
+  // A range set by hand is a new target too: tracking resumes (the blue ball, a new id).
+  g_object_set(h.element(), "hsv-lower", "200,0.5,0.25", "hsv-upper", "240,1,1", nullptr);
+  for (int n = 0; n < 5; ++n, ++index) {
+    const FrameResult r = h.process(scene.render(index));
+    if (n < kSettleFrames) continue;
+    fail_unless_equals_int(r.ids.size(), 1);
+    fail_unless(r.ids[0] > blueId);
+    fail_unless(colortrack::scene::iou(r.boxes[0], cv::Rect2d(scene.boxOf(1, index))) >= kMinIou);
   }
 }
 GST_END_TEST;
