@@ -27,6 +27,8 @@
 #define COLORTRACK_STATE_TRACKING "tracking"
 #define COLORTRACK_STATE_COASTING "coasting"
 #define COLORTRACK_STATE_LOST "lost"
+/* Messages only: tracking stopped by a right click until the next click, init-box or template. */
+#define COLORTRACK_STATE_IDLE "idle"
 
 /* Element message posted by colortrack for every frame when post-messages=true. */
 #define COLORTRACK_MESSAGE_NAME "colortrack"
