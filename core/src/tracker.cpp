@@ -106,13 +106,6 @@ struct Tracker::Impl {
     verifier.setTemplate(flattenOutsideMask(templateGray, templateMask));
   }
 
-  // Bins of `rect` (clipped to the frame) at full resolution.
-  void mapRegion(const ImageSource &frame, const cv::Rect &rect, BinImage &out) {
-    const cv::Rect clipped = rect & cv::Rect(cv::Point(), frame.size());
-    frame.bgr(clipped, bgr);
-    mapper->map(bgr, out.bins);
-    out.origin = clipped.tl();
-  }
 
   struct Detection {
     cv::Rect2d box;
@@ -296,8 +289,15 @@ struct Tracker::Impl {
     const cv::Rect around =
         roundRect(cv::Rect2d(box.x - grow, box.y - grow, box.width + 2 * grow, box.height + 2 * grow)) & frameRect;
     if (object.empty()) return;
-    mapRegion(frame, around, learnBins);
-    likelihood.learn(learnBins, object, around, rate);
+    // A sample of the pixels, as in the search: learning every pixel of a large box and its surroundings
+    // would cost more than the search itself.
+    const int f = std::max(1, static_cast<int>(std::min(box.width, box.height) / kReducedWindowSide));
+    frame.sampledBgr(around, f, small);
+    mapper->map(small, learnBins.bins);
+    learnBins.origin = cv::Point();
+    const cv::Rect objectL(cvRound(double(object.x - around.x) / f), cvRound(double(object.y - around.y) / f),
+                           std::max(1, object.width / f), std::max(1, object.height / f));
+    likelihood.learn(learnBins, objectL, cv::Rect(cv::Point(), learnBins.bins.size()), rate);
   }
 
   // Keeps the discriminative model current: learnt from scratch the first time (a template file gives no
