@@ -22,6 +22,14 @@
 #define COLORTRACK_PARAM_VY "vy"             /* double: vertical velocity, pixels per frame */
 #define COLORTRACK_PARAM_AREA "area"         /* double: blob area in pixels (mode=threshold only) */
 
+/* GStreamer 1.22 drops the parameter structure when videoconvert, videoscale or a buffer copy transforms the
+ * ROI meta. colortrack therefore also attaches one GstCustomMeta of this name per buffer (registered when the
+ * plugin loads): its structure holds each track's parameter structure (GST_TYPE_STRUCTURE) in a field named
+ * "id-<track id>", and it survives those elements. Read it with
+ *   gst_buffer_get_custom_meta (buffer, COLORTRACK_PARAMS_META_NAME)
+ * when gst_video_region_of_interest_meta_get_param () returns NULL. */
+#define COLORTRACK_PARAMS_META_NAME "GstColorTrackParamsMeta"
+
 /* Track states, as in the meta params and the bus message. */
 #define COLORTRACK_STATE_SEARCHING "searching"
 #define COLORTRACK_STATE_TRACKING "tracking"

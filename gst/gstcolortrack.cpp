@@ -15,8 +15,9 @@
  * Every buffer with a track carries a #GstVideoRegionOfInterestMeta of type "colortrack" whose id is the
  * track id and whose "colortrack" parameter structure holds state (string), score, scale, vx, vy (double)
  * and verified (boolean). The meta follows the frame through videoconvert and videoscale, which scales its
- * box (GStreamer 1.22's transform of this meta keeps type, id and box but drops the parameter structure,
- * so read the parameters before converting, or use the messages). With
+ * box (GStreamer 1.22's transform of this meta drops the parameter structure, so each buffer also carries a
+ * "GstColorTrackParamsMeta" custom meta with every track's parameters under "id-<track id>", which survives
+ * those elements). With
  * #GstColorTrack:post-messages, an element message "colortrack" is posted for every frame with timestamp,
  * stream-time, running-time, duration, frame, state, x, y, width, height, score, verified and scale.
  *
@@ -67,6 +68,7 @@
 #include "colortrack/tracker.hpp"
 #include "frame-view.h"
 #include "overlay.h"
+#include "track-params.h"
 
 GST_DEBUG_CATEGORY_STATIC(gst_color_track_debug);
 #define GST_CAT_DEFAULT gst_color_track_debug
@@ -917,7 +919,7 @@ static void attach_meta(GstBuffer *buffer, const colortrack::TrackOutput &out, c
                                            "score", G_TYPE_DOUBLE, out.score, "verified", G_TYPE_BOOLEAN,
                                            static_cast<gboolean>(out.verified), "scale", G_TYPE_DOUBLE, out.scale,
                                            "vx", G_TYPE_DOUBLE, out.vx, "vy", G_TYPE_DOUBLE, out.vy, nullptr);
-  gst_video_region_of_interest_meta_add_param(meta, params);
+  colortrack_add_roi_params(buffer, meta, params);
 }
 
 // `objects` (threshold mode) adds the "objects" field: a GST_TYPE_LIST of "colortrack-object" structures.
@@ -1170,7 +1172,7 @@ static void attach_object_meta(GstBuffer *buffer, const colortrack::TrackedObjec
       "colortrack", "state", G_TYPE_STRING, colortrack::toString(o.state), "score", G_TYPE_DOUBLE, o.score,
       "verified", G_TYPE_BOOLEAN, TRUE, "scale", G_TYPE_DOUBLE, o.scale, "vx", G_TYPE_DOUBLE, o.vx, "vy",
       G_TYPE_DOUBLE, o.vy, "area", G_TYPE_DOUBLE, o.area, nullptr);
-  gst_video_region_of_interest_meta_add_param(meta, params);
+  colortrack_add_roi_params(buffer, meta, params);
 }
 
 static void draw_threshold_overlay(GstVideoFrame *frame, const Settings &settings, const State &state,

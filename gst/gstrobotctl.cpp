@@ -50,6 +50,7 @@
  */
 
 #include "gstrobotctl.h"
+#include "track-params.h"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -1008,8 +1009,9 @@ void readTarget(GstBuffer *buffer, GQuark roiType, gint targetId, colortrack::Ob
   o.box = cv::Rect2d(chosen->x, chosen->y, chosen->w, chosen->h);
   o.state = colortrack::TrackState::Tracking;
   o.score = 1.0;
+  // Also found after videoconvert / videoscale, which drop the ROI meta's own parameters in GStreamer 1.22.
   const GstStructure *params =
-      gst_video_region_of_interest_meta_get_param(const_cast<GstVideoRegionOfInterestMeta *>(chosen), "colortrack");
+      colortrack_find_roi_params(buffer, const_cast<GstVideoRegionOfInterestMeta *>(chosen));
   if (params) {
     o.state = parseState(gst_structure_get_string(params, "state"));
     gst_structure_get_double(params, "score", &o.score);

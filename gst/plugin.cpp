@@ -3,9 +3,10 @@
 
 #include "gstcolortrack.h"
 #include "gstrobotctl.h"
+#include "track-params.h"
 
-// Add later elements here (GST_ELEMENT_REGISTER(robotctl, plugin), ...).
 static gboolean plugin_init(GstPlugin *plugin) {
+  colortrack_params_meta_register();
   gboolean ok = FALSE;
   ok |= GST_ELEMENT_REGISTER(colortrack, plugin);
   ok |= GST_ELEMENT_REGISTER(robotctl, plugin);
@@ -13,5 +14,5 @@ static gboolean plugin_init(GstPlugin *plugin) {
 }
 
 GST_PLUGIN_DEFINE(GST_VERSION_MAJOR, GST_VERSION_MINOR, colortrack,
-                  "Colour-indexing object tracker (modified colour indexing with Kalman filtering)", plugin_init,
+                  "Colour object tracking (modified colour indexing, Kalman filtering) and robot control", plugin_init,
                   VERSION, "LGPL", "colortrack", "Unknown package origin")

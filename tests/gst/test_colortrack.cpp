@@ -10,6 +10,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "gst-test-util.hpp"
 #include "scene.hpp"
 
 #include <glib/gstdio.h>
@@ -24,28 +25,7 @@ using colortrack::scene::Scene;
 using colortrack::scene::SceneConfig;
 using colortrack::scene::SceneFrame;
 
-constexpr int kFps = 30;
-
-std::string boxString(const cv::Rect &r) {
-  return std::to_string(r.x) + "," + std::to_string(r.y) + "," + std::to_string(r.width) + "," +
-         std::to_string(r.height);
-}
-
-// A BGR frame as a buffer with GStreamer's strides (rows padded to 4 bytes) and timestamps of frame `index`.
-GstBuffer *bgrBuffer(const cv::Mat &bgr, int index) {
-  GstVideoInfo info;
-  gst_video_info_set_format(&info, GST_VIDEO_FORMAT_BGR, bgr.cols, bgr.rows);
-  GstBuffer *buffer = gst_buffer_new_allocate(nullptr, info.size, nullptr);
-  GstVideoFrame frame;
-  fail_unless(gst_video_frame_map(&frame, &info, buffer, GST_MAP_WRITE));
-  cv::Mat target(bgr.size(), CV_8UC3, GST_VIDEO_FRAME_PLANE_DATA(&frame, 0),
-                 GST_VIDEO_FRAME_PLANE_STRIDE(&frame, 0));
-  bgr.copyTo(target);
-  gst_video_frame_unmap(&frame);
-  GST_BUFFER_PTS(buffer) = gst_util_uint64_scale_int(index, GST_SECOND, kFps);
-  GST_BUFFER_DURATION(buffer) = gst_util_uint64_scale_int(1, GST_SECOND, kFps);
-  return buffer;
-}
+using namespace colortrack::testutil;
 
 // The colortrack ROI meta of a buffer, read back.
 struct TrackMeta {
@@ -60,17 +40,22 @@ struct TrackMeta {
 
 TrackMeta readMeta(GstBuffer *buffer) {
   TrackMeta m;
-  gpointer iter = nullptr;
-  GstMeta *meta;
   int found = 0;
-  while ((meta = gst_buffer_iterate_meta_filtered(buffer, &iter, GST_VIDEO_REGION_OF_INTEREST_META_API_TYPE))) {
-    auto *roi = reinterpret_cast<GstVideoRegionOfInterestMeta *>(meta);
-    if (roi->roi_type != g_quark_from_static_string("colortrack")) continue;
+  for (GstVideoRegionOfInterestMeta *roi : colortrackRois(buffer)) {
     ++found;
     m.present = true;
     m.box = cv::Rect(roi->x, roi->y, roi->w, roi->h);
     m.id = roi->id;
+    // On the meta itself, or (after videoconvert / videoscale, whose ROI transform drops it in GStreamer 1.22)
+    // in the documented custom meta under "id-<track id>".
     const GstStructure *p = gst_video_region_of_interest_meta_get_param(roi, "colortrack");
+    if (!p) {
+      if (GstCustomMeta *custom = gst_buffer_get_custom_meta(buffer, "GstColorTrackParamsMeta")) {
+        const GValue *v = gst_structure_get_value(gst_custom_meta_get_structure(custom),
+                                                  ("id-" + std::to_string(roi->id)).c_str());
+        if (v && GST_VALUE_HOLDS_STRUCTURE(v)) p = gst_value_get_structure(v);
+      }
+    }
     if (!p) continue;
     m.paramsComplete = gst_structure_has_field_typed(p, "state", G_TYPE_STRING) &&
                        gst_structure_has_field_typed(p, "score", G_TYPE_DOUBLE) &&
@@ -89,36 +74,14 @@ TrackMeta readMeta(GstBuffer *buffer) {
   return m;
 }
 
-// A harness around a launch line whose colortrack element is named "ct"; BGR frames go in. The bin gets a
-// bus so that element messages, warnings and errors can be read.
-class Harness {
+// A harness around a launch line whose colortrack element is named "ct"; BGR frames go in, and its bus
+// carries element messages, warnings and errors.
+class Harness : public BusHarness {
  public:
-  Harness(const std::string &launch, cv::Size size) {
-    h_ = gst_harness_new_parse(launch.c_str());
-    bus_ = gst_bus_new();
-    gst_element_set_bus(h_->element, bus_);
-    const std::string caps = "video/x-raw,format=BGR,width=" + std::to_string(size.width) +
-                             ",height=" + std::to_string(size.height) + ",framerate=" + std::to_string(kFps) + "/1";
-    gst_harness_set_src_caps_str(h_, caps.c_str());
-    tracker_ = gst_bin_get_by_name(GST_BIN(h_->element), "ct");
-    fail_unless(tracker_ != nullptr);
-  }
-  ~Harness() {
-    gst_object_unref(tracker_);
-    gst_element_set_bus(h_->element, nullptr);
-    gst_object_unref(bus_);
-    gst_harness_teardown(h_);
-  }
-  Harness(const Harness &) = delete;
-  Harness &operator=(const Harness &) = delete;
+  Harness(const std::string &launch, cv::Size size) : BusHarness(launch, videoCaps("BGR", size)) {}
 
   // Pushes one frame and returns the output buffer (owned by the caller).
-  GstBuffer *process(const cv::Mat &bgr, int index) {
-    fail_unless_equals_int(gst_harness_push(h_, bgrBuffer(bgr, index)), GST_FLOW_OK);
-    GstBuffer *out = gst_harness_pull(h_);
-    fail_unless(out != nullptr);
-    return out;
-  }
+  GstBuffer *process(const cv::Mat &bgr, int index) { return BusHarness::process(bgrBuffer(bgr, index)); }
   TrackMeta processMeta(const cv::Mat &bgr, int index) {
     GstBuffer *out = process(bgr, index);
     const TrackMeta m = readMeta(out);
@@ -126,16 +89,7 @@ class Harness {
     return m;
   }
 
-  GstElement *tracker() const { return tracker_; }
-  GstBus *bus() const { return bus_; }
-  // The next "colortrack" element message, or nullptr.
-  GstMessage *popTrackMessage() {
-    while (GstMessage *msg = gst_bus_pop_filtered(bus_, GST_MESSAGE_ELEMENT)) {
-      if (gst_message_has_name(msg, "colortrack")) return msg;
-      gst_message_unref(msg);
-    }
-    return nullptr;
-  }
+  GstElement *tracker() const { return element(); }
   // The state field of the next colortrack message ("" when there is none).
   std::string popTrackState() {
     GstMessage *msg = popTrackMessage();
@@ -144,11 +98,6 @@ class Harness {
     gst_message_unref(msg);
     return state;
   }
-
- private:
-  GstHarness *h_ = nullptr;
-  GstBus *bus_ = nullptr;
-  GstElement *tracker_ = nullptr;
 };
 
 std::string trackerLaunch(const std::string &properties) { return "colortrack name=ct " + properties; }
@@ -407,8 +356,8 @@ GST_START_TEST(test_meta_and_message_fields) {
 GST_END_TEST;
 
 // videoscale transforms the ROI meta to the new size; videoconvert keeps it. GStreamer 1.22's ROI meta
-// transform, which both use when they convert, keeps the type, id and box but drops the params structures
-// (a plain copy keeps them): params are therefore compared only where they arrive.
+// transform, which both use, keeps the type, id and box but drops the params structures: the element's
+// custom params meta must carry them through, so they are compared on every frame.
 GST_START_TEST(test_meta_survives_videoscale_and_videoconvert) {
   SceneConfig config;
   const Scene scene(config);
@@ -436,7 +385,7 @@ GST_START_TEST(test_meta_survives_videoscale_and_videoconvert) {
 
     fail_unless(same.box == full.box && same.id == full.id, "videoconvert changed the meta on frame %d", i);
     for (const TrackMeta *downstream : {&half, &same}) {
-      if (!downstream->paramsComplete) continue;
+      fail_unless(downstream->paramsComplete, "frame %d: params lost downstream", i);
       fail_unless(downstream->state == full.state && downstream->score == full.score &&
                   downstream->scale == full.scale && downstream->vx == full.vx && downstream->vy == full.vy &&
                   !downstream->verified == !full.verified);
@@ -480,12 +429,7 @@ GST_START_TEST(test_reset_signal) {
 GST_END_TEST;
 
 static Suite *colortrack_suite(void) {
-  // Load the plugins once here, in the parent: every test runs in a forked child, which would otherwise
-  // load them (and the many libraries behind them) again.
-  for (const char *plugin : {"colortrack", "videoconvertscale"}) {
-    GstPlugin *loaded = gst_plugin_load_by_name(plugin);
-    if (loaded) gst_object_unref(loaded);
-  }
+  preloadPlugins({"colortrack", "videoconvertscale"});
   Suite *s = suite_create("colortrack");
   TCase *tc = tcase_create("general");
   suite_add_tcase(s, tc);

@@ -13,6 +13,7 @@
 #include <opencv2/core.hpp>
 
 #include "balls.hpp"
+#include "gst-test-util.hpp"
 #include "scene.hpp"
 
 #include <gst/check/gstcheck.h>
@@ -27,26 +28,11 @@ using colortrack::balls::BallScene;
 using colortrack::balls::BallSceneConfig;
 using colortrack::scene::Scene;
 using colortrack::scene::SceneConfig;
+using namespace colortrack::testutil;
 
-constexpr int kFps = 30;
 const cv::Size kFrame(640, 480);
 const cv::Size kWindow(320, 240);  // what the sink shows: videoscale halves the frame
 constexpr int kLeft = 1, kRight = 3;
-
-// A BGR frame as a buffer with GStreamer's strides and frame `index`'s timestamps.
-GstBuffer *frameBuffer(const cv::Mat &bgr, int index) {
-  GstVideoInfo info;
-  gst_video_info_set_format(&info, GST_VIDEO_FORMAT_BGR, bgr.cols, bgr.rows);
-  GstBuffer *buffer = gst_buffer_new_allocate(nullptr, info.size, nullptr);
-  GstVideoFrame frame;
-  fail_unless(gst_video_frame_map(&frame, &info, buffer, GST_MAP_WRITE));
-  bgr.copyTo(cv::Mat(bgr.size(), CV_8UC3, GST_VIDEO_FRAME_PLANE_DATA(&frame, 0),
-                     GST_VIDEO_FRAME_PLANE_STRIDE(&frame, 0)));
-  gst_video_frame_unmap(&frame);
-  GST_BUFFER_PTS(buffer) = gst_util_uint64_scale_int(index, GST_SECOND, kFps);
-  GST_BUFFER_DURATION(buffer) = gst_util_uint64_scale_int(1, GST_SECOND, kFps);
-  return buffer;
-}
 
 // One frame as seen downstream of videoscale (metas) and on the bus (colortrack's message).
 struct FrameResult {
@@ -59,55 +45,32 @@ struct FrameResult {
 
 // "colortrack name=ct <properties> ! videoscale ! video/x-raw,width=320,height=240" in a harness, BGR 640x480
 // in, with a bus for colortrack's messages.
-class ClickHarness {
+class ClickHarness : public BusHarness {
  public:
-  explicit ClickHarness(const std::string &properties) {
-    const std::string launch = "colortrack name=ct post-messages=true draw=0 " + properties +
-                               " ! videoscale ! capsfilter caps=video/x-raw,width=" + std::to_string(kWindow.width) +
-                               ",height=" + std::to_string(kWindow.height);
-    h_ = gst_harness_new_parse(launch.c_str());
-    bus_ = gst_bus_new();
-    gst_element_set_bus(h_->element, bus_);
-    const std::string caps = "video/x-raw,format=BGR,width=" + std::to_string(kFrame.width) +
-                             ",height=" + std::to_string(kFrame.height) + ",framerate=" + std::to_string(kFps) + "/1";
-    gst_harness_set_src_caps_str(h_, caps.c_str());
-    element_ = gst_bin_get_by_name(GST_BIN(h_->element), "ct");
-    fail_unless(element_ != nullptr);
-  }
-  ~ClickHarness() {
-    gst_object_unref(element_);
-    gst_element_set_bus(h_->element, nullptr);
-    gst_object_unref(bus_);
-    gst_harness_teardown(h_);
-  }
-  ClickHarness(const ClickHarness &) = delete;
-  ClickHarness &operator=(const ClickHarness &) = delete;
+  explicit ClickHarness(const std::string &properties)
+      : BusHarness("colortrack name=ct post-messages=true draw=0 " + properties +
+                       " ! videoscale ! capsfilter caps=video/x-raw,width=" + std::to_string(kWindow.width) +
+                       ",height=" + std::to_string(kWindow.height),
+                   videoCaps("BGR", kFrame)) {}
 
   FrameResult process(const cv::Mat &bgr) {
-    fail_unless_equals_int(gst_harness_push(h_, frameBuffer(bgr, frame_++)), GST_FLOW_OK);
-    GstBuffer *out = gst_harness_pull(h_);
-    fail_unless(out != nullptr);
+    GstBuffer *out = BusHarness::process(bgrBuffer(bgr, frame_++));
     FrameResult r;
     const double sx = static_cast<double>(kFrame.width) / kWindow.width;
     const double sy = static_cast<double>(kFrame.height) / kWindow.height;
-    gpointer iter = nullptr;
-    while (GstMeta *meta = gst_buffer_iterate_meta_filtered(out, &iter, GST_VIDEO_REGION_OF_INTEREST_META_API_TYPE)) {
-      auto *roi = reinterpret_cast<GstVideoRegionOfInterestMeta *>(meta);
-      if (roi->roi_type != g_quark_from_static_string("colortrack")) continue;
+    for (GstVideoRegionOfInterestMeta *roi : colortrackRois(out)) {
       r.ids.push_back(roi->id);
       r.boxes.emplace_back(roi->x * sx, roi->y * sy, roi->w * sx, roi->h * sy);
     }
     gst_buffer_unref(out);
-    while (GstMessage *msg = gst_bus_pop_filtered(bus_, GST_MESSAGE_ELEMENT)) {
-      if (gst_message_has_name(msg, "colortrack")) {
-        const GstStructure *s = gst_message_get_structure(msg);
-        r.state = gst_structure_get_string(s, "state");
-        fail_unless(gst_structure_get_int(s, "id", &r.messageId));
-        fail_unless(gst_structure_get_double(s, "x", &r.messageBox.x) &&
-                    gst_structure_get_double(s, "y", &r.messageBox.y) &&
-                    gst_structure_get_double(s, "width", &r.messageBox.width) &&
-                    gst_structure_get_double(s, "height", &r.messageBox.height));
-      }
+    while (GstMessage *msg = popTrackMessage()) {
+      const GstStructure *s = gst_message_get_structure(msg);
+      r.state = gst_structure_get_string(s, "state");
+      fail_unless(gst_structure_get_int(s, "id", &r.messageId));
+      fail_unless(gst_structure_get_double(s, "x", &r.messageBox.x) &&
+                  gst_structure_get_double(s, "y", &r.messageBox.y) &&
+                  gst_structure_get_double(s, "width", &r.messageBox.width) &&
+                  gst_structure_get_double(s, "height", &r.messageBox.height));
       gst_message_unref(msg);
     }
     return r;
@@ -118,9 +81,9 @@ class ClickHarness {
   void click(int button, cv::Point2d windowPoint) {
     GstEvent *event = gst_navigation_event_new_mouse_button_press(button, windowPoint.x, windowPoint.y,
                                                                   GST_NAVIGATION_MODIFIER_NONE);
-    fail_unless(gst_harness_push_upstream_event(h_, event), "the navigation event was not forwarded upstream");
+    fail_unless(gst_harness_push_upstream_event(harness(), event), "the navigation event was not forwarded upstream");
     GstEvent *forwarded = nullptr;
-    while (GstEvent *e = gst_harness_try_pull_upstream_event(h_)) {
+    while (GstEvent *e = gst_harness_try_pull_upstream_event(harness())) {
       if (GST_EVENT_TYPE(e) == GST_EVENT_NAVIGATION && !forwarded)
         forwarded = e;
       else
@@ -139,12 +102,7 @@ class ClickHarness {
     gst_event_unref(forwarded);
   }
 
-  GstElement *element() const { return element_; }
-
  private:
-  GstHarness *h_ = nullptr;
-  GstBus *bus_ = nullptr;
-  GstElement *element_ = nullptr;
   int frame_ = 0;
 };
 
@@ -153,11 +111,6 @@ cv::Point2d centreOf(const cv::Rect2d &box) { return {box.x + box.width / 2, box
 // Where the user clicks in the half-size window to hit `point` of the full frame.
 cv::Point2d inWindow(const cv::Point2d &point) {
   return {point.x * kWindow.width / kFrame.width, point.y * kWindow.height / kFrame.height};
-}
-
-std::string boxString(const cv::Rect &r) {
-  return std::to_string(r.x) + "," + std::to_string(r.y) + "," + std::to_string(r.width) + "," +
-         std::to_string(r.height);
 }
 
 // The frames a track needs after a click before its box is judged (the box starts as the click square).

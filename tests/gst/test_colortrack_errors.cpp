@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "gst-test-util.hpp"
 #include "scene.hpp"
 
 #include <glib/gstdio.h>
@@ -21,41 +22,10 @@ namespace {
 using colortrack::scene::iou;
 using colortrack::scene::Scene;
 using colortrack::scene::SceneConfig;
-
-constexpr int kFps = 30;
-constexpr GstClockTime kBusTimeout = 20 * GST_SECOND;
-
-bool contains(const std::string &text, const std::string &part) { return text.find(part) != std::string::npos; }
-
-GstBuffer *bgrBuffer(const cv::Mat &bgr, int index) {
-  GstVideoInfo info;
-  gst_video_info_set_format(&info, GST_VIDEO_FORMAT_BGR, bgr.cols, bgr.rows);
-  GstBuffer *buffer = gst_buffer_new_allocate(nullptr, info.size, nullptr);
-  GstVideoFrame frame;
-  fail_unless(gst_video_frame_map(&frame, &info, buffer, GST_MAP_WRITE));
-  cv::Mat target(bgr.size(), CV_8UC3, GST_VIDEO_FRAME_PLANE_DATA(&frame, 0),
-                 GST_VIDEO_FRAME_PLANE_STRIDE(&frame, 0));
-  bgr.copyTo(target);
-  gst_video_frame_unmap(&frame);
-  GST_BUFFER_PTS(buffer) = gst_util_uint64_scale_int(index, GST_SECOND, kFps);
-  GST_BUFFER_DURATION(buffer) = gst_util_uint64_scale_int(1, GST_SECOND, kFps);
-  return buffer;
-}
+using namespace colortrack::testutil;
 
 // How a run ended, and the warnings on the way.
-struct Outcome {
-  bool eos = false;
-  bool error = false;
-  GQuark errorDomain = 0;
-  int errorCode = 0;
-  std::string errorText;  // message and debug text
-  std::vector<std::string> warnings;
-  bool warned(const std::string &part) const {
-    for (const std::string &w : warnings)
-      if (contains(w, part)) return true;
-    return false;
-  }
-};
+using Outcome = BusOutcome;
 
 // appsrc (BGR) ! <middle> ! appsink, with the colortrack element named "ct" somewhere in <middle>.
 class Pipeline {
@@ -90,9 +60,7 @@ class Pipeline {
   void push(const cv::Mat &bgr, int index) {
     if (bgr.size() != capsSize_) {
       capsSize_ = bgr.size();
-      const std::string caps = "video/x-raw,format=BGR,width=" + std::to_string(bgr.cols) +
-                               ",height=" + std::to_string(bgr.rows) + ",framerate=" + std::to_string(kFps) + "/1";
-      GstCaps *c = gst_caps_from_string(caps.c_str());
+      GstCaps *c = gst_caps_from_string(videoCaps("BGR", capsSize_).c_str());
       gst_app_src_set_caps(GST_APP_SRC(src_), c);
       gst_caps_unref(c);
     }
@@ -105,34 +73,7 @@ class Pipeline {
     return waitForEnd();
   }
 
-  Outcome waitForEnd() {
-    Outcome outcome;
-    const auto types = static_cast<GstMessageType>(GST_MESSAGE_EOS | GST_MESSAGE_ERROR | GST_MESSAGE_WARNING);
-    while (GstMessage *msg = gst_bus_timed_pop_filtered(bus_, kBusTimeout, types)) {
-      GError *err = nullptr;
-      gchar *debug = nullptr;
-      const GstMessageType type = GST_MESSAGE_TYPE(msg);
-      if (type == GST_MESSAGE_WARNING) {
-        gst_message_parse_warning(msg, &err, &debug);
-        outcome.warnings.push_back(std::string(err->message) + " | " + (debug ? debug : ""));
-      } else if (type == GST_MESSAGE_ERROR) {
-        gst_message_parse_error(msg, &err, &debug);
-        outcome.error = true;
-        outcome.errorDomain = err->domain;
-        outcome.errorCode = err->code;
-        outcome.errorText = std::string(err->message) + " | " + (debug ? debug : "");
-        GST_INFO("error: %s", outcome.errorText.c_str());
-      } else {
-        outcome.eos = true;
-      }
-      if (err) g_error_free(err);
-      g_free(debug);
-      gst_message_unref(msg);
-      if (type != GST_MESSAGE_WARNING) return outcome;
-    }
-    fail("neither EOS nor an error within %d s: the pipeline hangs", static_cast<int>(kBusTimeout / GST_SECOND));
-    return outcome;
-  }
+  Outcome waitForEnd() { return colortrack::testutil::waitForEnd(bus_); }
 
   // Output buffers so far (new references).
   std::vector<GstBuffer *> outputs() {
@@ -165,11 +106,6 @@ SceneConfig smallScene() {
   config.frameSize = cv::Size(160, 120);
   config.objectSize = cv::Size(32, 32);
   return config;
-}
-
-std::string boxString(const cv::Rect &r) {
-  return std::to_string(r.x) + "," + std::to_string(r.y) + "," + std::to_string(r.width) + "," +
-         std::to_string(r.height);
 }
 
 // A file in a fresh temporary directory, removed afterwards.
@@ -374,12 +310,7 @@ GST_START_TEST(test_caps_change_mid_stream) {
 GST_END_TEST;
 
 static Suite *colortrack_errors_suite(void) {
-  // Load the plugins once here, in the parent: every test runs in a forked child, which would otherwise
-  // load them (and the many libraries behind them) again.
-  for (const char *plugin : {"colortrack", "app", "videoconvertscale"}) {
-    GstPlugin *loaded = gst_plugin_load_by_name(plugin);
-    if (loaded) gst_object_unref(loaded);
-  }
+  preloadPlugins({"colortrack", "app", "videoconvertscale"});
   Suite *s = suite_create("colortrack_errors");
   TCase *tc = tcase_create("errors");
   suite_add_tcase(s, tc);

@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "gst-test-util.hpp"
 #include "scene.hpp"
 
 #include <gst/check/gstcheck.h>
@@ -22,7 +23,7 @@ using colortrack::scene::Scene;
 using colortrack::scene::SceneConfig;
 using colortrack::scene::SceneFrame;
 
-constexpr int kFps = 30;
+using namespace colortrack::testutil;
 
 struct FormatCase {
   const char *format;
@@ -36,31 +37,6 @@ const FormatCase kCases[] = {
     {"I420", 320, 240}, {"NV12", 320, 240}, {"YUY2", 320, 240}, {"I420", 321, 241}, {"NV12", 321, 241},
     {"YUY2", 321, 241}, {"BGRx", 321, 241}, {"RGB", 321, 241},
 };
-
-std::string capsFor(const char *format, cv::Size size) {
-  return std::string("video/x-raw,format=") + format + ",width=" + std::to_string(size.width) +
-         ",height=" + std::to_string(size.height) + ",framerate=" + std::to_string(kFps) + "/1";
-}
-
-std::string boxString(const cv::Rect &r) {
-  return std::to_string(r.x) + "," + std::to_string(r.y) + "," + std::to_string(r.width) + "," +
-         std::to_string(r.height);
-}
-
-GstBuffer *bgrBuffer(const cv::Mat &bgr, int index) {
-  GstVideoInfo info;
-  gst_video_info_set_format(&info, GST_VIDEO_FORMAT_BGR, bgr.cols, bgr.rows);
-  GstBuffer *buffer = gst_buffer_new_allocate(nullptr, info.size, nullptr);
-  GstVideoFrame frame;
-  fail_unless(gst_video_frame_map(&frame, &info, buffer, GST_MAP_WRITE));
-  cv::Mat target(bgr.size(), CV_8UC3, GST_VIDEO_FRAME_PLANE_DATA(&frame, 0),
-                 GST_VIDEO_FRAME_PLANE_STRIDE(&frame, 0));
-  bgr.copyTo(target);
-  gst_video_frame_unmap(&frame);
-  GST_BUFFER_PTS(buffer) = gst_util_uint64_scale_int(index, GST_SECOND, kFps);
-  GST_BUFFER_DURATION(buffer) = gst_util_uint64_scale_int(1, GST_SECOND, kFps);
-  return buffer;
-}
 
 cv::Mat bgrFromBuffer(GstBuffer *buffer, cv::Size size) {
   GstVideoInfo info;
@@ -144,10 +120,10 @@ GST_START_TEST(test_format) {
   GST_INFO("format %s %dx%d", c.format, c.width, c.height);
 
   // BGR -> format under test, colortrack in that format, and back to BGR to look at the result.
-  Harness toNative("videoconvert ! capsfilter caps=" + capsFor(c.format, size), capsFor("BGR", size));
-  Harness tracker("colortrack name=ct draw=box init-box=" + boxString(scene.initBox()), capsFor(c.format, size));
-  Harness toBgrOut("videoconvert ! capsfilter caps=" + capsFor("BGR", size), capsFor(c.format, size));
-  Harness toBgrRef("videoconvert ! capsfilter caps=" + capsFor("BGR", size), capsFor(c.format, size));
+  Harness toNative("videoconvert ! capsfilter caps=" + videoCaps(c.format, size), videoCaps("BGR", size));
+  Harness tracker("colortrack name=ct draw=box init-box=" + boxString(scene.initBox()), videoCaps(c.format, size));
+  Harness toBgrOut("videoconvert ! capsfilter caps=" + videoCaps("BGR", size), videoCaps(c.format, size));
+  Harness toBgrRef("videoconvert ! capsfilter caps=" + videoCaps("BGR", size), videoCaps(c.format, size));
 
   const cv::Vec3b red(0, 0, 255), green(0, 255, 0);  // BGR
   std::vector<double> ious;
@@ -224,9 +200,9 @@ GST_START_TEST(test_format_full_overlay) {
   config.speed = 3;  // sweeps the whole frame: the overlay reaches the edges
   const Scene scene(config);
   const cv::Size size = config.frameSize;
-  Harness toNative("videoconvert ! capsfilter caps=" + capsFor(c.format, size), capsFor("BGR", size));
+  Harness toNative("videoconvert ! capsfilter caps=" + videoCaps(c.format, size), videoCaps("BGR", size));
   Harness tracker("colortrack draw=box+trail+search-window+label init-box=" + boxString(scene.initBox()),
-                  capsFor(c.format, size));
+                  videoCaps(c.format, size));
   int withMeta = 0;
   for (int i = 0; i < 40; ++i) {
     GstBuffer *out = tracker.process(toNative.process(bgrBuffer(scene.render(i).bgr, i)));
@@ -238,12 +214,7 @@ GST_START_TEST(test_format_full_overlay) {
 GST_END_TEST;
 
 static Suite *colortrack_formats_suite(void) {
-  // Load the plugins once here, in the parent: every test runs in a forked child, which would otherwise
-  // load them (and the many libraries behind them) again.
-  for (const char *plugin : {"colortrack", "videoconvertscale"}) {
-    GstPlugin *loaded = gst_plugin_load_by_name(plugin);
-    if (loaded) gst_object_unref(loaded);
-  }
+  preloadPlugins({"colortrack", "videoconvertscale"});
   Suite *s = suite_create("colortrack_formats");
   TCase *tc = tcase_create("formats");
   suite_add_tcase(s, tc);

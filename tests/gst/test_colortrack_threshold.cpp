@@ -12,6 +12,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "balls.hpp"
+#include "gst-test-util.hpp"
 
 #include <gst/app/gstappsink.h>
 #include <gst/app/gstappsrc.h>
@@ -25,11 +26,7 @@ using colortrack::balls::Ball;
 using colortrack::balls::BallScene;
 using colortrack::balls::BallSceneConfig;
 using colortrack::balls::BallTruth;
-
-constexpr int kFps = 30;
-constexpr GstClockTime kBusTimeout = 20 * GST_SECOND;
-
-bool contains(const std::string &text, const std::string &part) { return text.find(part) != std::string::npos; }
+using namespace colortrack::testutil;
 
 // A BGR frame as a buffer of `format` (BGR or I420) with GStreamer's strides and frame `index`'s timestamps.
 GstBuffer *frameBuffer(const cv::Mat &bgr, int index, GstVideoFormat format = GST_VIDEO_FORMAT_BGR) {
@@ -68,10 +65,7 @@ struct ObjectMeta {
 
 std::vector<ObjectMeta> readMetas(GstBuffer *buffer) {
   std::vector<ObjectMeta> metas;
-  gpointer iter = nullptr;
-  while (GstMeta *meta = gst_buffer_iterate_meta_filtered(buffer, &iter, GST_VIDEO_REGION_OF_INTEREST_META_API_TYPE)) {
-    auto *roi = reinterpret_cast<GstVideoRegionOfInterestMeta *>(meta);
-    if (roi->roi_type != g_quark_from_static_string("colortrack")) continue;
+  for (GstVideoRegionOfInterestMeta *roi : colortrackRois(buffer)) {
     ObjectMeta m;
     m.id = roi->id;
     m.box = cv::Rect(roi->x, roi->y, roi->w, roi->h);
@@ -88,52 +82,17 @@ std::vector<ObjectMeta> readMetas(GstBuffer *buffer) {
 }
 
 // A harness around "colortrack name=ct <properties>" with a bus for its messages.
-class Harness {
+class Harness : public BusHarness {
  public:
-  Harness(const std::string &properties, cv::Size size, const char *format = "BGR") {
-    h_ = gst_harness_new_parse(("colortrack name=ct " + properties).c_str());
-    bus_ = gst_bus_new();
-    gst_element_set_bus(h_->element, bus_);
-    const std::string caps = std::string("video/x-raw,format=") + format + ",width=" + std::to_string(size.width) +
-                             ",height=" + std::to_string(size.height) + ",framerate=" + std::to_string(kFps) + "/1";
-    gst_harness_set_src_caps_str(h_, caps.c_str());
-    element_ = gst_bin_get_by_name(GST_BIN(h_->element), "ct");
-    fail_unless(element_ != nullptr);
-  }
-  ~Harness() {
-    gst_object_unref(element_);
-    gst_element_set_bus(h_->element, nullptr);
-    gst_object_unref(bus_);
-    gst_harness_teardown(h_);
-  }
-  Harness(const Harness &) = delete;
-  Harness &operator=(const Harness &) = delete;
+  Harness(const std::string &properties, cv::Size size, const char *format = "BGR")
+      : BusHarness("colortrack name=ct " + properties, videoCaps(format, size)) {}
 
-  GstBuffer *process(GstBuffer *in) {
-    fail_unless_equals_int(gst_harness_push(h_, in), GST_FLOW_OK);
-    GstBuffer *out = gst_harness_pull(h_);
-    fail_unless(out != nullptr);
-    return out;
-  }
   std::vector<ObjectMeta> processMetas(GstBuffer *in) {
     GstBuffer *out = process(in);
     std::vector<ObjectMeta> metas = readMetas(out);
     gst_buffer_unref(out);
     return metas;
   }
-  GstMessage *popTrackMessage() {
-    while (GstMessage *msg = gst_bus_pop_filtered(bus_, GST_MESSAGE_ELEMENT)) {
-      if (gst_message_has_name(msg, "colortrack")) return msg;
-      gst_message_unref(msg);
-    }
-    return nullptr;
-  }
-  GstElement *element() const { return element_; }
-
- private:
-  GstHarness *h_ = nullptr;
-  GstBus *bus_ = nullptr;
-  GstElement *element_ = nullptr;
 };
 
 // The meta nearest to `point` within `radius`, or nullptr.
@@ -154,11 +113,6 @@ BallScene redBallScene(double brightness = 0) {
   ball.radius = 24;
   ball.path = {{0, {100, 90}}, {60, {520, 380}}};
   return BallScene(config, {ball});
-}
-
-std::string boxString(const cv::Rect &r) {
-  return std::to_string(r.x) + "," + std::to_string(r.y) + "," + std::to_string(r.width) + "," +
-         std::to_string(r.height);
 }
 
 }  // namespace
@@ -301,16 +255,7 @@ GST_END_TEST;
 
 namespace {
 
-struct Outcome {
-  bool error = false;
-  std::string errorText;
-  std::vector<std::string> warnings;
-  bool warned(const std::string &part) const {
-    for (const std::string &w : warnings)
-      if (contains(w, part)) return true;
-    return false;
-  }
-};
+using Outcome = BusOutcome;
 
 // appsrc ! colortrack name=ct <properties> ! appsink; plays `frames` frames then waits for EOS or an error.
 class Pipeline {
@@ -344,30 +289,7 @@ class Pipeline {
 
   Outcome finish(bool endStream = true) {
     if (endStream) gst_app_src_end_of_stream(GST_APP_SRC(src_));
-    Outcome outcome;
-    const auto types = static_cast<GstMessageType>(GST_MESSAGE_EOS | GST_MESSAGE_ERROR | GST_MESSAGE_WARNING);
-    while (GstMessage *msg = gst_bus_timed_pop_filtered(bus_, kBusTimeout, types)) {
-      GError *err = nullptr;
-      gchar *debug = nullptr;
-      const GstMessageType type = GST_MESSAGE_TYPE(msg);
-      if (type == GST_MESSAGE_WARNING) gst_message_parse_warning(msg, &err, &debug);
-      if (type == GST_MESSAGE_ERROR) gst_message_parse_error(msg, &err, &debug);
-      if (err) {
-        const std::string text = std::string(err->message) + " | " + (debug ? debug : "");
-        if (type == GST_MESSAGE_ERROR) {
-          outcome.error = true;
-          outcome.errorText = text;
-        } else {
-          outcome.warnings.push_back(text);
-        }
-        g_error_free(err);
-      }
-      g_free(debug);
-      gst_message_unref(msg);
-      if (type != GST_MESSAGE_WARNING) return outcome;
-    }
-    fail("neither EOS nor an error within %d s", static_cast<int>(kBusTimeout / GST_SECOND));
-    return outcome;
+    return waitForEnd(bus_);
   }
 
  private:

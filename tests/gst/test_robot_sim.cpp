@@ -14,6 +14,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "gst-test-util.hpp"
 #include "robot_sim.hpp"
 
 #include <gst/app/gstappsrc.h>
@@ -27,8 +28,10 @@ using colortrack::sim::Pose;
 using colortrack::sim::RobotSim;
 using colortrack::sim::RobotSimConfig;
 using colortrack::sim::WheelCommand;
+using colortrack::testutil::bgrBuffer;
+using colortrack::testutil::kFps;
+using colortrack::testutil::waitForCommandOf;
 
-constexpr int kFps = 30;
 constexpr double kSetPoint = 0.3;
 constexpr guint kLostTimeoutMs = 500;
 
@@ -49,40 +52,6 @@ struct Pty {
     return bytes;
   }
 };
-
-GstBuffer *frameBuffer(const cv::Mat &bgr, int index) {
-  GstVideoInfo info;
-  gst_video_info_set_format(&info, GST_VIDEO_FORMAT_BGR, bgr.cols, bgr.rows);
-  GstBuffer *buffer = gst_buffer_new_allocate(nullptr, info.size, nullptr);
-  GstVideoFrame frame;
-  fail_unless(gst_video_frame_map(&frame, &info, buffer, GST_MAP_WRITE));
-  cv::Mat target(bgr.size(), CV_8UC3, GST_VIDEO_FRAME_PLANE_DATA(&frame, 0), GST_VIDEO_FRAME_PLANE_STRIDE(&frame, 0));
-  bgr.copyTo(target);
-  gst_video_frame_unmap(&frame);
-  GST_BUFFER_PTS(buffer) = gst_util_uint64_scale_int(index, GST_SECOND, kFps);
-  GST_BUFFER_DURATION(buffer) = gst_util_uint64_scale_int(1, GST_SECOND, kFps);
-  return buffer;
-}
-
-// Waits until robotctl has sent a command decided on the buffer with timestamp `pts`; fails on an error.
-void waitForCommandOf(GstBus *bus, GstClockTime pts) {
-  while (true) {
-    GstMessage *m = gst_bus_timed_pop_filtered(bus, 5 * GST_SECOND,
-                                               static_cast<GstMessageType>(GST_MESSAGE_ELEMENT | GST_MESSAGE_ERROR));
-    fail_unless(m != nullptr, "no command for frame %" GST_TIME_FORMAT, GST_TIME_ARGS(pts));
-    if (GST_MESSAGE_TYPE(m) == GST_MESSAGE_ERROR) {
-      GError *error = nullptr;
-      gst_message_parse_error(m, &error, nullptr);
-      fail("pipeline error: %s", error->message);
-    }
-    const GstStructure *s = gst_message_get_structure(m);
-    guint64 timestamp = GST_CLOCK_TIME_NONE;
-    const bool ours = gst_structure_has_name(s, "robotctl") && gst_structure_get_uint64(s, "timestamp", &timestamp) &&
-                      GST_CLOCK_TIME_IS_VALID(timestamp) && timestamp >= pts;
-    gst_message_unref(m);
-    if (ours) return;
-  }
-}
 
 struct LoopResult {
   int centredAt = -1;       // first frame of kHold consecutive frames centred at the set-point
@@ -131,7 +100,7 @@ LoopResult runLoop(const char *controller, const char *protocol, CommandDecoder:
   const cv::Size frame = config.frameSize;
   for (int i = 0; i < maxFrames; ++i) {
     if (i == hideAt) robot.setBallHidden(true);
-    fail_unless(gst_app_src_push_buffer(GST_APP_SRC(src), frameBuffer(robot.render(), i)) == GST_FLOW_OK);
+    fail_unless(gst_app_src_push_buffer(GST_APP_SRC(src), bgrBuffer(robot.render(), i)) == GST_FLOW_OK);
     waitForCommandOf(bus, gst_util_uint64_scale_int(i, GST_SECOND, kFps));
     const std::vector<std::uint8_t> bytes = pty.drain();
     const std::vector<WheelCommand> received = decoder.feed(bytes.data(), bytes.size());

@@ -16,6 +16,8 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "gst-test-util.hpp"
+
 #include <glib/gstdio.h>
 #include <gst/app/gstappsrc.h>
 #include <gst/check/gstcheck.h>
@@ -26,6 +28,7 @@ namespace {
 
 using Bytes = std::vector<std::uint8_t>;
 using Clock = std::chrono::steady_clock;
+using colortrack::testutil::waitForCommandOf;
 constexpr int kWidth = 320, kHeight = 240, kFps = 30;
 
 struct Pty {
@@ -117,26 +120,6 @@ Roi roi(const cv::Rect &box, int id = 1) {
   r.box = box;
   r.id = id;
   return r;
-}
-
-// The waits for the command decided on a frame (robotctl's message names the frame's timestamp).
-void waitForCommandOf(GstBus *bus, GstClockTime pts) {
-  while (true) {
-    GstMessage *m = gst_bus_timed_pop_filtered(bus, 5 * GST_SECOND,
-                                               static_cast<GstMessageType>(GST_MESSAGE_ELEMENT | GST_MESSAGE_ERROR));
-    fail_unless(m != nullptr, "no command for %" GST_TIME_FORMAT, GST_TIME_ARGS(pts));
-    if (GST_MESSAGE_TYPE(m) == GST_MESSAGE_ERROR) {
-      GError *error = nullptr;
-      gst_message_parse_error(m, &error, nullptr);
-      fail("error on the bus: %s", error->message);
-    }
-    const GstStructure *s = gst_message_get_structure(m);
-    guint64 timestamp = GST_CLOCK_TIME_NONE;
-    const bool ours = gst_structure_has_name(s, "robotctl") && gst_structure_get_uint64(s, "timestamp", &timestamp) &&
-                      GST_CLOCK_TIME_IS_VALID(timestamp) && timestamp >= pts;
-    gst_message_unref(m);
-    if (ours) return;
-  }
 }
 
 // robotctl in a harness, writing to a pty, posting its messages on `bus`.
