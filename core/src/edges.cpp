@@ -1,5 +1,6 @@
 #include "colortrack/edges.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <opencv2/imgproc.hpp>
@@ -7,6 +8,8 @@
 namespace colortrack {
 
 namespace {
+
+constexpr double kMaxNormalisedSide = 96;  // largest side edges are compared at
 
 // Canny thresholds on the contrast-stretched, lightly blurred patch (gradient magnitude, L2 norm of the 3x3
 // Sobel). Stretching makes the patch span 0..255, so fixed thresholds behave the same in dim and bright
@@ -71,8 +74,13 @@ void EdgeVerifier::setTemplate(const cv::Mat &templateGray) {
     template_ = EdgeSignature();
     return;
   }
-  normSize_ = templateGray.size();
-  template_ = edgeSignature(templateGray, 0);
+  // Compared at the template's size, capped: a large template's edges say no more about texture than the
+  // same template at ~96 px, and the check runs on every detection.
+  const double shrink = std::min(1.0, kMaxNormalisedSide / std::max(templateGray.cols, templateGray.rows));
+  normSize_ = cv::Size(std::max(1, cvRound(templateGray.cols * shrink)), std::max(1, cvRound(templateGray.rows * shrink)));
+  cv::Mat normalised = templateGray;
+  if (normSize_ != templateGray.size()) cv::resize(templateGray, normalised, normSize_, 0, 0, cv::INTER_AREA);
+  template_ = edgeSignature(normalised, 0);
 }
 
 EdgeSignature EdgeVerifier::signature(const cv::Mat &windowGray) const {

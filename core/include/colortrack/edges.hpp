@@ -7,7 +7,8 @@ namespace colortrack {
 
 enum class VerifyMode { None, EdgeDensity, EdgeEnergy, Both };
 
-// Edges are computed on a patch resized to the template's size (so values compare across scales) after
+// Edges are computed on a patch resized to the template's size, capped at 96 px a side (so values compare across
+// scales, and the check stays cheap), after
 // stretching its contrast (so they hold under lighting changes).
 struct EdgeSignature {
   double density = 0;  // edge pixels / patch area
