@@ -1504,7 +1504,8 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
   g_object_class_install_property(
       gobject_class, PROP_SEARCH_MARGIN,
       g_param_spec_double("search-margin", "Search margin",
-                          "Search region around the prediction, in box sizes (plus 3 sigma of the prediction)", 0.0,
+                          "Search region around the prediction: the box grown on each side by this many half box sizes, plus 3 "
+                          "sigma of the predicted position", 0.0,
                           20.0, defaults.searchMargin, live));
   g_object_class_install_property(
       gobject_class, PROP_PROCESS_NOISE,
