@@ -91,11 +91,11 @@ void FrameView::packedToBgr(const cv::Mat &roi, cv::Mat &out) const {
 void FrameView::sampledBgr(const cv::Rect &rect, int step, cv::Mat &out) const {
   CV_Assert((rect & cv::Rect(cv::Point(), size_)) == rect && !rect.empty());
   if (step <= 1) return bgr(rect, out);
-  const cv::Size target(std::max(1, rect.width / step), std::max(1, rect.height / step));
+  const cv::Size target = sampledSize(rect, step);
   if (GST_VIDEO_FORMAT_INFO_IS_RGB(frame_->info.finfo)) {
     cv::Mat sample;
-    cv::resize(planeMat(frame_, 0, size_, CV_8UC(packed_.pixelBytes))(rect), sample, target, 0, 0,
-               cv::INTER_NEAREST);
+    cv::resize(planeMat(frame_, 0, size_, CV_8UC(packed_.pixelBytes))(sampledCover(rect, step)), sample, target, 0,
+               0, cv::INTER_NEAREST);
     packedToBgr(sample, out);
     return;
   }

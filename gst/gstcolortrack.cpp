@@ -910,16 +910,25 @@ static double frame_step(GstColorTrack *self, GstVideoFilter *filter, GstBuffer 
   return dt;
 }
 
-static void attach_meta(GstBuffer *buffer, const colortrack::TrackOutput &out, const cv::Rect &box) {
+// One ROI meta of type "colortrack" with its params (on the meta and in the params meta, see track-params.h);
+// `area` only in threshold mode.
+static void attach_track_meta(GstBuffer *buffer, const cv::Rect &box, gint id, colortrack::TrackState state,
+                              double score, bool verified, double scale, double vx, double vy,
+                              const double *area = nullptr) {
   GstVideoRegionOfInterestMeta *meta = gst_buffer_add_video_region_of_interest_meta(
       buffer, "colortrack", static_cast<guint>(box.x), static_cast<guint>(box.y), static_cast<guint>(box.width),
       static_cast<guint>(box.height));
-  meta->id = out.id;
-  GstStructure *params = gst_structure_new("colortrack", "state", G_TYPE_STRING, colortrack::toString(out.state),
-                                           "score", G_TYPE_DOUBLE, out.score, "verified", G_TYPE_BOOLEAN,
-                                           static_cast<gboolean>(out.verified), "scale", G_TYPE_DOUBLE, out.scale,
-                                           "vx", G_TYPE_DOUBLE, out.vx, "vy", G_TYPE_DOUBLE, out.vy, nullptr);
+  meta->id = id;
+  GstStructure *params = gst_structure_new("colortrack", "state", G_TYPE_STRING, colortrack::toString(state),
+                                           "score", G_TYPE_DOUBLE, score, "verified", G_TYPE_BOOLEAN,
+                                           static_cast<gboolean>(verified), "scale", G_TYPE_DOUBLE, scale, "vx",
+                                           G_TYPE_DOUBLE, vx, "vy", G_TYPE_DOUBLE, vy, nullptr);
+  if (area) gst_structure_set(params, "area", G_TYPE_DOUBLE, *area, nullptr);
   colortrack_add_roi_params(buffer, meta, params);
+}
+
+static void attach_meta(GstBuffer *buffer, const colortrack::TrackOutput &out, const cv::Rect &box) {
+  attach_track_meta(buffer, box, out.id, out.state, out.score, out.verified, out.scale, out.vx, out.vy);
 }
 
 // `objects` (threshold mode) adds the "objects" field: a GST_TYPE_LIST of "colortrack-object" structures.
@@ -1164,15 +1173,8 @@ static colortrack::TrackOutput primary_output(const std::vector<colortrack::Trac
 }
 
 static void attach_object_meta(GstBuffer *buffer, const colortrack::TrackedObject &o, const cv::Rect &box) {
-  GstVideoRegionOfInterestMeta *meta = gst_buffer_add_video_region_of_interest_meta(
-      buffer, "colortrack", static_cast<guint>(box.x), static_cast<guint>(box.y), static_cast<guint>(box.width),
-      static_cast<guint>(box.height));
-  meta->id = o.id;
-  GstStructure *params = gst_structure_new(
-      "colortrack", "state", G_TYPE_STRING, colortrack::toString(o.state), "score", G_TYPE_DOUBLE, o.score,
-      "verified", G_TYPE_BOOLEAN, TRUE, "scale", G_TYPE_DOUBLE, o.scale, "vx", G_TYPE_DOUBLE, o.vx, "vy",
-      G_TYPE_DOUBLE, o.vy, "area", G_TYPE_DOUBLE, o.area, nullptr);
-  colortrack_add_roi_params(buffer, meta, params);
+  // Blobs are found by colour alone; there is no edge check in threshold mode.
+  attach_track_meta(buffer, box, o.id, o.state, o.score, true, o.scale, o.vx, o.vy, &o.area);
 }
 
 static void draw_threshold_overlay(GstVideoFrame *frame, const Settings &settings, const State &state,
@@ -1372,6 +1374,8 @@ static GstFlowReturn gst_color_track_transform_frame_ip(GstVideoFilter *filter, 
                              "video window. Passing video through."),
                             (nullptr));
       }
+      // Messages still come for every frame (an application waiting for a click sees "searching").
+      if (snapshot.postMessages) post_track_message(self, buffer, frameNumber, colortrack::TrackOutput());
       return GST_FLOW_OK;
     }
 

@@ -4,17 +4,38 @@
 
 namespace colortrack {
 
+namespace {
+
+std::array<int, 3> coarsened(const BinLayout &layout) {
+  std::array<int, 3> bins = layout.bins;
+  auto product = [&] { return static_cast<size_t>(bins[0]) * bins[1] * bins[2]; };
+  while (product() > ColorLikelihood::kMaxJointBins) {
+    int &largest = *std::max_element(bins.begin(), bins.end());
+    largest = (largest + 1) / 2;
+  }
+  return bins;
+}
+
+}  // namespace
+
 ColorLikelihood::ColorLikelihood(const BinLayout &layout)
     : layout_(layout),
-      table_(static_cast<size_t>(layout.bins[0]) * layout.bins[1] * layout.bins[2], 0.5f),
-      strict_(table_.size(), 0.f) {}
+      jointBins_(coarsened(layout)),
+      table_(static_cast<size_t>(jointBins_[0]) * jointBins_[1] * jointBins_[2], 0.5f),
+      strict_(table_.size(), 0.f) {
+  for (int c = 0; c < 3; ++c)
+    for (int b = 0; b < 256; ++b)
+      reduce_[c][b] = static_cast<std::uint8_t>(std::min(b, layout.bins[c] - 1) * jointBins_[c] / layout.bins[c]);
+}
 
 void ColorLikelihood::learn(const BinImage &bins, const cv::Rect &object, const cv::Rect &surroundings,
                             double rate) {
   const cv::Rect limits = bins.frameRect();
   const cv::Rect inner = object & limits, outer = (surroundings | object) & limits;
   if (inner.empty()) return;
-  std::vector<float> objectCounts(table_.size(), 0.f), ringCounts(table_.size(), 0.f);
+  objectCounts_.assign(table_.size(), 0.f);
+  ringCounts_.assign(table_.size(), 0.f);
+  std::vector<float> &objectCounts = objectCounts_, &ringCounts = ringCounts_;
   for (int y = outer.y; y < outer.br().y; ++y) {
     const cv::Vec3b *row = bins.bins.ptr<cv::Vec3b>(y - bins.origin.y) - bins.origin.x;
     const bool rowInObject = y >= inner.y && y < inner.br().y;

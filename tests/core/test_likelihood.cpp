@@ -75,3 +75,19 @@ TEST(Likelihood, MapsEveryPixelAndClipsLearning) {
   cv::integral(probability, integral, CV_64F);
   EXPECT_NEAR(boxSum(integral, cv::Rect(11, 10, 19, 20)), 19 * 20, 1e-9);  // the red part of the object
 }
+
+TEST(Likelihood, FineBinsAreCoarsenedToABoundedTable) {
+  const BinLayout fine{{256, 256, 256}};
+  ColorLikelihood likelihood(fine);
+  EXPECT_LE(likelihood.tableSize(), ColorLikelihood::kMaxJointBins);
+  EXPECT_GE(likelihood.tableSize(), ColorLikelihood::kMaxJointBins / 8);
+  // Still learns: the object's colour against the surroundings'.
+  BinMapper mapper(ColorSpace::Hsv, fine);
+  BinImage bins;
+  mapper.map(makeImage(), bins.bins);
+  likelihood.learn(bins, cv::Rect(10, 10, 20, 20), cv::Rect(0, 0, 40, 40), 1.0);
+  cv::Mat probability;
+  likelihood.map(bins, probability);
+  EXPECT_FLOAT_EQ(probability.at<float>(20, 20), 1.0f);  // red, only in the object
+  EXPECT_FLOAT_EQ(probability.at<float>(35, 35), 0.0f);  // green, only around it
+}

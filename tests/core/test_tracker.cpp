@@ -174,3 +174,20 @@ TEST(Tracker, MissingTemplateFileNamesThePath) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/dir/ball.png"), std::string::npos);
   }
 }
+
+TEST(ImageSource, SamplesEveryStepthPixelFromTheCorner) {
+  cv::Mat image(37, 53, CV_8UC3);
+  for (int y = 0; y < image.rows; ++y)
+    for (int x = 0; x < image.cols; ++x) image.at<cv::Vec3b>(y, x) = cv::Vec3b(x, y, 7);
+  const MatImageSource source(image);
+  const cv::Rect rect(3, 2, 47, 33);  // neither side a multiple of the step
+  cv::Mat sample;
+  source.sampledBgr(rect, 4, sample);
+  ASSERT_EQ(sample.size(), cv::Size(11, 8));
+  for (int j = 0; j < sample.rows; ++j)
+    for (int i = 0; i < sample.cols; ++i) {
+      const cv::Vec3b p = sample.at<cv::Vec3b>(j, i);
+      ASSERT_EQ(p[0], rect.x + 4 * i) << i << "," << j;
+      ASSERT_EQ(p[1], rect.y + 4 * j) << i << "," << j;
+    }
+}

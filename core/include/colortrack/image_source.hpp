@@ -6,6 +6,11 @@
 
 namespace colortrack {
 
+// Size of a sample of `rect` taking every `step`-th pixel, and the part of `rect` it covers exactly (so that
+// a nearest-neighbour resize of that part to the sample size reads pixel i * step, as the tracker assumes).
+cv::Size sampledSize(const cv::Rect &rect, int step);
+cv::Rect sampledCover(const cv::Rect &rect, int step);
+
 class ImageSource {
  public:
   virtual ~ImageSource() = default;

@@ -3,6 +3,8 @@
 // surroundings share count less, which is what a plain template histogram cannot express.
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -33,11 +35,18 @@ class ColorLikelihood {
   // P(object | colour) of one joint bin.
   float probability(int jointBin) const { return table_[jointBin]; }
   int jointBin(const cv::Vec3b &bins) const {
-    return (bins[0] * layout_.bins[1] + bins[1]) * layout_.bins[2] + bins[2];
+    return (reduce_[0][bins[0]] * jointBins_[1] + reduce_[1][bins[1]]) * jointBins_[2] + reduce_[2][bins[2]];
   }
+  // Size of the joint table: the product of the bins, coarsened (largest channel halved first) to at most
+  // kMaxJointBins, so that bins=256,256,256 stays a 64 K table instead of a 16 M one updated every frame.
+  size_t tableSize() const { return table_.size(); }
+  static constexpr size_t kMaxJointBins = 1 << 16;
 
  private:
   BinLayout layout_;
+  std::array<int, 3> jointBins_{};                        // bins per channel in the joint table
+  std::array<std::array<std::uint8_t, 256>, 3> reduce_{};  // channel bin -> joint-table bin
+  std::vector<float> objectCounts_, ringCounts_;           // scratch for learn(), kept between frames
   std::vector<float> table_;   // joint bin -> P(object | colour), unseen colours 0.5
   std::vector<float> strict_;  // the same with unseen colours 0
   bool learned_ = false;
