@@ -40,7 +40,7 @@ struct Options {
   int frames = -1;  // -1: kSceneFrames for the scene, until EOS for real inputs
   std::string initBox;
   std::string templatePath;
-  std::string robotDevice;                            // serial port of a real robot (robotctl device=)
+  std::string robotDevice;                                // serial port of a real robot (robotctl device=)
   std::string robotOutput = "colortrack-demo-robot.txt";  // else the commands go here (robotctl location=)
 };
 

@@ -40,8 +40,8 @@
 
 /* Element message posted by colortrack for every frame when post-messages=true. */
 #define COLORTRACK_MESSAGE_NAME "colortrack"
-#define COLORTRACK_MESSAGE_TIMESTAMP "timestamp"       /* guint64: buffer PTS, GST_CLOCK_TIME_NONE if unknown */
-#define COLORTRACK_MESSAGE_STREAM_TIME "stream-time"   /* guint64 */
+#define COLORTRACK_MESSAGE_TIMESTAMP "timestamp"     /* guint64: buffer PTS, GST_CLOCK_TIME_NONE if unknown */
+#define COLORTRACK_MESSAGE_STREAM_TIME "stream-time" /* guint64 */
 #define COLORTRACK_MESSAGE_RUNNING_TIME "running-time" /* guint64 */
 #define COLORTRACK_MESSAGE_DURATION "duration"         /* guint64 */
 #define COLORTRACK_MESSAGE_FRAME "frame"               /* guint64: frames since start, from 0 */

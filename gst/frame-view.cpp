@@ -94,8 +94,8 @@ void FrameView::sampledBgr(const cv::Rect &rect, int step, cv::Mat &out) const {
   const cv::Size target = sampledSize(rect, step);
   if (GST_VIDEO_FORMAT_INFO_IS_RGB(frame_->info.finfo)) {
     cv::Mat sample;
-    cv::resize(planeMat(frame_, 0, size_, CV_8UC(packed_.pixelBytes))(sampledCover(rect, step)), sample, target, 0,
-               0, cv::INTER_NEAREST);
+    cv::resize(planeMat(frame_, 0, size_, CV_8UC(packed_.pixelBytes))(sampledCover(rect, step)), sample,
+               target, 0, 0, cv::INTER_NEAREST);
     packedToBgr(sample, out);
     return;
   }

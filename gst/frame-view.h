@@ -10,7 +10,8 @@
 namespace colortrack {
 
 // The caps formats the element accepts, as a caps-string list.
-#define COLORTRACK_VIDEO_FORMATS "{ BGR, RGB, BGRx, RGBx, xBGR, xRGB, BGRA, RGBA, ARGB, ABGR, I420, NV12, YUY2 }"
+#define COLORTRACK_VIDEO_FORMATS \
+  "{ BGR, RGB, BGRx, RGBx, xBGR, xRGB, BGRA, RGBA, ARGB, ABGR, I420, NV12, YUY2 }"
 
 // True for the formats FrameView and the overlay understand.
 bool isSupportedFormat(GstVideoFormat format);

@@ -35,7 +35,8 @@
  *
  * ## Example launch lines
  * |[
- * gst-launch-1.0 v4l2src ! videoconvert ! colortrack template-location=ball.png ! videoconvert ! autovideosink
+ * gst-launch-1.0 v4l2src ! videoconvert ! colortrack template-location=ball.png ! videoconvert !
+ * autovideosink
  * ]| Tracks the object of ball.png in a camera stream and shows the overlay.
  * |[
  * gst-launch-1.0 filesrc location=clip.mp4 ! decodebin ! videoconvert ! \
@@ -75,7 +76,8 @@ GST_DEBUG_CATEGORY_STATIC(gst_color_track_debug);
 
 namespace {
 
-constexpr guint kDefaultDraw = GST_COLOR_TRACK_DRAW_BOX | GST_COLOR_TRACK_DRAW_TRAIL | GST_COLOR_TRACK_DRAW_LABEL;
+constexpr guint kDefaultDraw =
+    GST_COLOR_TRACK_DRAW_BOX | GST_COLOR_TRACK_DRAW_TRAIL | GST_COLOR_TRACK_DRAW_LABEL;
 constexpr guint kDefaultTrailLength = 30;
 constexpr gboolean kDefaultPostMessages = FALSE;
 constexpr gboolean kDefaultClickToTrack = TRUE;
@@ -247,20 +249,23 @@ GType gst_color_track_verify_get_type(void) {
       {GST_COLOR_TRACK_VERIFY_BOTH, "Edge density and energy both close to the template's", "both"},
       {0, nullptr, nullptr},
   };
-  if (g_once_init_enter(&type)) g_once_init_leave(&type, g_enum_register_static("GstColorTrackVerify", values));
+  if (g_once_init_enter(&type))
+    g_once_init_leave(&type, g_enum_register_static("GstColorTrackVerify", values));
   return type;
 }
 
 GType gst_color_track_method_get_type(void) {
   static gsize type = 0;
   static const GEnumValue values[] = {
-      {GST_COLOR_TRACK_METHOD_INDEXING, "Modified colour indexing: template histograms by intersection", "indexing"},
+      {GST_COLOR_TRACK_METHOD_INDEXING, "Modified colour indexing: template histograms by intersection",
+       "indexing"},
       {GST_COLOR_TRACK_METHOD_DISCRIMINATIVE,
        "Object-versus-surroundings colour likelihood with motion prior (more accurate on real video)",
        "discriminative"},
       {0, nullptr, nullptr},
   };
-  if (g_once_init_enter(&type)) g_once_init_leave(&type, g_enum_register_static("GstColorTrackMethod", values));
+  if (g_once_init_enter(&type))
+    g_once_init_leave(&type, g_enum_register_static("GstColorTrackMethod", values));
   return type;
 }
 
@@ -274,7 +279,8 @@ GType gst_color_track_draw_get_type(void) {
       {GST_COLOR_TRACK_DRAW_MASK, "mode=threshold: pixels inside the HSV range, tinted magenta", "mask"},
       {0, nullptr, nullptr},
   };
-  if (g_once_init_enter(&type)) g_once_init_leave(&type, g_flags_register_static("GstColorTrackDraw", values));
+  if (g_once_init_enter(&type))
+    g_once_init_leave(&type, g_flags_register_static("GstColorTrackDraw", values));
   return type;
 }
 
@@ -287,7 +293,8 @@ colortrack::ColorSpace toColorSpace(gint value) {
   return value == GST_COLOR_TRACK_COLOR_SPACE_RGB ? colortrack::ColorSpace::Rgb : colortrack::ColorSpace::Hsv;
 }
 GstColorTrackColorSpace fromColorSpace(colortrack::ColorSpace space) {
-  return space == colortrack::ColorSpace::Rgb ? GST_COLOR_TRACK_COLOR_SPACE_RGB : GST_COLOR_TRACK_COLOR_SPACE_HSV;
+  return space == colortrack::ColorSpace::Rgb ? GST_COLOR_TRACK_COLOR_SPACE_RGB
+                                              : GST_COLOR_TRACK_COLOR_SPACE_HSV;
 }
 
 GstColorTrackMethod methodOf(colortrack::Method method) {
@@ -321,15 +328,19 @@ GstColorTrackVerify fromVerifyMode(colortrack::VerifyMode mode) {
   return GST_COLOR_TRACK_VERIFY_BOTH;
 }
 
-Settings &settingsOf(GstColorTrack *self) { return self->priv->settings; }
-State &stateOf(GstColorTrack *self) { return self->priv->state; }
+Settings &settingsOf(GstColorTrack *self) {
+  return self->priv->settings;
+}
+State &stateOf(GstColorTrack *self) {
+  return self->priv->state;
+}
 
 // Sets a text property. A value that does not parse is kept (and reported at start) before streaming; while
 // streaming it is rejected with a warning and the previous value stays. Posts outside the object lock, since
 // posting takes it.
 template <typename Parsed, typename Parse, typename Apply>
-void setTextProperty(GstColorTrack *self, const char *property, TextSetting Settings::*member, const GValue *value,
-                     Parse parse, Apply apply) {
+void setTextProperty(GstColorTrack *self, const char *property, TextSetting Settings::*member,
+                     const GValue *value, Parse parse, Apply apply) {
   const char *raw = g_value_get_string(value);
   const std::string text = raw ? raw : "";
   std::string error;
@@ -466,8 +477,8 @@ void setMinArea(GstColorTrack *self, int minArea) {
   GST_OBJECT_UNLOCK(self);
   if (rejected)
     GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS,
-                        ("Property 'min-area' %d is larger than the %dx%d frame (%d pixels). Keeping %d.", minArea,
-                         frame.width, frame.height, frame.area(), kept),
+                        ("Property 'min-area' %d is larger than the %dx%d frame (%d pixels). Keeping %d.",
+                         minArea, frame.width, frame.height, frame.area(), kept),
                         (nullptr));
 }
 
@@ -481,7 +492,8 @@ static void gst_color_track_reset_action(GstColorTrack *self) {
   self->priv->resetRequested = true;
 }
 
-static void gst_color_track_set_property(GObject *object, guint prop_id, const GValue *value, GParamSpec *pspec) {
+static void gst_color_track_set_property(GObject *object, guint prop_id, const GValue *value,
+                                         GParamSpec *pspec) {
   GstColorTrack *self = GST_COLOR_TRACK(object);
 
   switch (prop_id) {
@@ -588,8 +600,9 @@ static void gst_color_track_set_property(GObject *object, guint prop_id, const G
       t.verifyTolerance = g_value_get_double(value);
       break;
     case PROP_METHOD:
-      t.method = g_value_get_enum(value) == GST_COLOR_TRACK_METHOD_INDEXING ? colortrack::Method::Indexing
-                                                                           : colortrack::Method::Discriminative;
+      t.method = g_value_get_enum(value) == GST_COLOR_TRACK_METHOD_INDEXING
+                     ? colortrack::Method::Indexing
+                     : colortrack::Method::Discriminative;
       break;
     case PROP_LIKELIHOOD_THRESHOLD:
       t.likelihoodThreshold = g_value_get_double(value);
@@ -902,7 +915,8 @@ static double frame_step(GstColorTrack *self, GstVideoFilter *filter, GstBuffer 
   const GstClockTime pts = GST_BUFFER_PTS(buffer);
   const GstClockTime period = frameDuration(&filter->in_info, buffer);
   double dt = 1.0;
-  if (GST_CLOCK_TIME_IS_VALID(pts) && GST_CLOCK_TIME_IS_VALID(state.lastPts) && pts > state.lastPts && period > 0) {
+  if (GST_CLOCK_TIME_IS_VALID(pts) && GST_CLOCK_TIME_IS_VALID(state.lastPts) && pts > state.lastPts &&
+      period > 0) {
     // Clamped: a long gap says nothing reliable about motion, and a tiny one is jitter.
     dt = std::clamp(static_cast<double>(pts - state.lastPts) / static_cast<double>(period), 0.25, 8.0);
   }
@@ -916,13 +930,13 @@ static void attach_track_meta(GstBuffer *buffer, const cv::Rect &box, gint id, c
                               double score, bool verified, double scale, double vx, double vy,
                               const double *area = nullptr) {
   GstVideoRegionOfInterestMeta *meta = gst_buffer_add_video_region_of_interest_meta(
-      buffer, "colortrack", static_cast<guint>(box.x), static_cast<guint>(box.y), static_cast<guint>(box.width),
-      static_cast<guint>(box.height));
+      buffer, "colortrack", static_cast<guint>(box.x), static_cast<guint>(box.y),
+      static_cast<guint>(box.width), static_cast<guint>(box.height));
   meta->id = id;
   GstStructure *params = gst_structure_new("colortrack", "state", G_TYPE_STRING, colortrack::toString(state),
                                            "score", G_TYPE_DOUBLE, score, "verified", G_TYPE_BOOLEAN,
-                                           static_cast<gboolean>(verified), "scale", G_TYPE_DOUBLE, scale, "vx",
-                                           G_TYPE_DOUBLE, vx, "vy", G_TYPE_DOUBLE, vy, nullptr);
+                                           static_cast<gboolean>(verified), "scale", G_TYPE_DOUBLE, scale,
+                                           "vx", G_TYPE_DOUBLE, vx, "vy", G_TYPE_DOUBLE, vy, nullptr);
   if (area) gst_structure_set(params, "area", G_TYPE_DOUBLE, *area, nullptr);
   colortrack_add_roi_params(buffer, meta, params);
 }
@@ -948,12 +962,12 @@ static void post_track_message(GstColorTrack *self, GstBuffer *buffer, guint64 f
   GstStructure *s = gst_structure_new(
       "colortrack", "timestamp", G_TYPE_UINT64, static_cast<guint64>(pts), "stream-time", G_TYPE_UINT64,
       static_cast<guint64>(streamTime), "running-time", G_TYPE_UINT64, static_cast<guint64>(runningTime),
-      "duration", G_TYPE_UINT64, static_cast<guint64>(GST_BUFFER_DURATION(buffer)), "frame", G_TYPE_UINT64, frame,
-      "id", G_TYPE_INT, out.id, "state", G_TYPE_STRING, stateName ? stateName : colortrack::toString(out.state),
-      "x", G_TYPE_DOUBLE, box.x,
-      "y", G_TYPE_DOUBLE, box.y, "width", G_TYPE_DOUBLE, box.width, "height", G_TYPE_DOUBLE, box.height, "score",
-      G_TYPE_DOUBLE, out.score, "verified", G_TYPE_BOOLEAN, static_cast<gboolean>(out.verified), "scale",
-      G_TYPE_DOUBLE, out.scale, nullptr);
+      "duration", G_TYPE_UINT64, static_cast<guint64>(GST_BUFFER_DURATION(buffer)), "frame", G_TYPE_UINT64,
+      frame, "id", G_TYPE_INT, out.id, "state", G_TYPE_STRING,
+      stateName ? stateName : colortrack::toString(out.state), "x", G_TYPE_DOUBLE, box.x, "y", G_TYPE_DOUBLE,
+      box.y, "width", G_TYPE_DOUBLE, box.width, "height", G_TYPE_DOUBLE, box.height, "score", G_TYPE_DOUBLE,
+      out.score, "verified", G_TYPE_BOOLEAN, static_cast<gboolean>(out.verified), "scale", G_TYPE_DOUBLE,
+      out.scale, nullptr);
   if (objects) {
     GValue list = G_VALUE_INIT;
     g_value_init(&list, GST_TYPE_LIST);
@@ -961,10 +975,10 @@ static void post_track_message(GstColorTrack *self, GstBuffer *buffer, guint64 f
       GValue item = G_VALUE_INIT;
       g_value_init(&item, GST_TYPE_STRUCTURE);
       GstStructure *object = gst_structure_new(
-          "colortrack-object", "id", G_TYPE_INT, o.id, "x", G_TYPE_DOUBLE, o.box.x, "y", G_TYPE_DOUBLE, o.box.y,
-          "width", G_TYPE_DOUBLE, o.box.width, "height", G_TYPE_DOUBLE, o.box.height, "cx", G_TYPE_DOUBLE,
-          o.centre.x, "cy", G_TYPE_DOUBLE, o.centre.y, "area", G_TYPE_DOUBLE, o.area, "state", G_TYPE_STRING,
-          colortrack::toString(o.state), "score", G_TYPE_DOUBLE, o.score, nullptr);
+          "colortrack-object", "id", G_TYPE_INT, o.id, "x", G_TYPE_DOUBLE, o.box.x, "y", G_TYPE_DOUBLE,
+          o.box.y, "width", G_TYPE_DOUBLE, o.box.width, "height", G_TYPE_DOUBLE, o.box.height, "cx",
+          G_TYPE_DOUBLE, o.centre.x, "cy", G_TYPE_DOUBLE, o.centre.y, "area", G_TYPE_DOUBLE, o.area, "state",
+          G_TYPE_STRING, colortrack::toString(o.state), "score", G_TYPE_DOUBLE, o.score, nullptr);
       gst_value_set_structure(&item, object);
       gst_structure_free(object);
       gst_value_list_append_and_take_value(&list, &item);
@@ -1002,9 +1016,9 @@ static void draw_overlay(GstVideoFrame *frame, const Settings &settings, const S
 
 // Applies the settings snapshot to the tracker: everything that changed since the last frame.
 // Returns false (after posting an error) when streaming must stop.
-static bool apply_settings(GstColorTrack *self, const Settings &snapshot, const std::optional<cv::Rect> &initBox,
-                           bool initBoxWhileStreaming, const std::string &initBoxText,
-                           const colortrack::FrameView &view) {
+static bool apply_settings(GstColorTrack *self, const Settings &snapshot,
+                           const std::optional<cv::Rect> &initBox, bool initBoxWhileStreaming,
+                           const std::string &initBoxText, const colortrack::FrameView &view) {
   State &state = stateOf(self);
   colortrack::Tracker &tracker = *state.tracker;
 
@@ -1071,8 +1085,8 @@ static bool apply_settings(GstColorTrack *self, const Settings &snapshot, const 
 
 static std::string describeClick(const ClickRequest &click, const cv::Rect &box) {
   char text[96];
-  std::snprintf(text, sizeof text, "the click at %.0f,%.0f (box %d,%d,%d,%d)", click.point.x, click.point.y, box.x,
-                box.y, box.width, box.height);
+  std::snprintf(text, sizeof text, "the click at %.0f,%.0f (box %d,%d,%d,%d)", click.point.x, click.point.y,
+                box.x, box.y, box.width, box.height);
   return text;
 }
 
@@ -1089,8 +1103,8 @@ static void apply_click(GstColorTrack *self, const ClickRequest &click, int boxS
   }
   const cv::Rect box = boxAround(click.point, boxSize, view.size());
   if (box.empty()) {
-    GST_INFO_OBJECT(self, "click at %.1f,%.1f lies outside the %dx%d frame: ignored", click.point.x, click.point.y,
-                    view.size().width, view.size().height);
+    GST_INFO_OBJECT(self, "click at %.1f,%.1f lies outside the %dx%d frame: ignored", click.point.x,
+                    click.point.y, view.size().width, view.size().height);
     return;
   }
   state.tracker->setTemplateFromBox(view, box);
@@ -1130,7 +1144,8 @@ static colortrack::SampledFrame sampled_frame(const GstVideoFrame *frame) {
     }
     case GST_VIDEO_FORMAT_YUY2: {
       const cv::Mat packed = bytes(0, h, 4 * cw);  // Y0 U Y1 V per two pixels
-      out.channels = {colortrack::ChannelSampler{packed, 0, 2, 1, 1}, colortrack::ChannelSampler{packed, 1, 4, 2, 1},
+      out.channels = {colortrack::ChannelSampler{packed, 0, 2, 1, 1},
+                      colortrack::ChannelSampler{packed, 1, 4, 2, 1},
                       colortrack::ChannelSampler{packed, 3, 4, 2, 1}};
       break;
     }
@@ -1183,12 +1198,14 @@ static void draw_threshold_overlay(GstVideoFrame *frame, const Settings &setting
   if (settings.draw == 0) return;
   colortrack::FrameCanvas canvas(frame);
   if (settings.draw & GST_COLOR_TRACK_DRAW_MASK)
-    canvas.tintMask(state.blobDetector->mask(), state.blobDetector->lastDecimation(), colortrack::colors::kMagenta);
+    canvas.tintMask(state.blobDetector->mask(), state.blobDetector->lastDecimation(),
+                    colortrack::colors::kMagenta);
   for (size_t i = 0; i < objects.size(); ++i) {
     const colortrack::TrackedObject &o = objects[i];
     const colortrack::Rgb colour = colortrack::idColour(o.id);
     const auto trail = state.trails.find(o.id);
-    if ((settings.draw & GST_COLOR_TRACK_DRAW_TRAIL) && trail != state.trails.end() && trail->second.size() >= 2) {
+    if ((settings.draw & GST_COLOR_TRACK_DRAW_TRAIL) && trail != state.trails.end() &&
+        trail->second.size() >= 2) {
       std::vector<cv::Point> points;
       for (const cv::Point2d &p : trail->second) points.emplace_back(cvRound(p.x), cvRound(p.y));
       canvas.polyline(points, colour, kTrailThickness);
@@ -1207,7 +1224,8 @@ static void draw_threshold_overlay(GstVideoFrame *frame, const Settings &setting
 
 // Learns hsv-lower/hsv-upper from the pixels of `box` (init-box or a click) and starts over with that range;
 // the properties then report it, so it can be reused in a launch line.
-static void learn_range(GstColorTrack *self, GstVideoFrame *frame, const cv::Rect &box, const std::string &origin) {
+static void learn_range(GstColorTrack *self, GstVideoFrame *frame, const cv::Rect &box,
+                        const std::string &origin) {
   State &state = stateOf(self);
   const colortrack::HsvRange learnt = colortrack::learnRange(colortrack::FrameView(frame), box);
   GST_OBJECT_LOCK(self);
@@ -1223,8 +1241,9 @@ static void learn_range(GstColorTrack *self, GstVideoFrame *frame, const cv::Rec
   state.multiTracker.reset();
   state.trails.clear();
   state.idle = false;
-  GST_INFO_OBJECT(self, "learnt hsv-lower %s hsv-upper %s from %s", colortrack::formatHsv(learnt.lower).c_str(),
-                  colortrack::formatHsv(learnt.upper).c_str(), origin.c_str());
+  GST_INFO_OBJECT(self, "learnt hsv-lower %s hsv-upper %s from %s",
+                  colortrack::formatHsv(learnt.lower).c_str(), colortrack::formatHsv(learnt.upper).c_str(),
+                  origin.c_str());
   g_object_notify(G_OBJECT(self), "hsv-lower");
   g_object_notify(G_OBJECT(self), "hsv-upper");
 }
@@ -1232,16 +1251,18 @@ static void learn_range(GstColorTrack *self, GstVideoFrame *frame, const cv::Rec
 // One frame in threshold mode: segment, clean, label, associate; meta, overlay and message per track.
 static GstFlowReturn threshold_frame(GstColorTrack *self, GstVideoFrame *frame, const Settings &snapshot,
                                      const std::optional<cv::Rect> &initBox,
-                                     const std::optional<ClickRequest> &click, guint64 frameNumber, double dt) {
+                                     const std::optional<ClickRequest> &click, guint64 frameNumber,
+                                     double dt) {
   State &state = stateOf(self);
   const cv::Size size(GST_VIDEO_FRAME_WIDTH(frame), GST_VIDEO_FRAME_HEIGHT(frame));
   colortrack::BlobDetector &detector = *state.blobDetector;
 
   if (snapshot.blobs.minArea > size.area()) {
-    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                      ("Property 'min-area' %d is larger than the %dx%d frame (%d pixels): nothing can be found.",
-                       snapshot.blobs.minArea, size.width, size.height, size.area()),
-                      (nullptr));
+    GST_ELEMENT_ERROR(
+        self, RESOURCE, SETTINGS,
+        ("Property 'min-area' %d is larger than the %dx%d frame (%d pixels): nothing can be found.",
+         snapshot.blobs.minArea, size.width, size.height, size.area()),
+        (nullptr));
     return GST_FLOW_ERROR;
   }
   if (snapshot.blobsGeneration != state.appliedBlobsGeneration) {
@@ -1268,8 +1289,8 @@ static GstFlowReturn threshold_frame(GstColorTrack *self, GstVideoFrame *frame, 
                             (nullptr));
       } else {
         GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                          ("Property 'init-box' '%s' does not fit in the %dx%d frame.", snapshot.initBox.text.c_str(),
-                           size.width, size.height),
+                          ("Property 'init-box' '%s' does not fit in the %dx%d frame.",
+                           snapshot.initBox.text.c_str(), size.width, size.height),
                           (nullptr));
         return GST_FLOW_ERROR;
       }
@@ -1355,7 +1376,8 @@ static GstFlowReturn gst_color_track_transform_frame_ip(GstVideoFilter *filter, 
     if (snapshot.mode == GST_COLOR_TRACK_MODE_THRESHOLD)
       return threshold_frame(self, frame, snapshot, initBox, click, frameNumber, dt);
     const colortrack::FrameView view(frame);
-    if (!apply_settings(self, snapshot, initBox, snapshot.initBoxSetWhileStreaming, snapshot.initBox.text, view))
+    if (!apply_settings(self, snapshot, initBox, snapshot.initBoxSetWhileStreaming, snapshot.initBox.text,
+                        view))
       return GST_FLOW_ERROR;
     if (click) apply_click(self, *click, snapshot.clickBoxSize, view);
 
@@ -1381,10 +1403,11 @@ static GstFlowReturn gst_color_track_transform_frame_ip(GstVideoFilter *filter, 
 
     const cv::Size templateSize = tracker.templateSize();
     if (templateSize.width > view.size().width || templateSize.height > view.size().height) {
-      GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                        ("The template from %s (%dx%d) is larger than the %dx%d frame.", state.templateOrigin.c_str(),
-                         templateSize.width, templateSize.height, view.size().width, view.size().height),
-                        (nullptr));
+      GST_ELEMENT_ERROR(
+          self, RESOURCE, SETTINGS,
+          ("The template from %s (%dx%d) is larger than the %dx%d frame.", state.templateOrigin.c_str(),
+           templateSize.width, templateSize.height, view.size().width, view.size().height),
+          (nullptr));
       return GST_FLOW_ERROR;
     }
 
@@ -1433,40 +1456,46 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
 
   g_object_class_install_property(
       gobject_class, PROP_MODE,
-      g_param_spec_enum("mode", "Mode",
-                        "How the object is defined: 'template' follows one object like a template; 'threshold' "
-                        "follows every blob of pixels inside an HSV range, each with its own id",
-                        GST_TYPE_COLOR_TRACK_MODE, GST_COLOR_TRACK_MODE_TEMPLATE, rw));
+      g_param_spec_enum(
+          "mode", "Mode",
+          "How the object is defined: 'template' follows one object like a template; 'threshold' "
+          "follows every blob of pixels inside an HSV range, each with its own id",
+          GST_TYPE_COLOR_TRACK_MODE, GST_COLOR_TRACK_MODE_TEMPLATE, rw));
   g_object_class_install_property(
       gobject_class, PROP_TEMPLATE_LOCATION,
-      g_param_spec_string("template-location", "Template location",
-                          "Image file (PNG, JPEG) of the object to track; a PNG alpha channel selects its pixels. "
-                          "Loaded at start and again when changed",
-                          nullptr, live));
+      g_param_spec_string(
+          "template-location", "Template location",
+          "Image file (PNG, JPEG) of the object to track; a PNG alpha channel selects its pixels. "
+          "Loaded at start and again when changed",
+          nullptr, live));
   g_object_class_install_property(
       gobject_class, PROP_INIT_BOX,
-      g_param_spec_string("init-box", "Initial box",
-                          "\"x,y,w,h\" in pixels: the template is taken from this box of the next frame, where "
-                          "tracking starts (mode=threshold: hsv-lower/hsv-upper are learnt from the object in it); "
-                          "cleared once used",
-                          nullptr, live));
+      g_param_spec_string(
+          "init-box", "Initial box",
+          "\"x,y,w,h\" in pixels: the template is taken from this box of the next frame, where "
+          "tracking starts (mode=threshold: hsv-lower/hsv-upper are learnt from the object in it); "
+          "cleared once used",
+          nullptr, live));
   g_object_class_install_property(
       gobject_class, PROP_METHOD,
-      g_param_spec_enum("method", "Method",
-                        "How frames are searched: 'indexing' is the paper's colour indexing; 'discriminative' "
-                        "also learns which colours tell the object from its surroundings",
-                        GST_TYPE_COLOR_TRACK_METHOD, methodOf(defaults.method), live));
+      g_param_spec_enum(
+          "method", "Method",
+          "How frames are searched: 'indexing' is the paper's colour indexing; 'discriminative' "
+          "also learns which colours tell the object from its surroundings",
+          GST_TYPE_COLOR_TRACK_METHOD, methodOf(defaults.method), live));
   g_object_class_install_property(
       gobject_class, PROP_LIKELIHOOD_THRESHOLD,
-      g_param_spec_double("likelihood-threshold", "Likelihood threshold",
-                          "method=discriminative: minimum mean object likelihood (0-1) in the box for a detection",
-                          0.0, 1.0, defaults.likelihoodThreshold, live));
+      g_param_spec_double(
+          "likelihood-threshold", "Likelihood threshold",
+          "method=discriminative: minimum mean object likelihood (0-1) in the box for a detection", 0.0, 1.0,
+          defaults.likelihoodThreshold, live));
   g_object_class_install_property(
       gobject_class, PROP_MODEL_UPDATE_RATE,
-      g_param_spec_double("model-update-rate", "Model update rate",
-                          "method=discriminative: how fast the colour likelihood follows appearance changes, per "
-                          "frame (0 = learn once)",
-                          0.0, 1.0, defaults.modelUpdateRate, live));
+      g_param_spec_double(
+          "model-update-rate", "Model update rate",
+          "method=discriminative: how fast the colour likelihood follows appearance changes, per "
+          "frame (0 = learn once)",
+          0.0, 1.0, defaults.modelUpdateRate, live));
   g_object_class_install_property(
       gobject_class, PROP_ADAPT_ASPECT,
       g_param_spec_boolean("adapt-aspect", "Adapt aspect",
@@ -1474,23 +1503,23 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
                            defaults.adaptAspect, live));
   g_object_class_install_property(
       gobject_class, PROP_COLOR_SPACE,
-      g_param_spec_enum("color-space", "Colour space", "Colour space of the histograms", GST_TYPE_COLOR_TRACK_COLOR_SPACE,
-                        fromColorSpace(defaults.colorSpace), live));
+      g_param_spec_enum("color-space", "Colour space", "Colour space of the histograms",
+                        GST_TYPE_COLOR_TRACK_COLOR_SPACE, fromColorSpace(defaults.colorSpace), live));
   g_object_class_install_property(
       gobject_class, PROP_BINS,
       g_param_spec_string("bins", "Bins", "Histogram bins per channel, \"c1,c2,c3\", each 1-256",
                           colortrack::formatBins(defaults.bins).c_str(), live));
   g_object_class_install_property(
       gobject_class, PROP_CHANNEL_WEIGHTS,
-      g_param_spec_string("channel-weights", "Channel weights",
-                          "Weight of each channel in the match, \"w1,w2,w3\", each 0-1 (V is weighted down for "
-                          "robustness to lighting)",
-                          colortrack::formatWeights(defaults.weights).c_str(), live));
-  g_object_class_install_property(
-      gobject_class, PROP_MATCH_THRESHOLD,
-      g_param_spec_double("match-threshold", "Match threshold",
-                          "Minimum histogram match value (0-1) of a detection", 0.0, 1.0, defaults.matchThreshold,
-                          live));
+      g_param_spec_string(
+          "channel-weights", "Channel weights",
+          "Weight of each channel in the match, \"w1,w2,w3\", each 0-1 (V is weighted down for "
+          "robustness to lighting)",
+          colortrack::formatWeights(defaults.weights).c_str(), live));
+  g_object_class_install_property(gobject_class, PROP_MATCH_THRESHOLD,
+                                  g_param_spec_double("match-threshold", "Match threshold",
+                                                      "Minimum histogram match value (0-1) of a detection",
+                                                      0.0, 1.0, defaults.matchThreshold, live));
   g_object_class_install_property(
       gobject_class, PROP_SCALE_MIN,
       g_param_spec_double("scale-min", "Minimum scale step",
@@ -1505,12 +1534,12 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
       gobject_class, PROP_SCALE_STEP,
       g_param_spec_double("scale-step", "Scale step", "Step between the box sizes tried", 0.001, 0.5,
                           defaults.scale.step, live));
-  g_object_class_install_property(
-      gobject_class, PROP_SEARCH_MARGIN,
-      g_param_spec_double("search-margin", "Search margin",
-                          "Search region around the prediction: the box grown on each side by this many half box sizes, plus 3 "
-                          "sigma of the predicted position", 0.0,
-                          20.0, defaults.searchMargin, live));
+  g_object_class_install_property(gobject_class, PROP_SEARCH_MARGIN,
+                                  g_param_spec_double("search-margin", "Search margin",
+                                                      "Search region around the prediction: the box grown on "
+                                                      "each side by this many half box sizes, plus 3 "
+                                                      "sigma of the predicted position",
+                                                      0.0, 20.0, defaults.searchMargin, live));
   g_object_class_install_property(
       gobject_class, PROP_PROCESS_NOISE,
       g_param_spec_double("process-noise", "Process noise",
@@ -1522,11 +1551,10 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
       g_param_spec_double("measurement-noise", "Measurement noise",
                           "Kalman measurement noise (variance of a detection's position, px^2)", 1e-6, 1e6,
                           defaults.kalman.measurementNoise, live));
-  g_object_class_install_property(
-      gobject_class, PROP_MAX_COAST_FRAMES,
-      g_param_spec_int("max-coast-frames", "Maximum coasting frames",
-                       "Frames without a detection before the track is lost", 0, 10000, defaults.maxCoastFrames,
-                       live));
+  g_object_class_install_property(gobject_class, PROP_MAX_COAST_FRAMES,
+                                  g_param_spec_int("max-coast-frames", "Maximum coasting frames",
+                                                   "Frames without a detection before the track is lost", 0,
+                                                   10000, defaults.maxCoastFrames, live));
   g_object_class_install_property(
       gobject_class, PROP_VERIFY,
       g_param_spec_enum("verify", "Verify", "Edge check that tells the object from same-coloured look-alikes",
@@ -1537,9 +1565,9 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
                           "Largest relative difference of edge density/energy from the template's for a "
                           "verified match",
                           0.0, 100.0, defaults.verifyTolerance, live));
-  g_object_class_install_property(
-      gobject_class, PROP_DRAW,
-      g_param_spec_flags("draw", "Draw", "What the overlay shows", GST_TYPE_COLOR_TRACK_DRAW, kDefaultDraw, live));
+  g_object_class_install_property(gobject_class, PROP_DRAW,
+                                  g_param_spec_flags("draw", "Draw", "What the overlay shows",
+                                                     GST_TYPE_COLOR_TRACK_DRAW, kDefaultDraw, live));
   g_object_class_install_property(
       gobject_class, PROP_TRAIL_LENGTH,
       g_param_spec_uint("trail-length", "Trail length", "Frames of box-centre history in the trail", 0, 10000,
@@ -1547,29 +1575,33 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
   const colortrack::BlobSettings blobDefaults;
   g_object_class_install_property(
       gobject_class, PROP_HSV_LOWER,
-      g_param_spec_string("hsv-lower", "HSV lower bound",
-                          "mode=threshold: lower end of the colour range, \"h,s,v\" with h in degrees 0-360 and s, v "
-                          "0-1. A lower hue above the upper one wraps through 0 (340 to 20 is red); 0 to 360 is "
-                          "every hue. Set by init-box when it learns a range",
-                          colortrack::formatHsv(blobDefaults.range.lower).c_str(), live));
+      g_param_spec_string(
+          "hsv-lower", "HSV lower bound",
+          "mode=threshold: lower end of the colour range, \"h,s,v\" with h in degrees 0-360 and s, v "
+          "0-1. A lower hue above the upper one wraps through 0 (340 to 20 is red); 0 to 360 is "
+          "every hue. Set by init-box when it learns a range",
+          colortrack::formatHsv(blobDefaults.range.lower).c_str(), live));
   g_object_class_install_property(
       gobject_class, PROP_HSV_UPPER,
-      g_param_spec_string("hsv-upper", "HSV upper bound",
-                          "mode=threshold: upper end of the colour range, \"h,s,v\" (h 0-360, s and v 0-1; s and v "
-                          "not below hsv-lower's)",
-                          colortrack::formatHsv(blobDefaults.range.upper).c_str(), live));
+      g_param_spec_string(
+          "hsv-upper", "HSV upper bound",
+          "mode=threshold: upper end of the colour range, \"h,s,v\" (h 0-360, s and v 0-1; s and v "
+          "not below hsv-lower's)",
+          colortrack::formatHsv(blobDefaults.range.upper).c_str(), live));
   g_object_class_install_property(
       gobject_class, PROP_MORPH_SIZE,
-      g_param_spec_int("morph-size", "Morphology size",
-                       "mode=threshold: side in pixels of the square opening (removes specks) then closing (fills "
-                       "small holes) applied to the colour mask; 0 disables",
-                       0, 255, blobDefaults.morphSize, live));
+      g_param_spec_int(
+          "morph-size", "Morphology size",
+          "mode=threshold: side in pixels of the square opening (removes specks) then closing (fills "
+          "small holes) applied to the colour mask; 0 disables",
+          0, 255, blobDefaults.morphSize, live));
   g_object_class_install_property(
       gobject_class, PROP_MIN_AREA,
-      g_param_spec_int("min-area", "Minimum area",
-                       "mode=threshold: smallest blob, in pixels, that counts as an object (must not exceed the "
-                       "frame's pixel count)",
-                       1, G_MAXINT, blobDefaults.minArea, live));
+      g_param_spec_int(
+          "min-area", "Minimum area",
+          "mode=threshold: smallest blob, in pixels, that counts as an object (must not exceed the "
+          "frame's pixel count)",
+          1, G_MAXINT, blobDefaults.minArea, live));
   g_object_class_install_property(
       gobject_class, PROP_MAX_OBJECTS,
       g_param_spec_int("max-objects", "Maximum objects",
@@ -1577,18 +1609,20 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
                        blobDefaults.maxObjects, live));
   g_object_class_install_property(
       gobject_class, PROP_CLICK_TO_TRACK,
-      g_param_spec_boolean("click-to-track", "Click to track",
-                           "Follow mouse clicks in the video window (GstNavigation events from the sink): a left "
-                           "click starts tracking what was clicked (mode=threshold: learns its colour), a right "
-                           "click stops until a new target is given. The events are passed upstream either way",
-                           kDefaultClickToTrack, live));
+      g_param_spec_boolean(
+          "click-to-track", "Click to track",
+          "Follow mouse clicks in the video window (GstNavigation events from the sink): a left "
+          "click starts tracking what was clicked (mode=threshold: learns its colour), a right "
+          "click stops until a new target is given. The events are passed upstream either way",
+          kDefaultClickToTrack, live));
   g_object_class_install_property(
       gobject_class, PROP_CLICK_BOX_SIZE,
-      g_param_spec_int("click-box-size", "Click box size",
-                       "Side in pixels (of this element's frames) of the square centred on a left click, clipped "
-                       "to the frame, from which the template is taken (mode=threshold: the colour is learnt from "
-                       "its middle half)",
-                       kMinClickBoxSize, 8192, kDefaultClickBoxSize, live));
+      g_param_spec_int(
+          "click-box-size", "Click box size",
+          "Side in pixels (of this element's frames) of the square centred on a left click, clipped "
+          "to the frame, from which the template is taken (mode=threshold: the colour is learnt from "
+          "its middle half)",
+          kMinClickBoxSize, 8192, kDefaultClickBoxSize, live));
   g_object_class_install_property(
       gobject_class, PROP_POST_MESSAGES,
       g_param_spec_boolean("post-messages", "Post messages",
@@ -1602,9 +1636,9 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
    * Forgets the track (the template stays): the next frame searches the whole frame. After a right click
    * (see #GstColorTrack:click-to-track) there is no target and the element stays idle.
    */
-  gst_color_track_signals[SIGNAL_RESET] =
-      g_signal_new("reset", G_TYPE_FROM_CLASS(klass), static_cast<GSignalFlags>(G_SIGNAL_RUN_LAST | G_SIGNAL_ACTION),
-                   G_STRUCT_OFFSET(GstColorTrackClass, reset), nullptr, nullptr, nullptr, G_TYPE_NONE, 0);
+  gst_color_track_signals[SIGNAL_RESET] = g_signal_new(
+      "reset", G_TYPE_FROM_CLASS(klass), static_cast<GSignalFlags>(G_SIGNAL_RUN_LAST | G_SIGNAL_ACTION),
+      G_STRUCT_OFFSET(GstColorTrackClass, reset), nullptr, nullptr, nullptr, G_TYPE_NONE, 0);
   klass->reset = gst_color_track_reset_action;
 
   gst_element_class_set_static_metadata(element_class, "Colour object tracker", "Filter/Analyzer/Video",

@@ -9,7 +9,8 @@ G_BEGIN_DECLS
 
 #define GST_TYPE_COLOR_TRACK (gst_color_track_get_type())
 #define GST_COLOR_TRACK(obj) (G_TYPE_CHECK_INSTANCE_CAST((obj), GST_TYPE_COLOR_TRACK, GstColorTrack))
-#define GST_COLOR_TRACK_CLASS(klass) (G_TYPE_CHECK_CLASS_CAST((klass), GST_TYPE_COLOR_TRACK, GstColorTrackClass))
+#define GST_COLOR_TRACK_CLASS(klass) \
+  (G_TYPE_CHECK_CLASS_CAST((klass), GST_TYPE_COLOR_TRACK, GstColorTrackClass))
 #define GST_IS_COLOR_TRACK(obj) (G_TYPE_CHECK_INSTANCE_TYPE((obj), GST_TYPE_COLOR_TRACK))
 
 typedef struct _GstColorTrack GstColorTrack;

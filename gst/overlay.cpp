@@ -23,12 +23,30 @@ Rgb idColour(int id) {
   const double x = 1 - std::abs(std::fmod(hue, 2.0) - 1);
   double r = 0, g = 0, b = 0;
   switch (static_cast<int>(hue)) {
-    case 0: r = 1; g = x; break;
-    case 1: r = x; g = 1; break;
-    case 2: g = 1; b = x; break;
-    case 3: g = x; b = 1; break;
-    case 4: r = x; b = 1; break;
-    default: r = 1; b = x; break;
+    case 0:
+      r = 1;
+      g = x;
+      break;
+    case 1:
+      r = x;
+      g = 1;
+      break;
+    case 2:
+      g = 1;
+      b = x;
+      break;
+    case 3:
+      g = x;
+      b = 1;
+      break;
+    case 4:
+      r = x;
+      b = 1;
+      break;
+    default:
+      r = 1;
+      b = x;
+      break;
   }
   const auto byte = [](double c) { return static_cast<std::uint8_t>(std::lround(c * 255)); };
   return Rgb{byte(r), byte(g), byte(b)};
@@ -55,7 +73,8 @@ FrameCanvas::FrameCanvas(GstVideoFrame *frame)
       break;
     case GST_VIDEO_FORMAT_YUY2:
       // Macro-pixels (Y0 U Y1 V) of two frame pixels each: a plane half as wide, full height.
-      planes_.push_back({planeMat(frame, 0, cv::Size(half.width, size_.height), CV_8UC4), PlaneKind::Yuy2, 2, 1});
+      planes_.push_back(
+          {planeMat(frame, 0, cv::Size(half.width, size_.height), CV_8UC4), PlaneKind::Yuy2, 2, 1});
       // The same bytes as (Y, U) (Y, V) pairs: text at full resolution; its chroma byte is set neutral.
       textTarget_ = planeMat(frame, 0, cv::Size(2 * half.width, size_.height), CV_8UC2);
       textOnYuv_ = true;
@@ -120,10 +139,10 @@ void FrameCanvas::boxOutline(const cv::Rect &box, const Rgb &colour, int thickne
   int t = std::max(1, thickness);
   if (a > 1) t = thickness <= 1 ? a : std::max(2 * a, (thickness + a - 1) / a * a);
   if (x1 - x0 <= 0 || y1 - y0 <= 0) return;
-  fillRect(cv::Rect(x0, y0, x1 - x0, std::min(t, y1 - y0)), colour);                       // top
-  fillRect(cv::Rect(x0, std::max(y0, y1 - t), x1 - x0, std::min(t, y1 - y0)), colour);     // bottom
-  fillRect(cv::Rect(x0, y0, std::min(t, x1 - x0), y1 - y0), colour);                       // left
-  fillRect(cv::Rect(std::max(x0, x1 - t), y0, std::min(t, x1 - x0), y1 - y0), colour);     // right
+  fillRect(cv::Rect(x0, y0, x1 - x0, std::min(t, y1 - y0)), colour);                    // top
+  fillRect(cv::Rect(x0, std::max(y0, y1 - t), x1 - x0, std::min(t, y1 - y0)), colour);  // bottom
+  fillRect(cv::Rect(x0, y0, std::min(t, x1 - x0), y1 - y0), colour);                    // left
+  fillRect(cv::Rect(std::max(x0, x1 - t), y0, std::min(t, x1 - x0), y1 - y0), colour);  // right
 }
 
 void FrameCanvas::polyline(const std::vector<cv::Point> &points, const Rgb &colour, int thickness) {
@@ -165,7 +184,8 @@ void FrameCanvas::tintMask(const cv::Mat &mask, int step, const Rgb &colour) {
   for (const Plane &plane : planes_) {
     // The mask's grid onto this plane's samples (nearest neighbour keeps it binary).
     const double fx = static_cast<double>(step) / plane.xDiv, fy = static_cast<double>(step) / plane.yDiv;
-    const cv::Size target(std::min(plane.mat.cols, cvRound(mask.cols * fx)), std::min(plane.mat.rows, cvRound(mask.rows * fy)));
+    const cv::Size target(std::min(plane.mat.cols, cvRound(mask.cols * fx)),
+                          std::min(plane.mat.rows, cvRound(mask.rows * fy)));
     if (target.empty()) continue;
     cv::resize(mask, planeMask, target, 0, 0, cv::INTER_NEAREST);
     cv::Mat region = plane.mat(cv::Rect(cv::Point(), target));

@@ -60,9 +60,9 @@ class FrameCanvas {
   void fillRect(const cv::Rect &rect, const Rgb &colour);
 
   std::vector<Plane> planes_;
-  cv::Mat textTarget_;         // packed plane, luma plane, or YUY2 viewed as (Y, chroma) pairs
+  cv::Mat textTarget_;  // packed plane, luma plane, or YUY2 viewed as (Y, chroma) pairs
   bool textOnYuv_ = false;
-  int align_ = 1;              // coordinate alignment that keeps chroma samples whole
+  int align_ = 1;  // coordinate alignment that keeps chroma samples whole
   cv::Size size_;
   int packedBytes_ = 0, red_ = 0, green_ = 0, blue_ = 0, filler_ = -1;
 };

@@ -4,7 +4,9 @@
 
 namespace {
 
-std::string fieldFor(gint id) { return "id-" + std::to_string(id); }
+std::string fieldFor(gint id) {
+  return "id-" + std::to_string(id);
+}
 
 gboolean copyField(GQuark field, const GValue *value, gpointer destination) {
   gst_structure_id_set_value(static_cast<GstStructure *>(destination), field, value);
@@ -36,8 +38,8 @@ void colortrack_add_roi_params(GstBuffer *buffer, GstVideoRegionOfInterestMeta *
   GstCustomMeta *meta = gst_buffer_get_custom_meta(buffer, COLORTRACK_PARAMS_META_NAME);
   if (!meta) meta = gst_buffer_add_custom_meta(buffer, COLORTRACK_PARAMS_META_NAME);
   if (meta)
-    gst_structure_set(gst_custom_meta_get_structure(meta), fieldFor(roi->id).c_str(), GST_TYPE_STRUCTURE, params,
-                      nullptr);
+    gst_structure_set(gst_custom_meta_get_structure(meta), fieldFor(roi->id).c_str(), GST_TYPE_STRUCTURE,
+                      params, nullptr);
   gst_video_region_of_interest_meta_add_param(roi, params);
 }
 
@@ -46,6 +48,7 @@ const GstStructure *colortrack_find_roi_params(GstBuffer *buffer, GstVideoRegion
     return own;
   GstCustomMeta *meta = gst_buffer_get_custom_meta(buffer, COLORTRACK_PARAMS_META_NAME);
   if (!meta) return nullptr;
-  const GValue *value = gst_structure_get_value(gst_custom_meta_get_structure(meta), fieldFor(roi->id).c_str());
+  const GValue *value =
+      gst_structure_get_value(gst_custom_meta_get_structure(meta), fieldFor(roi->id).c_str());
   return value && GST_VALUE_HOLDS_STRUCTURE(value) ? gst_value_get_structure(value) : nullptr;
 }

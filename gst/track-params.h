@@ -2,8 +2,8 @@
 //
 // GStreamer 1.22's transform of GstVideoRegionOfInterestMeta (run by videoconvert, videoscale and buffer
 // copies) keeps the type, id and box but drops the parameter structures; later GStreamer versions copy them.
-// So every buffer with tracks also carries one custom meta, COLORTRACK_PARAMS_META_NAME, whose structure holds
-// each track's "colortrack" parameters by id, and whose transform copies them. Write with
+// So every buffer with tracks also carries one custom meta, COLORTRACK_PARAMS_META_NAME, whose structure
+// holds each track's "colortrack" parameters by id, and whose transform copies them. Write with
 // colortrack_add_roi_params() and read with colortrack_find_roi_params(), which look in both places.
 #pragma once
 

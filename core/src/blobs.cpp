@@ -31,8 +31,8 @@ bool parseDouble(std::string_view field, double &value) {
 
 std::string formatNumber(double value) {
   std::array<char, 32> buffer{};
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value,
-                                    std::chars_format::general, 4);
+  const auto result =
+      std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::general, 4);
   return std::string(buffer.data(), result.ptr);
 }
 
@@ -110,7 +110,8 @@ std::string validateRange(const HsvRange &range) {
     return "lower saturation " + formatNumber(range.lower.s) + " exceeds upper saturation " +
            formatNumber(range.upper.s);
   if (range.lower.v > range.upper.v)
-    return "lower value " + formatNumber(range.lower.v) + " exceeds upper value " + formatNumber(range.upper.v);
+    return "lower value " + formatNumber(range.lower.v) + " exceeds upper value " +
+           formatNumber(range.upper.v);
   return {};
 }
 
@@ -165,8 +166,8 @@ void segment(const SampledFrame &frame, const RangeLut &lut, int decimation, cv:
     const std::uint8_t *p2 = frame.channels[2].plane.ptr(fy / frame.channels[2].ySub);
     std::uint8_t *out = mask.ptr(y);
     for (int x = 0; x < grid.width; ++x) {
-      const int index = ((p0[col0[x]] >> shift) << (2 * bits)) | ((p1[col1[x]] >> shift) << bits) |
-                        (p2[col2[x]] >> shift);
+      const int index =
+          ((p0[col0[x]] >> shift) << (2 * bits)) | ((p1[col1[x]] >> shift) << bits) | (p2[col2[x]] >> shift);
       out[x] = table[index];
     }
   }
@@ -262,7 +263,8 @@ std::vector<Blob> BlobDetector::detect(const SampledFrame &frame) {
     Blob blob;
     blob.area = area;
     // Grid sample (x, y) is frame pixel (x d, y d): centroids scale without offset.
-    blob.centroid = cv::Point2d(static_cast<double>(c.sumX) / c.count * d, static_cast<double>(c.sumY) / c.count * d);
+    blob.centroid =
+        cv::Point2d(static_cast<double>(c.sumX) / c.count * d, static_cast<double>(c.sumY) / c.count * d);
     const int width = c.maxX - c.minX + 1, height = c.maxY - c.minY + 1;
     blob.box = cv::Rect(c.minX * d, c.minY * d, width * d, height * d) & cv::Rect(cv::Point(), frame.size);
     blob.fill = static_cast<double>(c.count) / (static_cast<double>(width) * height);
@@ -300,7 +302,8 @@ HsvRange learnRange(const ImageSource &frame, const cv::Rect &box) {
 
   constexpr double kLow = 0.05, kHigh = 0.95;
   constexpr double kHueMargin = 10.0, kSatMargin = 0.1;
-  constexpr double kDarker = 0.6;  // V may drop to 60% of the darkest typical pixel (a 35% dimmer scene + margin)
+  constexpr double kDarker =
+      0.6;  // V may drop to 60% of the darkest typical pixel (a 35% dimmer scene + margin)
   std::vector<double> s = sats, v = vals;
   const double sLow = percentile(s, kLow), sHigh = percentile(s, kHigh);
   const double vLow = percentile(v, kLow);

@@ -77,7 +77,8 @@ void EdgeVerifier::setTemplate(const cv::Mat &templateGray) {
   // Compared at the template's size, capped: a large template's edges say no more about texture than the
   // same template at ~96 px, and the check runs on every detection.
   const double shrink = std::min(1.0, kMaxNormalisedSide / std::max(templateGray.cols, templateGray.rows));
-  normSize_ = cv::Size(std::max(1, cvRound(templateGray.cols * shrink)), std::max(1, cvRound(templateGray.rows * shrink)));
+  normSize_ = cv::Size(std::max(1, cvRound(templateGray.cols * shrink)),
+                       std::max(1, cvRound(templateGray.rows * shrink)));
   cv::Mat normalised = templateGray;
   if (normSize_ != templateGray.size()) cv::resize(templateGray, normalised, normSize_, 0, 0, cv::INTER_AREA);
   template_ = edgeSignature(normalised, 0);

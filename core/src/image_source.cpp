@@ -12,7 +12,8 @@ cv::Size sampledSize(const cv::Rect &rect, int step) {
 
 cv::Rect sampledCover(const cv::Rect &rect, int step) {
   const cv::Size size = sampledSize(rect, step);
-  return cv::Rect(rect.x, rect.y, std::min(rect.width, size.width * step), std::min(rect.height, size.height * step));
+  return cv::Rect(rect.x, rect.y, std::min(rect.width, size.width * step),
+                  std::min(rect.height, size.height * step));
 }
 
 void ImageSource::sampledBgr(const cv::Rect &rect, int step, cv::Mat &out) const {

@@ -25,7 +25,8 @@ ColorLikelihood::ColorLikelihood(const BinLayout &layout)
       strict_(table_.size(), 0.f) {
   for (int c = 0; c < 3; ++c)
     for (int b = 0; b < 256; ++b)
-      reduce_[c][b] = static_cast<std::uint8_t>(std::min(b, layout.bins[c] - 1) * jointBins_[c] / layout.bins[c]);
+      reduce_[c][b] =
+          static_cast<std::uint8_t>(std::min(b, layout.bins[c] - 1) * jointBins_[c] / layout.bins[c]);
 }
 
 void ColorLikelihood::learn(const BinImage &bins, const cv::Rect &object, const cv::Rect &surroundings,

@@ -20,7 +20,7 @@ struct MultiTracker::Track {
   KalmanFilter9 filter;
   int id = 0;
   bool confirmed = false;
-  bool measured = false;  // corrected by a blob this frame
+  bool measured = false;     // corrected by a blob this frame
   double referenceSide = 1;  // sqrt(box area) at acquisition: scale 1
   double aspect = 1;         // box width / height, smoothed
   double area = 0;           // smoothed blob area
@@ -117,7 +117,9 @@ void MultiTracker::setSettings(const MultiTrackerSettings &settings) {
   for (Track &t : tracks_) t.filter.setParams(settings.kalman);
 }
 
-void MultiTracker::reset() { tracks_.clear(); }
+void MultiTracker::reset() {
+  tracks_.clear();
+}
 
 void MultiTracker::predict(Track &track, cv::Size frame, double dt) const {
   // A track not measured last frame (coasting or merged) keeps velocity and size but no acceleration.
@@ -213,8 +215,8 @@ std::vector<TrackedObject> MultiTracker::update(const std::vector<Blob> &blobs, 
     for (int i = 0; i < static_cast<int>(tracks_.size()); ++i) {
       if (i == owner || !tracks_[i].confirmed) continue;
       if (std::find(blobTrack.begin(), blobTrack.end(), i) != blobTrack.end()) continue;  // has its own blob
-      if (std::hypot(blobs[j].centroid.x - tracks_[i].filter.x(), blobs[j].centroid.y - tracks_[i].filter.y()) <
-          gateRadius(tracks_[i])) {
+      if (std::hypot(blobs[j].centroid.x - tracks_[i].filter.x(),
+                     blobs[j].centroid.y - tracks_[i].filter.y()) < gateRadius(tracks_[i])) {
         merged[j] = 1;
         occluded[owner] = occluded[i] = 1;
       }
@@ -276,7 +278,8 @@ std::vector<TrackedObject> MultiTracker::update(const std::vector<Blob> &blobs, 
   std::vector<TrackedObject> out;
   for (const Track &t : tracks_)
     if (t.confirmed) out.push_back(report(t));
-  std::sort(out.begin(), out.end(), [](const TrackedObject &a, const TrackedObject &b) { return a.id < b.id; });
+  std::sort(out.begin(), out.end(),
+            [](const TrackedObject &a, const TrackedObject &b) { return a.id < b.id; });
   return out;
 }
 

@@ -68,7 +68,8 @@ std::uint8_t crc8(const std::uint8_t *data, std::size_t size) {
   std::uint8_t crc = 0;
   for (std::size_t i = 0; i < size; ++i) {
     crc ^= data[i];
-    for (int bit = 0; bit < 8; ++bit) crc = (crc & 0x80) ? static_cast<std::uint8_t>((crc << 1) ^ 0x07) : crc << 1;
+    for (int bit = 0; bit < 8; ++bit)
+      crc = (crc & 0x80) ? static_cast<std::uint8_t>((crc << 1) ^ 0x07) : crc << 1;
   }
   return crc;
 }
@@ -97,7 +98,8 @@ std::vector<std::uint8_t> ProtocolEncoder::encode(const DriveOutput &output) {
   }
 
   const auto le16 = [](int v, int byte) {
-    return static_cast<std::uint8_t>((static_cast<std::uint16_t>(static_cast<std::int16_t>(v)) >> (8 * byte)) & 0xFF);
+    return static_cast<std::uint8_t>(
+        (static_cast<std::uint16_t>(static_cast<std::int16_t>(v)) >> (8 * byte)) & 0xFF);
   };
   std::vector<std::uint8_t> packet = {
       binary::kStart,

@@ -106,7 +106,6 @@ struct Tracker::Impl {
     verifier.setTemplate(flattenOutsideMask(templateGray, templateMask));
   }
 
-
   struct Detection {
     cv::Rect2d box;
     double score = 0;
@@ -124,7 +123,8 @@ struct Tracker::Impl {
                     2;
     const auto reduced = readReduced(frame, region, size, pad);
     if (!reduced) return std::nullopt;
-    const cv::Size window(std::max(1, cvRound(reduced->sizeL.width)), std::max(1, cvRound(reduced->sizeL.height)));
+    const cv::Size window(std::max(1, cvRound(reduced->sizeL.width)),
+                          std::max(1, cvRound(reduced->sizeL.height)));
     const SearchResult found = searchWindow(bins, reduced->searchL, window, model, s.weights);
     if (!found.found || found.score < s.matchThreshold) return std::nullopt;
     const ScaleResult refined = refineScale(bins, found.box, model, s.weights, s.scale);
@@ -140,10 +140,10 @@ struct Tracker::Impl {
   // padded region's corner. Boxes are reduced to a smaller side of about kReducedWindowSide pixels, so the
   // cost per frame stays about the same whatever the object's size.
   struct Reduced {
-    cv::Rect padded;     // frame coordinates
+    cv::Rect padded;  // frame coordinates
     int f = 1;
-    cv::Rect searchL;    // where windows may lie, local coordinates
-    cv::Size2d sizeL;    // the window size, local
+    cv::Rect searchL;  // where windows may lie, local coordinates
+    cv::Size2d sizeL;  // the window size, local
     cv::Rect2d toFull(const cv::Rect2d &b) const {
       return cv::Rect2d(padded.x + b.x * f, padded.y + b.y * f, b.width * f, b.height * f);
     }
@@ -152,7 +152,8 @@ struct Tracker::Impl {
     }
   };
 
-  std::optional<Reduced> readReduced(const ImageSource &frame, const cv::Rect &region, cv::Size2d size, int pad) {
+  std::optional<Reduced> readReduced(const ImageSource &frame, const cv::Rect &region, cv::Size2d size,
+                                     int pad) {
     const cv::Rect frameRect(cv::Point(), frame.size());
     const cv::Rect searchRect = region & frameRect;
     if (searchRect.width < size.width || searchRect.height < size.height) return std::nullopt;
@@ -168,7 +169,8 @@ struct Tracker::Impl {
     r.searchL = cv::Rect(cvCeil(tl.x), cvCeil(tl.y), searchRect.width / r.f, searchRect.height / r.f) &
                 cv::Rect(cv::Point(), bins.bins.size());
     r.sizeL = cv::Size2d(size.width / r.f, size.height / r.f);
-    if (r.searchL.width < cvRound(r.sizeL.width) || r.searchL.height < cvRound(r.sizeL.height)) return std::nullopt;
+    if (r.searchL.width < cvRound(r.sizeL.width) || r.searchL.height < cvRound(r.sizeL.height))
+      return std::nullopt;
     return r;
   }
 
@@ -199,8 +201,8 @@ struct Tracker::Impl {
       cv::minMaxLoc(meanP(valid), nullptr, nullptr, nullptr, &at);
       coarseBest = at;
     } else {
-      const SearchResult coarse = searchWindow(coarseBins, cv::Rect(cv::Point(), small.size()), coarseWindow,
-                                               model, s.weights);
+      const SearchResult coarse =
+          searchWindow(coarseBins, cv::Rect(cv::Point(), small.size()), coarseWindow, model, s.weights);
       if (!coarse.found) return std::nullopt;
       coarseBest = coarse.box.tl();
     }
@@ -256,7 +258,8 @@ struct Tracker::Impl {
     for (double fw = s.scale.minFactor; fw <= s.scale.maxFactor + 1e-9; fw += stepFactor)
       for (double fh = s.scale.minFactor; fh <= s.scale.maxFactor + 1e-9; fh += stepFactor) {
         if (!s.adaptAspect && std::abs(fw - fh) > 1e-9) continue;
-        const cv::Rect2d box = centredBox(centre.x, centre.y, cv::Size2d(sizeL.width * fw, sizeL.height * fh));
+        const cv::Rect2d box =
+            centredBox(centre.x, centre.y, cv::Size2d(sizeL.width * fw, sizeL.height * fh));
         const cv::Rect r = roundRect(box);
         if ((r & limits) != r) continue;
         const int ring = std::max(1, cvRound(kLikelihoodRing * std::min(box.width, box.height)));
@@ -287,7 +290,8 @@ struct Tracker::Impl {
     const double grow = kSurroundings * std::max(box.width, box.height);
     const cv::Rect object = roundRect(box) & frameRect;
     const cv::Rect around =
-        roundRect(cv::Rect2d(box.x - grow, box.y - grow, box.width + 2 * grow, box.height + 2 * grow)) & frameRect;
+        roundRect(cv::Rect2d(box.x - grow, box.y - grow, box.width + 2 * grow, box.height + 2 * grow)) &
+        frameRect;
     if (object.empty()) return;
     // A sample of the pixels, as in the search: learning every pixel of a large box and its surroundings
     // would cost more than the search itself.
@@ -338,7 +342,8 @@ struct Tracker::Impl {
   // Scale (for the Kalman filter) and aspect (smoothed here: it changes slowly and the filter has no state
   // for it) of a measured box.
   void measureShape(const cv::Rect2d &box, double aspectRate) {
-    const double boxAspect = (box.width / box.height) / (static_cast<double>(templateBgr.cols) / templateBgr.rows);
+    const double boxAspect =
+        (box.width / box.height) / (static_cast<double>(templateBgr.cols) / templateBgr.rows);
     aspect = std::clamp((1 - aspectRate) * aspect + aspectRate * boxAspect, 0.25, 4.0);
     lastScale = scaleOf(box);
   }

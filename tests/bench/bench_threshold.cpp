@@ -27,7 +27,7 @@ namespace {
 using namespace colortrack;
 using Clock = std::chrono::steady_clock;
 
-constexpr double kTargetMs = 3.0;  // per 1920x1080 frame
+constexpr double kTargetMs = 3.0;    // per 1920x1080 frame
 constexpr int kDistinctFrames = 24;  // rendered once, cycled (rendering is not what is measured)
 
 double msSince(Clock::time_point start) {
@@ -55,7 +55,8 @@ balls::BallScene sceneFor(cv::Size size, int objects) {
     // Out and back over the cycle of rendered frames, so replaying it is continuous motion.
     const cv::Point2d start(rng.uniform(5 * radius, size.width - 5 * radius),
                             rng.uniform(5 * radius, size.height - 5 * radius));
-    const cv::Point2d turn = start + cv::Point2d(rng.uniform(-4 * radius, 4 * radius), rng.uniform(-4 * radius, 4 * radius));
+    const cv::Point2d turn =
+        start + cv::Point2d(rng.uniform(-4 * radius, 4 * radius), rng.uniform(-4 * radius, 4 * radius));
     b.path = {{0, start}, {kDistinctFrames / 2, turn}, {kDistinctFrames, start}};
     list.push_back(b);
   }
@@ -69,7 +70,8 @@ SampledFrame sampledI420(const cv::Mat &i420, cv::Size size) {
   f.encoding = PixelEncoding::Yuv601;
   f.channels[0] = {i420.rowRange(0, size.height), 0, 1, 1, 1};
   f.channels[1] = {cv::Mat(half, CV_8UC1, const_cast<uchar *>(i420.ptr(size.height))), 0, 1, 2, 2};
-  f.channels[2] = {cv::Mat(half, CV_8UC1, const_cast<uchar *>(i420.ptr(size.height)) + half.area()), 0, 1, 2, 2};
+  f.channels[2] = {cv::Mat(half, CV_8UC1, const_cast<uchar *>(i420.ptr(size.height)) + half.area()), 0, 1, 2,
+                   2};
   return f;
 }
 
@@ -150,10 +152,12 @@ int main(int argc, char **argv) {
   }
   cv::setNumThreads(1);  // per-core figures
 
-  std::printf("colortrack threshold-mode benchmark: 1 thread, %d frames per case, OpenCV %s\n", frames, CV_VERSION);
-  std::printf("detect (segment + clean + label) + multi-object update; split: segment / open+close / label\n");
-  std::printf("%-10s %4s %-5s %3s %8s %9s %7s %7s %7s %7s %6s %8s\n", "size", "objs", "input", "dec", "mean ms",
-              "median ms", "max ms", "seg", "morph", "label", "target", "tracks");
+  std::printf("colortrack threshold-mode benchmark: 1 thread, %d frames per case, OpenCV %s\n", frames,
+              CV_VERSION);
+  std::printf(
+      "detect (segment + clean + label) + multi-object update; split: segment / open+close / label\n");
+  std::printf("%-10s %4s %-5s %3s %8s %9s %7s %7s %7s %7s %6s %8s\n", "size", "objs", "input", "dec",
+              "mean ms", "median ms", "max ms", "seg", "morph", "label", "target", "tracks");
   const cv::Size sizes[] = {{640, 480}, {1280, 720}, {1920, 1080}};
   bool missed = false;
   for (const cv::Size size : sizes) {
@@ -163,9 +167,10 @@ int main(int argc, char **argv) {
         const bool hasTarget = size == cv::Size(1920, 1080);
         const bool ok = !hasTarget || r.medianMs <= kTargetMs;
         missed = missed || !ok;
-        std::printf("%4dx%-5d %4d %-5s %3d %8.3f %9.3f %7.3f %7.3f %7.3f %7.3f %6s %8.2f\n", size.width, size.height,
-                    objects, i420 ? "I420" : "BGR", autoDecimation(size), r.meanMs, r.medianMs, r.maxMs, r.segmentMs,
-                    r.cleanMs, r.labelMs, hasTarget ? (ok ? "ok" : "MISS") : "-", r.meanReported);
+        std::printf("%4dx%-5d %4d %-5s %3d %8.3f %9.3f %7.3f %7.3f %7.3f %7.3f %6s %8.2f\n", size.width,
+                    size.height, objects, i420 ? "I420" : "BGR", autoDecimation(size), r.meanMs, r.medianMs,
+                    r.maxMs, r.segmentMs, r.cleanMs, r.labelMs, hasTarget ? (ok ? "ok" : "MISS") : "-",
+                    r.meanReported);
       }
     }
   }

@@ -36,12 +36,30 @@ cv::Vec3b bgrOfHsv(double hue, double saturation, double value) {
   const double c = value * saturation, x = c * (1 - std::abs(std::fmod(h, 2.0) - 1)), m = value - c;
   double r = 0, g = 0, b = 0;
   switch (static_cast<int>(h)) {
-    case 0: r = c; g = x; break;
-    case 1: r = x; g = c; break;
-    case 2: g = c; b = x; break;
-    case 3: g = x; b = c; break;
-    case 4: r = x; b = c; break;
-    default: r = c; b = x; break;
+    case 0:
+      r = c;
+      g = x;
+      break;
+    case 1:
+      r = x;
+      g = c;
+      break;
+    case 2:
+      g = c;
+      b = x;
+      break;
+    case 3:
+      g = x;
+      b = c;
+      break;
+    case 4:
+      r = x;
+      b = c;
+      break;
+    default:
+      r = c;
+      b = x;
+      break;
   }
   return cv::Vec3b(cv::saturate_cast<uchar>((b + m) * 255), cv::saturate_cast<uchar>((g + m) * 255),
                    cv::saturate_cast<uchar>((r + m) * 255));
@@ -55,7 +73,8 @@ BallScene::BallScene(const BallSceneConfig &config, std::vector<Ball> balls)
   cv::Mat small(std::max(2, size.height / 24), std::max(2, size.width / 24), CV_8UC3);
   for (int y = 0; y < small.rows; ++y)
     for (int x = 0; x < small.cols; ++x)
-      small.at<cv::Vec3b>(y, x) = bgrOfHsv(rng.uniform(0.0, 360.0), rng.uniform(0.0, 0.12), rng.uniform(0.2, 0.8));
+      small.at<cv::Vec3b>(y, x) =
+          bgrOfHsv(rng.uniform(0.0, 360.0), rng.uniform(0.0, 0.12), rng.uniform(0.2, 0.8));
   cv::resize(small, background_, size, 0, 0, cv::INTER_CUBIC);
   cv::Mat grain(size, CV_8UC3);
   rng.fill(grain, cv::RNG::NORMAL, cv::Scalar::all(0), cv::Scalar::all(6));
@@ -86,10 +105,10 @@ BallTruth BallScene::truthOf(int ball, int index) const {
   t.centre = positionAt(b, index);
   t.radius = b.radius;
   const cv::Size s = config_.frameSize;
-  t.fullyVisible = t.centre.x - b.radius >= 0 && t.centre.y - b.radius >= 0 && t.centre.x + b.radius <= s.width - 1 &&
-                   t.centre.y + b.radius <= s.height - 1;
-  t.visible = t.centre.x + b.radius >= 0 && t.centre.y + b.radius >= 0 && t.centre.x - b.radius <= s.width - 1 &&
-              t.centre.y - b.radius <= s.height - 1;
+  t.fullyVisible = t.centre.x - b.radius >= 0 && t.centre.y - b.radius >= 0 &&
+                   t.centre.x + b.radius <= s.width - 1 && t.centre.y + b.radius <= s.height - 1;
+  t.visible = t.centre.x + b.radius >= 0 && t.centre.y + b.radius >= 0 &&
+              t.centre.x - b.radius <= s.width - 1 && t.centre.y - b.radius <= s.height - 1;
   return t;
 }
 
@@ -142,7 +161,9 @@ cv::Mat BallScene::render(int index, std::vector<BallTruth> *truth) const {
     for (int i = 0; i < count; ++i) {
       const int kind = rng.uniform(0, 3);
       frame.at<cv::Vec3b>(rng.uniform(0, frame.rows), rng.uniform(0, frame.cols)) =
-          kind == 0 ? target : kind == 1 ? cv::Vec3b(255, 255, 255) : cv::Vec3b(0, 0, 0);
+          kind == 0   ? target
+          : kind == 1 ? cv::Vec3b(255, 255, 255)
+                      : cv::Vec3b(0, 0, 0);
     }
   }
 

@@ -42,13 +42,15 @@ cv::Mat RobotSim::render() const {
       if (up >= -1e-6) {
         // Sky: a soft vertical gradient, pale and unsaturated.
         const int shade = static_cast<int>(200 + 40 * std::min(1.0, up * 2));
-        row[u] = cv::Vec3b(static_cast<uchar>(shade), static_cast<uchar>(shade - 10), static_cast<uchar>(shade - 30));
+        row[u] = cv::Vec3b(static_cast<uchar>(shade), static_cast<uchar>(shade - 10),
+                           static_cast<uchar>(shade - 30));
         continue;
       }
       const double left = -(u + 0.5 - cx) / focal_;
       const double t = config_.cameraHeight / -up;  // the ray meets the floor at this forward distance
       const double x = pose_.x + t * (c - left * s), y = pose_.y + t * (s + left * c);
-      const bool dark = (static_cast<long>(std::floor(x / kTile)) + static_cast<long>(std::floor(y / kTile))) & 1;
+      const bool dark =
+          (static_cast<long>(std::floor(x / kTile)) + static_cast<long>(std::floor(y / kTile))) & 1;
       row[u] = dark ? cv::Vec3b(95, 105, 100) : cv::Vec3b(150, 160, 155);
     }
   }
@@ -57,9 +59,11 @@ cv::Mat RobotSim::render() const {
     // A shaded red ball with a highlight; sub-pixel centre (shift) so it moves smoothly.
     constexpr int kShift = 4;
     const double scale = 1 << kShift;
-    const cv::Point centre(cvRound((box.x + box.width / 2) * scale), cvRound((box.y + box.height / 2) * scale));
+    const cv::Point centre(cvRound((box.x + box.width / 2) * scale),
+                           cvRound((box.y + box.height / 2) * scale));
     const double radius = box.width / 2;
-    cv::circle(image, centre, cvRound(radius * scale), cv::Scalar(25, 25, 170), cv::FILLED, cv::LINE_AA, kShift);
+    cv::circle(image, centre, cvRound(radius * scale), cv::Scalar(25, 25, 170), cv::FILLED, cv::LINE_AA,
+               kShift);
     cv::circle(image, centre - cv::Point(cvRound(radius * 0.15 * scale), cvRound(radius * 0.15 * scale)),
                cvRound(radius * 0.7 * scale), cv::Scalar(40, 40, 215), cv::FILLED, cv::LINE_AA, kShift);
     cv::circle(image, centre - cv::Point(cvRound(radius * 0.35 * scale), cvRound(radius * 0.35 * scale)),
@@ -92,7 +96,8 @@ std::uint8_t crc8(const std::uint8_t *data, std::size_t size) {
   std::uint8_t crc = 0;
   for (std::size_t i = 0; i < size; ++i) {
     crc ^= data[i];
-    for (int bit = 0; bit < 8; ++bit) crc = static_cast<std::uint8_t>(crc & 0x80 ? (crc << 1) ^ 0x07 : crc << 1);
+    for (int bit = 0; bit < 8; ++bit)
+      crc = static_cast<std::uint8_t>(crc & 0x80 ? (crc << 1) ^ 0x07 : crc << 1);
   }
   return crc;
 }
@@ -107,12 +112,23 @@ std::vector<WheelCommand> CommandDecoder::feed(const std::uint8_t *data, std::si
         WheelCommand c;
         c.zone = static_cast<char>(byte);
         switch (c.zone) {
-          case 'F': c.left = c.right = zoneLinear_; break;
-          case 'B': c.left = c.right = -zoneLinear_; break;
-          case 'L': c.left = -zoneAngular_, c.right = zoneAngular_; break;
-          case 'R': c.left = zoneAngular_, c.right = -zoneAngular_; break;
-          case 'S': break;
-          default: ++rejected_; continue;
+          case 'F':
+            c.left = c.right = zoneLinear_;
+            break;
+          case 'B':
+            c.left = c.right = -zoneLinear_;
+            break;
+          case 'L':
+            c.left = -zoneAngular_, c.right = zoneAngular_;
+            break;
+          case 'R':
+            c.left = zoneAngular_, c.right = -zoneAngular_;
+            break;
+          case 'S':
+            break;
+          default:
+            ++rejected_;
+            continue;
         }
         out.push_back(c);
       }
@@ -122,7 +138,8 @@ std::vector<WheelCommand> CommandDecoder::feed(const std::uint8_t *data, std::si
       std::size_t start = 0;
       for (std::size_t i = 0; i < pending_.size(); ++i) {
         if (pending_[i] != '\n') continue;
-        const std::string line(pending_.begin() + static_cast<long>(start), pending_.begin() + static_cast<long>(i));
+        const std::string line(pending_.begin() + static_cast<long>(start),
+                               pending_.begin() + static_cast<long>(i));
         start = i + 1;
         int left = 0, right = 0;
         char tail = 0;

@@ -14,11 +14,11 @@ namespace colortrack::sim {
 struct RobotSimConfig {
   cv::Size frameSize{320, 240};
   double horizontalFovDegrees = 60;
-  double cameraHeight = 0.25;     // m above the floor, looking level
-  double ballRadius = 0.15;       // m; the ball rests on the floor
-  cv::Point2d ball{3.0, 0.0};     // m, world position of the ball
-  double fullWheelSpeed = 1.0;    // m/s at wheel speed 1
-  double wheelBase = 0.4;         // m between the wheels
+  double cameraHeight = 0.25;   // m above the floor, looking level
+  double ballRadius = 0.15;     // m; the ball rests on the floor
+  cv::Point2d ball{3.0, 0.0};   // m, world position of the ball
+  double fullWheelSpeed = 1.0;  // m/s at wheel speed 1
+  double wheelBase = 0.4;       // m between the wheels
 };
 
 // Position (m) and heading (rad, 0 = +x, counter-clockwise).

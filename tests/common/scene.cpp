@@ -261,7 +261,6 @@ Placement placeObject(const cv::Mat &texture, const cv::Mat &mask, const Pose &p
   return out;
 }
 
-
 // The decoy: the object's own colours rearranged in concentric rings (sorted by brightness, darkest in the
 // middle). Its colour histogram is the object's, so colour alone matches it as well as the object, but its
 // few ring borders make little edge structure, unlike the object's stripes and blobs.

@@ -11,24 +11,24 @@ namespace colortrack::scene {
 
 struct SceneConfig {
   cv::Size frameSize{640, 480};
-  int frames = 240;              // length of one pass of the motion script (it repeats after)
-  std::uint32_t seed = 1;        // background texture and object texture
-  cv::Size objectSize{72, 72};   // at scale 1, unrotated
+  int frames = 240;                       // length of one pass of the motion script (it repeats after)
+  std::uint32_t seed = 1;                 // background texture and object texture
+  cv::Size objectSize{72, 72};            // at scale 1, unrotated
   double scaleMin = 1.0, scaleMax = 1.0;  // the object's scale oscillates between these
-  double rotationDegrees = 0;    // the object turns from 0 to this angle and back over one pass
-  double brightness = 0;         // lighting varies by +- this fraction (0.4 = +-40%) over one pass
-  double speed = 1.0;            // multiplies the motion amplitude along the path
-  bool decoy = false;            // an untextured disc of the object's mean colour, elsewhere in the frame
+  double rotationDegrees = 0;             // the object turns from 0 to this angle and back over one pass
+  double brightness = 0;                  // lighting varies by +- this fraction (0.4 = +-40%) over one pass
+  double speed = 1.0;                     // multiplies the motion amplitude along the path
+  bool decoy = false;  // an untextured disc of the object's mean colour, elsewhere in the frame
   // The object leaves the frame during [leaveFrom, leaveTo) and comes back at another place (-1: never).
   int leaveFrom = -1, leaveTo = -1;
 };
 
 struct SceneFrame {
-  cv::Mat bgr;              // CV_8UC3
+  cv::Mat bgr;  // CV_8UC3
   bool objectVisible = true;
-  cv::Rect2d box;           // ground truth: axis-aligned bounding box of the object (frame coords)
-  double objectScale = 1.0; // current scale relative to the template
-  cv::Rect2d decoyBox;      // empty when there is no decoy
+  cv::Rect2d box;            // ground truth: axis-aligned bounding box of the object (frame coords)
+  double objectScale = 1.0;  // current scale relative to the template
+  cv::Rect2d decoyBox;       // empty when there is no decoy
 };
 
 class Scene {
@@ -46,9 +46,9 @@ class Scene {
 
  private:
   SceneConfig config_;
-  cv::Mat background_;  // frame-sized texture
+  cv::Mat background_;                  // frame-sized texture
   cv::Mat objectTexture_, objectMask_;  // objectSize
-  cv::Mat decoyTexture_, decoyMask_;  // the object's colours in smooth rings
+  cv::Mat decoyTexture_, decoyMask_;    // the object's colours in smooth rings
 };
 
 // Intersection over union of two boxes (0 when either is empty).

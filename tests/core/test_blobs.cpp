@@ -61,9 +61,15 @@ TEST(ParseHsv, AcceptsAndFormats) {
 
 TEST(ParseHsv, RejectsMalformedAndOutOfRangeWithReasons) {
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"", "expected"},          {"1,2", "expected"},        {"10,0.5,0.5,1", "expected"},
-      {"red", "expected"},       {"10,0.5,abc", "expected"}, {"361,0.5,0.5", "hue"},
-      {"-1,0.5,0.5", "hue"},     {"10,1.5,0.5", "saturation"}, {"10,0.5,-0.1", "value"},
+      {"", "expected"},
+      {"1,2", "expected"},
+      {"10,0.5,0.5,1", "expected"},
+      {"red", "expected"},
+      {"10,0.5,abc", "expected"},
+      {"361,0.5,0.5", "hue"},
+      {"-1,0.5,0.5", "hue"},
+      {"10,1.5,0.5", "saturation"},
+      {"10,0.5,-0.1", "value"},
       {"nan,0.5,0.5", "expected"},
   };
   for (const auto &[text, reason] : cases) {
@@ -103,7 +109,8 @@ TEST(RangeLut, AgreesWithExactTestAwayFromTheEdges) {
     for (int dr = -3; dr <= 3 && !nearEdge; ++dr)
       for (int dg = -3; dg <= 3 && !nearEdge; ++dg)
         for (int db = -3; db <= 3 && !nearEdge; ++db) {
-          const int rr = std::clamp(r + dr, 0, 255), gg = std::clamp(g + dg, 0, 255), bb = std::clamp(b + db, 0, 255);
+          const int rr = std::clamp(r + dr, 0, 255), gg = std::clamp(g + dg, 0, 255),
+                    bb = std::clamp(b + db, 0, 255);
           nearEdge = range.contains(rgbToHsv(rr, gg, bb)) != exact;
         }
     if (!nearEdge) ++farMismatches;
@@ -184,7 +191,8 @@ TEST(BlobDetector, RedBallCentroidOnClutter) {
       EXPECT_NEAR(blobs[0].fill, CV_PI / 4, 0.08);
       EXPECT_NEAR(blobs[0].box.width, 49, 4);
     }
-    std::printf("decimation %d: mean centroid error %.3f px, worst %.3f px\n", decimation, sum / frames, worst);
+    std::printf("decimation %d: mean centroid error %.3f px, worst %.3f px\n", decimation, sum / frames,
+                worst);
     EXPECT_LE(sum / frames, 2.0);
     EXPECT_LE(worst, 3.0);
   }

@@ -339,13 +339,13 @@ TEST(Scene, DecoyHasTheObjectsColoursButNoTexture) {
   cv::Canny(toGray(frame.bgr), edges, 50, 150);
   // Edge pixels in the inner part of each disc (away from its outline).
   auto innerEdgeFraction = [&edges](const cv::Rect2d &box) {
-    const cv::Rect inner(cv::Rect2d(box.x + box.width * 0.25, box.y + box.height * 0.25, box.width * 0.5,
-                                    box.height * 0.5));
+    const cv::Rect inner(
+        cv::Rect2d(box.x + box.width * 0.25, box.y + box.height * 0.25, box.width * 0.5, box.height * 0.5));
     return cv::countNonZero(edges(inner)) / double(inner.area());
   };
   const double decoyEdges = innerEdgeFraction(frame.decoyBox), objectEdges = innerEdgeFraction(frame.box);
   std::printf("inner edge fraction: decoy %.4f, object %.4f\n", decoyEdges, objectEdges);
-  EXPECT_LT(decoyEdges, 0.01);  // smooth gradients only
+  EXPECT_LT(decoyEdges, 0.01);   // smooth gradients only
   EXPECT_GT(objectEdges, 0.05);  // stripes and blobs
   // Same colours: the hue histograms of the decoy disc and of the object overlap mostly.
   auto hueHistogram = [](const cv::Mat &bgr, const cv::Mat &m) {

@@ -46,10 +46,10 @@ TEST(Likelihood, LearnsObjectAgainstSurroundings) {
   Fixture f;
   f.likelihood.learn(f.bins, cv::Rect(10, 10, 20, 20), cv::Rect(0, 0, 40, 40), 1.0);
   EXPECT_FALSE(f.likelihood.empty());
-  EXPECT_FLOAT_EQ(f.p(kRed), 1.0f);    // only in the object
-  EXPECT_FLOAT_EQ(f.p(kGreen), 0.0f);  // only around it
-  EXPECT_FLOAT_EQ(f.p(kBlue), 0.5f);   // 20 pixels in each: H_O / (H_O + H_S)
-  EXPECT_FLOAT_EQ(f.p(kYellow), 0.5f); // never seen
+  EXPECT_FLOAT_EQ(f.p(kRed), 1.0f);     // only in the object
+  EXPECT_FLOAT_EQ(f.p(kGreen), 0.0f);   // only around it
+  EXPECT_FLOAT_EQ(f.p(kBlue), 0.5f);    // 20 pixels in each: H_O / (H_O + H_S)
+  EXPECT_FLOAT_EQ(f.p(kYellow), 0.5f);  // never seen
 }
 
 TEST(Likelihood, SlowUpdateBlends) {

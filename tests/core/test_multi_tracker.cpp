@@ -57,7 +57,8 @@ Blob blobAt(double x, double y, double side) {
 const TrackedObject *nearest(const std::vector<TrackedObject> &objects, cv::Point2d point, double radius) {
   const TrackedObject *best = nullptr;
   for (const TrackedObject &o : objects)
-    if (cv::norm(o.centre - point) < radius && (!best || cv::norm(o.centre - point) < cv::norm(best->centre - point)))
+    if (cv::norm(o.centre - point) < radius &&
+        (!best || cv::norm(o.centre - point) < cv::norm(best->centre - point)))
       best = &o;
   return best;
 }
@@ -109,7 +110,8 @@ TEST(MultiTracker, TentativeUntilConfirmedAndNoiseMakesNoTrack) {
   const cv::Size frame(640, 480);
   for (int i = 0; i < 40; ++i) {
     // One steady object plus two specks somewhere new every frame.
-    std::vector<Blob> blobs = {blobAt(100 + 2 * i, 200, 30), blobAt(rng.uniform(0, 640), rng.uniform(0, 480), 8),
+    std::vector<Blob> blobs = {blobAt(100 + 2 * i, 200, 30),
+                               blobAt(rng.uniform(0, 640), rng.uniform(0, 480), 8),
                                blobAt(rng.uniform(0, 640), rng.uniform(0, 480), 8)};
     const std::vector<TrackedObject> reported = tracker.update(blobs, frame);
     if (i < 2) {
@@ -158,13 +160,15 @@ TEST(MultiTracker, IdsHoldThroughCrossings) {
   for (int i = 0; i <= 90; ++i) {
     std::vector<BallTruth> truth;
     const cv::Mat frame = scene.render(i, &truth);
-    const std::vector<TrackedObject> reported = tracker.update(detector.detect(MatImageSource(frame)), frame.size());
+    const std::vector<TrackedObject> reported =
+        tracker.update(detector.detect(MatImageSource(frame)), frame.size());
     if (i < 3) continue;
     EXPECT_EQ(reported.size(), 3u) << "frame " << i;
     for (int b = 0; b < 3; ++b) {
       bool overlapping = false;
       for (int o = 0; o < 3; ++o)
-        if (o != b && cv::norm(truth[b].centre - truth[o].centre) < 2 * truth[b].radius + 4) overlapping = true;
+        if (o != b && cv::norm(truth[b].centre - truth[o].centre) < 2 * truth[b].radius + 4)
+          overlapping = true;
       if (overlapping) {
         ++overlapFrames;
         continue;
@@ -196,7 +200,8 @@ ExitResult leaveAndReturn(int waitFrames, int maxCoastFrames) {
   Ball ball;
   ball.hue = 200;
   ball.radius = 20;
-  ball.path = {{0, {300, 240}}, {40, {700, 240}}, {40 + waitFrames, {700, 240}}, {80 + waitFrames, {300, 240}}};
+  ball.path = {
+      {0, {300, 240}}, {40, {700, 240}}, {40 + waitFrames, {700, 240}}, {80 + waitFrames, {300, 240}}};
   const BallScene scene(config, {ball});
   BlobSettings blobSettings;
   blobSettings.range = kSaturated;
@@ -210,7 +215,8 @@ ExitResult leaveAndReturn(int waitFrames, int maxCoastFrames) {
   for (int i = 0; i <= 90 + waitFrames; ++i) {
     const cv::Mat frame = scene.render(i);
     const BallTruth truth = scene.truthOf(0, i);
-    const std::vector<TrackedObject> reported = tracker.update(detector.detect(MatImageSource(frame)), frame.size());
+    const std::vector<TrackedObject> reported =
+        tracker.update(detector.detect(MatImageSource(frame)), frame.size());
     if (!truth.visible) ++result.framesOut;
     if (!truth.fullyVisible) continue;
     const TrackedObject *track = nearest(reported, truth.centre, truth.radius);
@@ -224,7 +230,8 @@ ExitResult leaveAndReturn(int waitFrames, int maxCoastFrames) {
 
 TEST(MultiTracker, ShortExitKeepsTheIdLongExitGetsANewOne) {
   const ExitResult shortExit = leaveAndReturn(0, 10);
-  std::printf("short exit: %d frames out, id %d -> %d\n", shortExit.framesOut, shortExit.before, shortExit.after);
+  std::printf("short exit: %d frames out, id %d -> %d\n", shortExit.framesOut, shortExit.before,
+              shortExit.after);
   EXPECT_LT(shortExit.framesOut, 10);
   EXPECT_GT(shortExit.framesOut, 3);
   EXPECT_EQ(shortExit.before, 1);

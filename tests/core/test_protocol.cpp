@@ -20,7 +20,9 @@ DriveOutput command(DriveCommand c, double left, double right, bool visible = tr
   return out;
 }
 
-std::string text(const Bytes &bytes) { return std::string(bytes.begin(), bytes.end()); }
+std::string text(const Bytes &bytes) {
+  return std::string(bytes.begin(), bytes.end());
+}
 
 TEST(Protocol, ZoneCharDefaultAndCustom) {
   ProtocolEncoder encoder;
@@ -52,7 +54,8 @@ TEST(Protocol, TextLines) {
   ProtocolSettings s;
   s.protocol = Protocol::Text;
   ProtocolEncoder encoder(s);
-  EXPECT_EQ(text(encoder.encode(command(DriveCommand::Forward, 0.45, 0.15))), "L=115 R=38\n");  // 114.75, 38.25
+  EXPECT_EQ(text(encoder.encode(command(DriveCommand::Forward, 0.45, 0.15))),
+            "L=115 R=38\n");  // 114.75, 38.25
   EXPECT_EQ(text(encoder.encode(command(DriveCommand::Left, -0.2, 0.6))), "L=-51 R=153\n");
   EXPECT_EQ(text(encoder.encode(command(DriveCommand::Stop, 0.001, 0))), "L=0 R=0\n");  // a stop is zero
   s.outputScale = 1000;

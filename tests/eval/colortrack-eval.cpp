@@ -84,7 +84,8 @@ constexpr const char *kUsage =
     "  --out DIR             results.md, results.csv, curves.csv, success.png, precision.png, frames/\n"
     "                        (default eval-out)\n"
     "  --gt-origin N         subtracted from ground-truth x and y (default 1: OTB's 1-based boxes)\n"
-    "  --opencv-threads N    cv::setNumThreads(N) for the whole process, trackers included (default: OpenCV's)\n"
+    "  --opencv-threads N    cv::setNumThreads(N) for the whole process, trackers included (default: "
+    "OpenCV's)\n"
     "  --no-frames           do not write the per-frame boxes to DIR/frames/\n"
     "  --no-build-plugin     do not add this build's gst/ directory to the plugin path\n"
     "  --overhead            also measure 1920x1080 decode + colortrack against decode + identity\n"
@@ -119,9 +120,9 @@ struct Sequence {
 
 // What one pipeline run produced.
 struct RunResult {
-  std::string error;                                // empty when the run reached EOS
-  std::vector<std::optional<cv::Rect2d>> boxes;     // per received frame
-  std::vector<std::string> states;                  // colortrack's "state" param per frame ("" elsewhere)
+  std::string error;                             // empty when the run reached EOS
+  std::vector<std::optional<cv::Rect2d>> boxes;  // per received frame
+  std::vector<std::string> states;               // colortrack's "state" param per frame ("" elsewhere)
   double wallSeconds = 0;
   double elementSeconds = 0;
   int frames() const { return static_cast<int>(boxes.size()); }
@@ -208,16 +209,19 @@ Sequence loadSequence(const fs::path &dir, double gtOrigin) {
   for (const auto &entry : fs::directory_iterator(dir / "img"))
     if (entry.is_regular_file()) names.push_back(entry.path().filename().string());
   std::string error;
-  if (!detectFramePattern(names, sequence.pattern, &error)) throw std::runtime_error(dir.string() + "/img: " + error);
+  if (!detectFramePattern(names, sequence.pattern, &error))
+    throw std::runtime_error(dir.string() + "/img: " + error);
 
   fs::path gtPath = dir / "groundtruth.txt";
   if (!fs::exists(gtPath)) gtPath = dir / "groundtruth_rect.txt";  // the name in OTB's own downloads
   if (!parseGroundTruth(readFile(gtPath), gtOrigin, sequence.groundTruth, &error))
     throw std::runtime_error(gtPath.string() + ": " + error);
   if (sequence.groundTruth.empty()) throw std::runtime_error(gtPath.string() + ": no boxes");
-  if (!sequence.groundTruth[0]) throw std::runtime_error(gtPath.string() + ": frame 1 has no box to start from");
+  if (!sequence.groundTruth[0])
+    throw std::runtime_error(gtPath.string() + ": frame 1 has no box to start from");
 
-  const fs::path first = dir / "img" / format(sequence.pattern.printfPattern().c_str(), sequence.pattern.startIndex);
+  const fs::path first =
+      dir / "img" / format(sequence.pattern.printfPattern().c_str(), sequence.pattern.startIndex);
   const cv::Mat image = cv::imread(first.string(), cv::IMREAD_COLOR);
   if (image.empty()) throw std::runtime_error("cannot decode " + first.string());
   sequence.frameSize = image.size();
@@ -225,7 +229,8 @@ Sequence loadSequence(const fs::path &dir, double gtOrigin) {
   const cv::Rect2d &box = *sequence.groundTruth[0];
   const cv::Rect rounded(cvRound(box.x), cvRound(box.y), cvRound(box.width), cvRound(box.height));
   sequence.initBox = rounded & cv::Rect(cv::Point(0, 0), sequence.frameSize);
-  if (sequence.initBox.empty()) throw std::runtime_error(gtPath.string() + ": frame 1's box is outside the frame");
+  if (sequence.initBox.empty())
+    throw std::runtime_error(gtPath.string() + ": frame 1's box is outside the frame");
   return sequence;
 }
 
@@ -242,7 +247,8 @@ std::vector<Sequence> findSequences(const std::vector<std::string> &inputs, doub
     std::vector<fs::path> children;
     for (const auto &entry : fs::directory_iterator(path))
       if (entry.is_directory() && fs::is_directory(entry.path() / "img")) children.push_back(entry.path());
-    if (children.empty()) throw std::runtime_error(input + ": neither a sequence (img/) nor a folder of sequences");
+    if (children.empty())
+      throw std::runtime_error(input + ": neither a sequence (img/) nor a folder of sequences");
     std::sort(children.begin(), children.end());
     for (const fs::path &child : children) sequences.push_back(loadSequence(child, gtOrigin));
   }
@@ -317,15 +323,16 @@ GstFlowReturn onNewSample(GstAppSink *sink, gpointer data) {
   return GST_FLOW_OK;
 }
 
-void onEos(GstAppSink *, gpointer data) { static_cast<RunContext *>(data)->eosTime = Clock::now(); }
+void onEos(GstAppSink *, gpointer data) {
+  static_cast<RunContext *>(data)->eosTime = Clock::now();
+}
 
 // Sets the tracker's initial box and switches QoS off, and drawing too unless `keepDrawing` or the fragment
 // mentions drawing itself (then what the element costs with its overlay is the user's question).
-void configureTracker(GstElement *tracker, const std::string &fragment, const std::optional<cv::Rect> &initBox,
-                      bool keepDrawing) {
+void configureTracker(GstElement *tracker, const std::string &fragment,
+                      const std::optional<cv::Rect> &initBox, bool keepDrawing) {
   if (initBox && hasProperty(tracker, "init-box")) {
-    const std::string text =
-        format("%d,%d,%d,%d", initBox->x, initBox->y, initBox->width, initBox->height);
+    const std::string text = format("%d,%d,%d,%d", initBox->x, initBox->y, initBox->width, initBox->height);
     g_object_set(tracker, "init-box", text.c_str(), nullptr);
   } else if (initBox && hasProperty(tracker, "object-initial-x")) {
     g_object_set(tracker, "object-initial-x", static_cast<guint>(initBox->x), "object-initial-y",
@@ -344,8 +351,8 @@ void configureTracker(GstElement *tracker, const std::string &fragment, const st
 // Runs `fragment` over the sequence's frames and collects the boxes and timings. `progress` is called about
 // four times a second with the number of frames received so far.
 template <typename ProgressFn>
-RunResult runPipeline(const Sequence &sequence, const std::string &fragment, bool initialise, bool keepDrawing,
-                      const ProgressFn &progress) {
+RunResult runPipeline(const Sequence &sequence, const std::string &fragment, bool initialise,
+                      bool keepDrawing, const ProgressFn &progress) {
   RunResult result;
   GError *error = nullptr;
   GstElement *bin = gst_parse_bin_from_description(fragment.c_str(), TRUE, &error);
@@ -386,8 +393,8 @@ RunResult runPipeline(const Sequence &sequence, const std::string &fragment, boo
                sequence.pattern.startIndex + sequence.pattern.count - 1, "caps", jpegCaps, nullptr);
   gst_caps_unref(jpegCaps);
   // Every frame is pulled: no clock, no queue limit, no dropping.
-  g_object_set(sink, "sync", FALSE, "max-buffers", 0u, "drop", FALSE, "enable-last-sample", FALSE, "qos", FALSE,
-               nullptr);
+  g_object_set(sink, "sync", FALSE, "max-buffers", 0u, "drop", FALSE, "enable-last-sample", FALSE, "qos",
+               FALSE, nullptr);
   configureTracker(tracker, fragment, initialise ? std::optional<cv::Rect>(sequence.initBox) : std::nullopt,
                    keepDrawing);
 
@@ -398,7 +405,8 @@ RunResult runPipeline(const Sequence &sequence, const std::string &fragment, boo
   callbacks.eos = onEos;
   callbacks.new_sample = onNewSample;
   gst_app_sink_set_callbacks(GST_APP_SINK(sink), &callbacks, &context, nullptr);
-  if (trackerSink) gst_pad_add_probe(trackerSink, GST_PAD_PROBE_TYPE_BUFFER, onTrackerSink, &context, nullptr);
+  if (trackerSink)
+    gst_pad_add_probe(trackerSink, GST_PAD_PROBE_TYPE_BUFFER, onTrackerSink, &context, nullptr);
   gst_pad_add_probe(trackerSrc, GST_PAD_PROBE_TYPE_BUFFER, onTrackerSrc, &context, nullptr);
 
   if (!gst_element_link_many(source, decoder, convert, bin, sink, nullptr)) {
@@ -421,7 +429,8 @@ RunResult runPipeline(const Sequence &sequence, const std::string &fragment, boo
           gchar *debug = nullptr;
           gst_message_parse_error(message, &gerror, &debug);
           result.error = std::string(GST_OBJECT_NAME(GST_MESSAGE_SRC(message))) + ": " +
-                         (gerror ? gerror->message : "error") + (debug ? std::string(" (") + debug + ")" : "");
+                         (gerror ? gerror->message : "error") +
+                         (debug ? std::string(" (") + debug + ")" : "");
           g_clear_error(&gerror);
           g_free(debug);
         }
@@ -499,9 +508,9 @@ struct Curve {
 };
 
 cv::Scalar curveColour(std::size_t index) {
-  static const cv::Scalar palette[] = {
-      {40, 40, 220},  {200, 90, 20},  {40, 160, 40},  {180, 40, 180}, {0, 140, 255},  {170, 160, 0},
-      {40, 70, 130},  {120, 120, 120}, {0, 0, 0},     {220, 120, 160}, {30, 120, 120}, {110, 30, 60}};
+  static const cv::Scalar palette[] = {{40, 40, 220}, {200, 90, 20},   {40, 160, 40},  {180, 40, 180},
+                                       {0, 140, 255}, {170, 160, 0},   {40, 70, 130},  {120, 120, 120},
+                                       {0, 0, 0},     {220, 120, 160}, {30, 120, 120}, {110, 30, 60}};
   return palette[index % (sizeof palette / sizeof palette[0])];
 }
 
@@ -512,32 +521,33 @@ void drawPlot(const std::string &title, const std::string &xLabel, double xMax, 
   cv::Mat canvas(canvasSize, CV_8UC3, cv::Scalar::all(255));
   const int font = cv::FONT_HERSHEY_SIMPLEX;
   auto toPixel = [&](double x, double y) {
-    return cv::Point(plot.x + cvRound(x / xMax * plot.width), plot.y + plot.height - cvRound(y * plot.height));
+    return cv::Point(plot.x + cvRound(x / xMax * plot.width),
+                     plot.y + plot.height - cvRound(y * plot.height));
   };
   // Grid and tick labels.
   for (double x = 0; x <= xMax + 1e-9; x += xTickStep) {
     cv::line(canvas, toPixel(x, 0), toPixel(x, 1), cv::Scalar::all(225), 1);
     const std::string text = format(tickFormat, x);
     const cv::Size size = cv::getTextSize(text, font, 0.45, 1, nullptr);
-    cv::putText(canvas, text, toPixel(x, 0) + cv::Point(-size.width / 2, 20), font, 0.45, cv::Scalar::all(0), 1,
-                cv::LINE_AA);
+    cv::putText(canvas, text, toPixel(x, 0) + cv::Point(-size.width / 2, 20), font, 0.45, cv::Scalar::all(0),
+                1, cv::LINE_AA);
   }
   for (int i = 0; i <= 10; ++i) {
     const double y = i / 10.0;
     cv::line(canvas, toPixel(0, y), toPixel(xMax, y), cv::Scalar::all(225), 1);
-    cv::putText(canvas, format("%.1f", y), toPixel(0, y) + cv::Point(-34, 5), font, 0.45, cv::Scalar::all(0), 1,
-                cv::LINE_AA);
+    cv::putText(canvas, format("%.1f", y), toPixel(0, y) + cv::Point(-34, 5), font, 0.45, cv::Scalar::all(0),
+                1, cv::LINE_AA);
   }
   cv::rectangle(canvas, plot, cv::Scalar::all(0), 1);
   const cv::Size titleSize = cv::getTextSize(title, font, 0.7, 2, nullptr);
   cv::putText(canvas, title, cv::Point(plot.x + (plot.width - titleSize.width) / 2, 32), font, 0.7,
               cv::Scalar::all(0), 2, cv::LINE_AA);
   const cv::Size xLabelSize = cv::getTextSize(xLabel, font, 0.55, 1, nullptr);
-  cv::putText(canvas, xLabel, cv::Point(plot.x + (plot.width - xLabelSize.width) / 2, plot.br().y + 50), font, 0.55,
-              cv::Scalar::all(0), 1, cv::LINE_AA);
+  cv::putText(canvas, xLabel, cv::Point(plot.x + (plot.width - xLabelSize.width) / 2, plot.br().y + 50), font,
+              0.55, cv::Scalar::all(0), 1, cv::LINE_AA);
   cv::Mat yLabel(24, 200, CV_8UC3, cv::Scalar::all(255));
-  cv::putText(yLabel, xMax > 1 ? "Precision" : "Success rate", cv::Point(40, 18), font, 0.55, cv::Scalar::all(0), 1,
-              cv::LINE_AA);
+  cv::putText(yLabel, xMax > 1 ? "Precision" : "Success rate", cv::Point(40, 18), font, 0.55,
+              cv::Scalar::all(0), 1, cv::LINE_AA);
   cv::rotate(yLabel, yLabel, cv::ROTATE_90_COUNTERCLOCKWISE);
   yLabel.copyTo(canvas(cv::Rect(6, plot.y + plot.height / 2 - 100, 24, 200)));
 
@@ -557,8 +567,8 @@ void drawPlot(const std::string &title, const std::string &xLabel, double xMax, 
   for (std::size_t i : order) {
     const cv::Point left(plot.br().x + 20, y);
     cv::line(canvas, left, left + cv::Point(30, 0), curveColour(i), i == 0 ? 3 : 2, cv::LINE_AA);
-    cv::putText(canvas, format("%s [%.3f]", curves[i].label.c_str(), curves[i].score), left + cv::Point(38, 5), font,
-                0.45, cv::Scalar::all(0), 1, cv::LINE_AA);
+    cv::putText(canvas, format("%s [%.3f]", curves[i].label.c_str(), curves[i].score),
+                left + cv::Point(38, 5), font, 0.45, cv::Scalar::all(0), 1, cv::LINE_AA);
     y += 24;
   }
   if (!cv::imwrite(path.string(), canvas)) throw std::runtime_error("cannot write " + path.string());
@@ -634,7 +644,8 @@ std::string markdownTables(const std::vector<Sequence> &sequences, const std::ve
     md << "\n";
   }
 
-  md << "### Mean over " << sequences.size() << (sequences.size() == 1 ? " sequence" : " sequences") << "\n\n";
+  md << "### Mean over " << sequences.size() << (sequences.size() == 1 ? " sequence" : " sequences")
+     << "\n\n";
   md << "| Tracker | AUC | Precision@20 | fps pipeline | fps element | slowest element fps |\n"
         "|---|---:|---:|---:|---:|---:|\n";
   for (std::size_t t = 0; t < trackers.size(); ++t) {
@@ -658,21 +669,25 @@ std::string markdownTables(const std::vector<Sequence> &sequences, const std::ve
       continue;
     }
     const SequenceScore mean = averageScores(scores);
-    const std::string coverage =
-        scores.size() == sequences.size() ? "" : format(" (%zu of %zu sequences)", scores.size(), sequences.size());
+    const std::string coverage = scores.size() == sequences.size()
+                                     ? ""
+                                     : format(" (%zu of %zu sequences)", scores.size(), sequences.size());
     md << "| " << trackers[t] << coverage << " | " << format("%.3f", mean.auc) << " | "
        << format("%.3f", mean.precisionAt20) << " | " << fpsText(wall > 0 ? frames / wall : 0) << " | "
-       << fpsText(inside > 0 ? frames / inside : 0) << " | " << fpsText(slowest) << " (" << slowestName << ") |\n";
+       << fpsText(inside > 0 ? frames / inside : 0) << " | " << fpsText(slowest) << " (" << slowestName
+       << ") |\n";
   }
-  md << "\nAUC and precision: mean of the sequences. fps: all frames over all time. fps element: time inside the "
+  md << "\nAUC and precision: mean of the sequences. fps: all frames over all time. fps element: time inside "
+        "the "
         "tracker element only (sink pad to src pad).\n";
   return md.str();
 }
 
-void writeCsv(const fs::path &path, const std::vector<Sequence> &sequences, const std::vector<std::string> &trackers,
-              const std::vector<std::vector<Evaluation>> &results) {
+void writeCsv(const fs::path &path, const std::vector<Sequence> &sequences,
+              const std::vector<std::string> &trackers, const std::vector<std::vector<Evaluation>> &results) {
   std::ofstream csv(path);
-  csv << "sequence,tracker,gt_frames,frames,scored_frames,frames_with_box,auc,precision20,fps_pipeline,fps_element,"
+  csv << "sequence,tracker,gt_frames,frames,scored_frames,frames_with_box,auc,precision20,fps_pipeline,fps_"
+         "element,"
          "wall_s,element_s,status\n";
   auto quoted = [](const std::string &text) {
     std::string out = "\"";
@@ -682,14 +697,14 @@ void writeCsv(const fs::path &path, const std::vector<Sequence> &sequences, cons
   for (std::size_t s = 0; s < sequences.size(); ++s)
     for (std::size_t t = 0; t < trackers.size(); ++t) {
       const Evaluation &e = results[s][t];
-      const long withBox = std::count_if(e.run.boxes.begin(), e.run.boxes.end(), [](const auto &b) { return b; });
-      csv << quoted(sequences[s].name) << "," << quoted(trackers[t]) << "," << sequences[s].groundTruth.size() << ","
-          << e.run.frames() << "," << e.score.scoredFrames << "," << withBox << "," << format("%.4f", e.score.auc)
-          << "," << format("%.4f", e.score.precisionAt20) << "," << format("%.2f", e.run.pipelineFps()) << ","
-          << format("%.2f", e.run.elementFps()) << "," << format("%.3f", e.run.wallSeconds) << ","
-          << format("%.3f", e.run.elementSeconds) << "," << quoted(e.ok ? (e.warning.empty() ? "ok" : e.warning)
-                                                                         : "failed: " + e.warning)
-          << "\n";
+      const long withBox =
+          std::count_if(e.run.boxes.begin(), e.run.boxes.end(), [](const auto &b) { return b; });
+      csv << quoted(sequences[s].name) << "," << quoted(trackers[t]) << "," << sequences[s].groundTruth.size()
+          << "," << e.run.frames() << "," << e.score.scoredFrames << "," << withBox << ","
+          << format("%.4f", e.score.auc) << "," << format("%.4f", e.score.precisionAt20) << ","
+          << format("%.2f", e.run.pipelineFps()) << "," << format("%.2f", e.run.elementFps()) << ","
+          << format("%.3f", e.run.wallSeconds) << "," << format("%.3f", e.run.elementSeconds) << ","
+          << quoted(e.ok ? (e.warning.empty() ? "ok" : e.warning) : "failed: " + e.warning) << "\n";
     }
 }
 
@@ -727,7 +742,8 @@ void writeCurves(const fs::path &path, const std::vector<std::string> &trackers,
       csv << "\"" << trackers[t] << "\",success," << format("%.2f", k / double(kSuccessSteps - 1)) << ","
           << format("%.4f", means[t].success[k]) << "\n";
     for (int k = 0; k < kPrecisionSteps; ++k)
-      csv << "\"" << trackers[t] << "\",precision," << k << "," << format("%.4f", means[t].precision[k]) << "\n";
+      csv << "\"" << trackers[t] << "\",precision," << k << "," << format("%.4f", means[t].precision[k])
+          << "\n";
   }
 }
 
@@ -771,7 +787,8 @@ std::string measureOverhead(const Options &options, Progress &progress) {
   sequence.frameSize = config.frameSize;
   for (int i = 0; i < options.overheadFrames; ++i) {
     const scene::SceneFrame frame = scene.render(i);
-    cv::imwrite((dir / "img" / format("%04d.jpg", i + 1)).string(), frame.bgr, {cv::IMWRITE_JPEG_QUALITY, 90});
+    cv::imwrite((dir / "img" / format("%04d.jpg", i + 1)).string(), frame.bgr,
+                {cv::IMWRITE_JPEG_QUALITY, 90});
     sequence.groundTruth.push_back(frame.objectVisible ? GroundTruthBox(frame.box) : std::nullopt);
     progress.update(format("overhead: writing 1080p frame %d/%d", i + 1, options.overheadFrames));
   }
@@ -784,10 +801,10 @@ std::string measureOverhead(const Options &options, Progress &progress) {
     std::vector<double> fps, elementMs;
     RunResult last;
   };
-  std::vector<Variant> variants = {{"identity", "identity", false, {}, {}, {}},
-                                   {options.overheadTracker, options.overheadTracker, false, {}, {}, {}},
-                                   {options.overheadTracker + " (draw=box+trail+label)", options.overheadTracker,
-                                    true, {}, {}, {}}};
+  std::vector<Variant> variants = {
+      {"identity", "identity", false, {}, {}, {}},
+      {options.overheadTracker, options.overheadTracker, false, {}, {}, {}},
+      {options.overheadTracker + " (draw=box+trail+label)", options.overheadTracker, true, {}, {}, {}}};
   // One unmeasured run warms the page cache and the plugin loading.
   runPipeline(sequence, "identity", false, false, [](int) {});
   for (int repeat = 0; repeat < options.overheadRepeats; ++repeat)
@@ -816,8 +833,8 @@ std::string measureOverhead(const Options &options, Progress &progress) {
     if (!boxes.empty()) boxes[0] = cv::Rect2d(sequence.initBox);
     const SequenceScore score = scoreSequence(sequence.groundTruth, boxes);
     const bool isIdentity = &v == &variants[0];
-    md << "| " << v.label << " | " << fpsText(median(v.fps)) << " | " << format("%.3f", median(v.fps) / baseFps)
-       << " | " << format("%.2f", median(v.elementMs)) << " | "
+    md << "| " << v.label << " | " << fpsText(median(v.fps)) << " | "
+       << format("%.3f", median(v.fps) / baseFps) << " | " << format("%.2f", median(v.elementMs)) << " | "
        << (isIdentity ? "-" : format("%ld/%d", tracking, v.last.frames())) << " | "
        << (isIdentity ? "-" : format("%.3f", score.auc)) << " |\n";
   }
@@ -844,20 +861,34 @@ Options parseOptions(int argc, char **argv) {
   };
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--tracker") options.trackers.push_back(value(i));
-    else if (arg == "--all-cvtracker") options.allCvtracker = true;
-    else if (arg == "--out") options.outDir = value(i);
-    else if (arg == "--gt-origin") options.gtOrigin = std::atof(value(i).c_str());
-    else if (arg == "--opencv-threads") options.openCvThreads = positive(i);
-    else if (arg == "--no-frames") options.writeFrames = false;
-    else if (arg == "--no-build-plugin") options.useBuildPlugin = false;
-    else if (arg == "--overhead") options.overhead = true;
-    else if (arg == "--overhead-frames") options.overheadFrames = positive(i);
-    else if (arg == "--overhead-repeats") options.overheadRepeats = positive(i);
-    else if (arg == "--overhead-tracker") options.overheadTracker = value(i);
-    else if (arg == "-h" || arg == "--help") throw std::invalid_argument("");
-    else if (arg.rfind("--", 0) == 0) throw std::invalid_argument("unknown option " + arg);
-    else options.inputs.push_back(arg);
+    if (arg == "--tracker")
+      options.trackers.push_back(value(i));
+    else if (arg == "--all-cvtracker")
+      options.allCvtracker = true;
+    else if (arg == "--out")
+      options.outDir = value(i);
+    else if (arg == "--gt-origin")
+      options.gtOrigin = std::atof(value(i).c_str());
+    else if (arg == "--opencv-threads")
+      options.openCvThreads = positive(i);
+    else if (arg == "--no-frames")
+      options.writeFrames = false;
+    else if (arg == "--no-build-plugin")
+      options.useBuildPlugin = false;
+    else if (arg == "--overhead")
+      options.overhead = true;
+    else if (arg == "--overhead-frames")
+      options.overheadFrames = positive(i);
+    else if (arg == "--overhead-repeats")
+      options.overheadRepeats = positive(i);
+    else if (arg == "--overhead-tracker")
+      options.overheadTracker = value(i);
+    else if (arg == "-h" || arg == "--help")
+      throw std::invalid_argument("");
+    else if (arg.rfind("--", 0) == 0)
+      throw std::invalid_argument("unknown option " + arg);
+    else
+      options.inputs.push_back(arg);
   }
   if (options.inputs.empty() && !options.overhead) throw std::invalid_argument("no sequence folder given");
   if (!options.inputs.empty() && options.trackers.empty() && !options.allCvtracker)
@@ -894,7 +925,8 @@ int run(int argc, char **argv) {
   std::vector<std::string> trackers = options.trackers;
   if (options.allCvtracker)
     for (const std::string &fragment : cvtrackerFragments())
-      if (std::find(trackers.begin(), trackers.end(), fragment) == trackers.end()) trackers.push_back(fragment);
+      if (std::find(trackers.begin(), trackers.end(), fragment) == trackers.end())
+        trackers.push_back(fragment);
 
   const std::vector<Sequence> sequences = findSequences(options.inputs, options.gtOrigin);
   const fs::path outDir(options.outDir);
@@ -910,7 +942,8 @@ int run(int argc, char **argv) {
          << "- Command: `" << options.commandLine << "`\n";
   if (!sequences.empty())
     header << "- Protocol: OTB one-pass evaluation, initialised with frame 1's ground truth (x, y minus "
-           << options.gtOrigin << " into 0-based pixels); frames without ground truth are not scored; a frame "
+           << options.gtOrigin
+           << " into 0-based pixels); frames without ground truth are not scored; a frame "
               "without the tracker's ROI meta is a miss.\n";
   header << "\n";
 
@@ -927,12 +960,13 @@ int run(int argc, char **argv) {
         Evaluation &e = results[s][t];
         e = evaluate(seq, trackers[t], label, progress);
         if (e.ok)
-          progress.finish(format("%s  %s  AUC %.3f  P@20 %.3f  %s fps pipeline  %s fps element%s%s", label.c_str(),
-                                 trackers[t].c_str(), e.score.auc, e.score.precisionAt20,
+          progress.finish(format("%s  %s  AUC %.3f  P@20 %.3f  %s fps pipeline  %s fps element%s%s",
+                                 label.c_str(), trackers[t].c_str(), e.score.auc, e.score.precisionAt20,
                                  fpsText(e.run.pipelineFps()).c_str(), fpsText(e.run.elementFps()).c_str(),
                                  e.warning.empty() ? "" : "  WARNING: ", e.warning.c_str()));
         else
-          progress.finish(format("%s  %s  FAILED: %s", label.c_str(), trackers[t].c_str(), e.warning.c_str()));
+          progress.finish(
+              format("%s  %s  FAILED: %s", label.c_str(), trackers[t].c_str(), e.warning.c_str()));
         if (options.writeFrames) writeFrames(outDir / "frames" / slug(trackers[t]), seq, e);
       }
     }
@@ -953,8 +987,8 @@ int run(int argc, char **argv) {
     const std::string over = format("%zu sequence%s", sequences.size(), sequences.size() == 1 ? "" : "s");
     drawPlot("Success plots of OPE (" + over + ")", "Overlap threshold", 1.0, 0.1, "%.1f", success,
              outDir / "success.png");
-    drawPlot("Precision plots of OPE (" + over + ")", "Location error threshold (px)", 50.0, 5.0, "%.0f", precision,
-             outDir / "precision.png");
+    drawPlot("Precision plots of OPE (" + over + ")", "Location error threshold (px)", 50.0, 5.0, "%.0f",
+             precision, outDir / "precision.png");
     body << "\n![success](success.png) ![precision](precision.png)\n";
   }
   if (options.overhead) body << (sequences.empty() ? "" : "\n") << measureOverhead(options, progress);

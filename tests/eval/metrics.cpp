@@ -27,7 +27,8 @@ bool isJpegName(const std::string &name) {
 }
 
 // Splits "img0042.jpg" into "img", "0042", ".jpg" (the last run of digits is the index).
-bool splitIndexedName(const std::string &name, std::string &prefix, std::string &digits, std::string &suffix) {
+bool splitIndexedName(const std::string &name, std::string &prefix, std::string &digits,
+                      std::string &suffix) {
   const std::size_t dot = name.rfind('.');
   const std::string stem = name.substr(0, dot);
   std::size_t end = stem.size();
@@ -53,8 +54,8 @@ bool parseGroundTruth(const std::string &text, double originOffset, std::vector<
   int lineNumber = 0;
   while (std::getline(lines, line)) {
     ++lineNumber;
-    std::replace_if(line.begin(), line.end(), [](char c) { return c == ',' || c == '\t' || c == '\r' || c == ';'; },
-                    ' ');
+    std::replace_if(
+        line.begin(), line.end(), [](char c) { return c == ',' || c == '\t' || c == '\r' || c == ';'; }, ' ');
     std::istringstream fields(line);
     std::vector<std::string> tokens;
     for (std::string token; fields >> token;) tokens.push_back(token);
@@ -63,7 +64,8 @@ bool parseGroundTruth(const std::string &text, double originOffset, std::vector<
       continue;
     }
     if (pendingBlank > 0) {
-      if (error) *error = "line " + std::to_string(lineNumber - pendingBlank) + ": blank line inside the file";
+      if (error)
+        *error = "line " + std::to_string(lineNumber - pendingBlank) + ": blank line inside the file";
       return false;
     }
     std::vector<double> values;
@@ -161,7 +163,8 @@ std::string FramePattern::printfPattern() const {
   return escape(prefix) + index + escape(suffix);
 }
 
-bool detectFramePattern(const std::vector<std::string> &fileNames, FramePattern &pattern, std::string *error) {
+bool detectFramePattern(const std::vector<std::string> &fileNames, FramePattern &pattern,
+                        std::string *error) {
   auto fail = [error](const std::string &message) {
     if (error) *error = message;
     return false;
@@ -176,7 +179,8 @@ bool detectFramePattern(const std::vector<std::string> &fileNames, FramePattern 
   std::size_t width = 0;
   for (std::size_t i = 0; i < names.size(); ++i) {
     std::string prefix, digits, suffix;
-    if (!splitIndexedName(names[i], prefix, digits, suffix)) return fail("no frame number in \"" + names[i] + "\"");
+    if (!splitIndexedName(names[i], prefix, digits, suffix))
+      return fail("no frame number in \"" + names[i] + "\"");
     if (i == 0) {
       found.prefix = prefix;
       found.suffix = suffix;

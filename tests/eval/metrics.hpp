@@ -33,11 +33,11 @@ double centreDistance(const cv::Rect2d &a, const cv::Rect2d &b);
 
 // Per-sequence scores of one tracker.
 struct SequenceScore {
-  int scoredFrames = 0;                 // frames with a ground-truth box
-  std::vector<double> success;          // kSuccessSteps fractions: IoU > threshold
-  std::vector<double> precision;        // kPrecisionSteps fractions: centre error <= threshold
-  double auc = 0;                       // mean of `success` (OTB's "AUC")
-  double precisionAt20 = 0;             // precision[20]
+  int scoredFrames = 0;           // frames with a ground-truth box
+  std::vector<double> success;    // kSuccessSteps fractions: IoU > threshold
+  std::vector<double> precision;  // kPrecisionSteps fractions: centre error <= threshold
+  double auc = 0;                 // mean of `success` (OTB's "AUC")
+  double precisionAt20 = 0;       // precision[20]
 };
 
 // Scores tracker output against ground truth, frame by frame. A frame without a tracker box (nullopt, or past

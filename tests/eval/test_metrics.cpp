@@ -10,7 +10,8 @@ namespace colortrack::eval {
 namespace {
 
 TEST(GroundTruth, ParsesEverySeparatorCrlfAndNan) {
-  const std::string text = "10,20,30,40\r\n11\t21\t31\t41\r\n12 22 32 42\nNaN,NaN,NaN,NaN\n1.5, 2.5, 3.5, 4.5\n\n";
+  const std::string text =
+      "10,20,30,40\r\n11\t21\t31\t41\r\n12 22 32 42\nNaN,NaN,NaN,NaN\n1.5, 2.5, 3.5, 4.5\n\n";
   std::vector<GroundTruthBox> boxes;
   std::string error;
   ASSERT_TRUE(parseGroundTruth(text, 1.0, boxes, &error)) << error;
@@ -53,15 +54,16 @@ TEST(Score, HandMadeSequence) {
   // Frame 0 exact, frame 1 shifted by half a width (IoU 1/3, centre error 5 px), frame 2 a miss, frame 3
   // without ground truth (not scored even though the tracker has a box), frame 4 past the tracker's output.
   const std::vector<GroundTruthBox> gt = {box, box, box, std::nullopt, box};
-  const std::vector<std::optional<cv::Rect2d>> tracked = {box, cv::Rect2d(105, 100, 10, 10), std::nullopt, box};
+  const std::vector<std::optional<cv::Rect2d>> tracked = {box, cv::Rect2d(105, 100, 10, 10), std::nullopt,
+                                                          box};
   const SequenceScore s = scoreSequence(gt, tracked);
   EXPECT_EQ(s.scoredFrames, 4);
   ASSERT_EQ(s.success.size(), static_cast<std::size_t>(kSuccessSteps));
   ASSERT_EQ(s.precision.size(), static_cast<std::size_t>(kPrecisionSteps));
-  EXPECT_DOUBLE_EQ(s.success[0], 2.0 / 4);   // IoU > 0: the exact and the shifted frame
-  EXPECT_DOUBLE_EQ(s.success[6], 2.0 / 4);   // 1/3 > 0.30
-  EXPECT_DOUBLE_EQ(s.success[7], 1.0 / 4);   // 1/3 < 0.35
-  EXPECT_DOUBLE_EQ(s.success[20], 0.0);      // nothing is strictly above IoU 1
+  EXPECT_DOUBLE_EQ(s.success[0], 2.0 / 4);  // IoU > 0: the exact and the shifted frame
+  EXPECT_DOUBLE_EQ(s.success[6], 2.0 / 4);  // 1/3 > 0.30
+  EXPECT_DOUBLE_EQ(s.success[7], 1.0 / 4);  // 1/3 < 0.35
+  EXPECT_DOUBLE_EQ(s.success[20], 0.0);     // nothing is strictly above IoU 1
   // The exact frame passes 20 thresholds (0 ... 0.95), the shifted one 7 (0 ... 0.30).
   EXPECT_NEAR(s.auc, (20.0 + 7.0) / (4 * 21), 1e-12);
   EXPECT_DOUBLE_EQ(s.precision[0], 1.0 / 4);

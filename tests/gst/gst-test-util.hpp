@@ -56,7 +56,8 @@ inline GstBuffer *bgrBuffer(const cv::Mat &bgr, int index) {
 inline std::vector<GstVideoRegionOfInterestMeta *> colortrackRois(GstBuffer *buffer) {
   std::vector<GstVideoRegionOfInterestMeta *> rois;
   gpointer iter = nullptr;
-  while (GstMeta *meta = gst_buffer_iterate_meta_filtered(buffer, &iter, GST_VIDEO_REGION_OF_INTEREST_META_API_TYPE)) {
+  while (GstMeta *meta =
+             gst_buffer_iterate_meta_filtered(buffer, &iter, GST_VIDEO_REGION_OF_INTEREST_META_API_TYPE)) {
     auto *roi = reinterpret_cast<GstVideoRegionOfInterestMeta *>(meta);
     if (roi->roi_type == g_quark_from_static_string("colortrack")) rois.push_back(roi);
   }
@@ -154,7 +155,8 @@ inline BusOutcome waitForEnd(GstBus *bus) {
     gst_message_unref(msg);
     if (type != GST_MESSAGE_WARNING) return outcome;
   }
-  fail("neither EOS nor an error within %d s: the pipeline hangs", static_cast<int>(kBusTimeout / GST_SECOND));
+  fail("neither EOS nor an error within %d s: the pipeline hangs",
+       static_cast<int>(kBusTimeout / GST_SECOND));
   return outcome;
 }
 
@@ -162,8 +164,8 @@ inline BusOutcome waitForEnd(GstBus *bus) {
 // frame's timestamp); fails on an error or after 5 s without one.
 inline void waitForCommandOf(GstBus *bus, GstClockTime pts) {
   while (true) {
-    GstMessage *m = gst_bus_timed_pop_filtered(bus, 5 * GST_SECOND,
-                                               static_cast<GstMessageType>(GST_MESSAGE_ELEMENT | GST_MESSAGE_ERROR));
+    GstMessage *m = gst_bus_timed_pop_filtered(
+        bus, 5 * GST_SECOND, static_cast<GstMessageType>(GST_MESSAGE_ELEMENT | GST_MESSAGE_ERROR));
     fail_unless(m != nullptr, "no command for frame %" GST_TIME_FORMAT, GST_TIME_ARGS(pts));
     if (GST_MESSAGE_TYPE(m) == GST_MESSAGE_ERROR) {
       GError *error = nullptr;
@@ -172,7 +174,8 @@ inline void waitForCommandOf(GstBus *bus, GstClockTime pts) {
     }
     const GstStructure *s = gst_message_get_structure(m);
     guint64 timestamp = GST_CLOCK_TIME_NONE;
-    const bool ours = gst_structure_has_name(s, "robotctl") && gst_structure_get_uint64(s, "timestamp", &timestamp) &&
+    const bool ours = gst_structure_has_name(s, "robotctl") &&
+                      gst_structure_get_uint64(s, "timestamp", &timestamp) &&
                       GST_CLOCK_TIME_IS_VALID(timestamp) && timestamp >= pts;
     gst_message_unref(m);
     if (ours) return;

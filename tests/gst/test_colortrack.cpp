@@ -1,6 +1,7 @@
 // Element tests of colortrack on synthetic scenes with exact ground truth: tracking quality, dynamic scale,
-// template files, decoys, re-acquisition, ROI meta and bus messages, meta through videoscale, the reset signal.
-// C++ headers first: gstcheck.h defines macros (fail, ...) that clash with names in the standard library.
+// template files, decoys, re-acquisition, ROI meta and bus messages, meta through videoscale, the reset
+// signal. C++ headers first: gstcheck.h defines macros (fail, ...) that clash with names in the standard
+// library.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -46,8 +47,8 @@ TrackMeta readMeta(GstBuffer *buffer) {
     m.present = true;
     m.box = cv::Rect(roi->x, roi->y, roi->w, roi->h);
     m.id = roi->id;
-    // On the meta itself, or (after videoconvert / videoscale, whose ROI transform drops it in GStreamer 1.22)
-    // in the documented custom meta under "id-<track id>".
+    // On the meta itself, or (after videoconvert / videoscale, whose ROI transform drops it in
+    // GStreamer 1.22) in the documented custom meta under "id-<track id>".
     const GstStructure *p = gst_video_region_of_interest_meta_get_param(roi, "colortrack");
     if (!p) {
       if (GstCustomMeta *custom = gst_buffer_get_custom_meta(buffer, "GstColorTrackParamsMeta")) {
@@ -100,7 +101,9 @@ class Harness : public BusHarness {
   }
 };
 
-std::string trackerLaunch(const std::string &properties) { return "colortrack name=ct " + properties; }
+std::string trackerLaunch(const std::string &properties) {
+  return "colortrack name=ct " + properties;
+}
 
 double mean(const std::vector<double> &v) {
   double sum = 0;
@@ -174,8 +177,8 @@ GST_START_TEST(test_tracks_through_motion_rotation_scale_and_lighting) {
   }
   const double meanIou = mean(ious);
   const double widthCorrelation = pearson(boxWidths, truthWidths);
-  GST_INFO("mean IoU %.3f over %d frames, %d without a box, width correlation %.3f", meanIou, config.frames, missing,
-           widthCorrelation);
+  GST_INFO("mean IoU %.3f over %d frames, %d without a box, width correlation %.3f", meanIou, config.frames,
+           missing, widthCorrelation);
   fail_unless(meanIou >= 0.6, "mean IoU %.3f < 0.6", meanIou);
   fail_unless(missing <= config.frames / 20, "%d frames without a box", missing);
 
@@ -247,11 +250,14 @@ GST_START_TEST(test_decoy_is_unverified) {
       decoyVerified += m.verified ? 1 : 0;
     }
   }
-  GST_INFO("object: %d/%d verified; decoy: %d/%d verified", objectVerified, objectFrames, decoyVerified, decoyFrames);
+  GST_INFO("object: %d/%d verified; decoy: %d/%d verified", objectVerified, objectFrames, decoyVerified,
+           decoyFrames);
   fail_unless(decoyFrames >= 10, "the decoy was picked up in %d frames only: nothing to check", decoyFrames);
-  fail_unless(decoyVerified <= 0.1 * decoyFrames, "decoy verified in %d of %d frames", decoyVerified, decoyFrames);
+  fail_unless(decoyVerified <= 0.1 * decoyFrames, "decoy verified in %d of %d frames", decoyVerified,
+              decoyFrames);
   fail_unless(objectFrames >= 45, "object tracked in %d frames only", objectFrames);
-  fail_unless(objectVerified >= 0.8 * objectFrames, "object verified in %d of %d frames", objectVerified, objectFrames);
+  fail_unless(objectVerified >= 0.8 * objectFrames, "object verified in %d of %d frames", objectVerified,
+              objectFrames);
 }
 GST_END_TEST;
 
@@ -274,7 +280,8 @@ GST_START_TEST(test_reacquires_after_leaving) {
     if (i == config.leaveFrom - 1) idBeforeLeaving = m.id;
     if (i >= config.leaveFrom && i < config.leaveTo && (state == "lost" || state == "searching"))
       lostOrSearching = true;
-    if (i >= config.leaveTo && reacquiredAt < 0 && state == "tracking" && m.present && iou(m.box, f.box) > 0.5) {
+    if (i >= config.leaveTo && reacquiredAt < 0 && state == "tracking" && m.present &&
+        iou(m.box, f.box) > 0.5) {
       reacquiredAt = i;
       firstIdAfterReturn = m.id;
     }
@@ -283,9 +290,10 @@ GST_START_TEST(test_reacquires_after_leaving) {
   GST_INFO("re-acquired %d frames after returning, then mean IoU %.3f", reacquiredAt - config.leaveTo,
            mean(laterIous));
   fail_unless(lostOrSearching, "never lost or searching while the object was away");
-  fail_unless(reacquiredAt >= 0 && reacquiredAt <= config.leaveTo + 5, "re-acquired at frame %d", reacquiredAt);
-  fail_unless(firstIdAfterReturn > idBeforeLeaving, "track id %d after returning, %d before", firstIdAfterReturn,
-              idBeforeLeaving);
+  fail_unless(reacquiredAt >= 0 && reacquiredAt <= config.leaveTo + 5, "re-acquired at frame %d",
+              reacquiredAt);
+  fail_unless(firstIdAfterReturn > idBeforeLeaving, "track id %d after returning, %d before",
+              firstIdAfterReturn, idBeforeLeaving);
   fail_unless(mean(laterIous) >= 0.6, "mean IoU %.3f after re-acquisition", mean(laterIous));
 }
 GST_END_TEST;
@@ -342,8 +350,8 @@ GST_START_TEST(test_meta_and_message_fields) {
     gst_structure_get_double(s, "score", &score);
     gst_structure_get_double(s, "scale", &scale);
     gst_structure_get_boolean(s, "verified", &verified);
-    fail_unless(std::abs(x - m.box.x) <= 1 && std::abs(y - m.box.y) <= 1, "message %.1f,%.1f meta %d,%d", x, y,
-                m.box.x, m.box.y);
+    fail_unless(std::abs(x - m.box.x) <= 1 && std::abs(y - m.box.y) <= 1, "message %.1f,%.1f meta %d,%d", x,
+                y, m.box.x, m.box.y);
     fail_unless(std::abs(x + width - m.box.br().x) <= 1 && std::abs(y + height - m.box.br().y) <= 1);
     fail_unless_equals_string(gst_structure_get_string(s, "state"), m.state.c_str());
     fail_unless(score == m.score && scale == m.scale && !verified == !m.verified);
@@ -379,9 +387,10 @@ GST_START_TEST(test_meta_survives_videoscale_and_videoconvert) {
     fail_unless_equals_int(half.id, full.id);
     const cv::Rect expected(full.box.x / 2, full.box.y / 2, full.box.width / 2, full.box.height / 2);
     fail_unless(std::abs(half.box.x - expected.x) <= 1 && std::abs(half.box.y - expected.y) <= 1 &&
-                    std::abs(half.box.width - expected.width) <= 1 && std::abs(half.box.height - expected.height) <= 1,
-                "frame %d: scaled box %d,%d %dx%d, full box %d,%d %dx%d", i, half.box.x, half.box.y, half.box.width,
-                half.box.height, full.box.x, full.box.y, full.box.width, full.box.height);
+                    std::abs(half.box.width - expected.width) <= 1 &&
+                    std::abs(half.box.height - expected.height) <= 1,
+                "frame %d: scaled box %d,%d %dx%d, full box %d,%d %dx%d", i, half.box.x, half.box.y,
+                half.box.width, half.box.height, full.box.x, full.box.y, full.box.width, full.box.height);
 
     fail_unless(same.box == full.box && same.id == full.id, "videoconvert changed the meta on frame %d", i);
     for (const TrackMeta *downstream : {&half, &same}) {

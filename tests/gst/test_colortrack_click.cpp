@@ -3,8 +3,8 @@
 // coordinates a user would click in the window, so the tests only pass when videoscale maps them back to
 // colortrack's frame. Template mode: a left click starts tracking the object, a second one on the decoy
 // re-targets (new id), a right click stops (no meta, state "idle"), init-box set while playing starts again
-// on the next frame. Threshold mode: a left click learns one ball's colour, a second the other ball's, a right
-// click stops. Every event must come out upstream of colortrack unchanged in colortrack's coordinates.
+// on the next frame. Threshold mode: a left click learns one ball's colour, a second the other ball's, a
+// right click stops. Every event must come out upstream of colortrack unchanged in colortrack's coordinates.
 // C++ headers first: gstcheck.h defines macros (fail, ...) that clash with names in the standard library.
 #include <algorithm>
 #include <string>
@@ -36,9 +36,9 @@ constexpr int kLeft = 1, kRight = 3;
 
 // One frame as seen downstream of videoscale (metas) and on the bus (colortrack's message).
 struct FrameResult {
-  std::vector<int> ids;               // ROI meta ids (videoscale keeps them)
-  std::vector<cv::Rect2d> boxes;      // ROI meta boxes scaled back to colortrack's frame
-  std::string state;                  // from the message
+  std::vector<int> ids;           // ROI meta ids (videoscale keeps them)
+  std::vector<cv::Rect2d> boxes;  // ROI meta boxes scaled back to colortrack's frame
+  std::string state;              // from the message
   int messageId = -1;
   cv::Rect2d messageBox;
 };
@@ -81,7 +81,8 @@ class ClickHarness : public BusHarness {
   void click(int button, cv::Point2d windowPoint) {
     GstEvent *event = gst_navigation_event_new_mouse_button_press(button, windowPoint.x, windowPoint.y,
                                                                   GST_NAVIGATION_MODIFIER_NONE);
-    fail_unless(gst_harness_push_upstream_event(harness(), event), "the navigation event was not forwarded upstream");
+    fail_unless(gst_harness_push_upstream_event(harness(), event),
+                "the navigation event was not forwarded upstream");
     GstEvent *forwarded = nullptr;
     while (GstEvent *e = gst_harness_try_pull_upstream_event(harness())) {
       if (GST_EVENT_TYPE(e) == GST_EVENT_NAVIGATION && !forwarded)
@@ -97,8 +98,8 @@ class ClickHarness : public BusHarness {
     const cv::Point2d expected(windowPoint.x * kFrame.width / kWindow.width,
                                windowPoint.y * kFrame.height / kWindow.height);
     fail_unless(std::abs(x - expected.x) <= 1.0 && std::abs(y - expected.y) <= 1.0,
-                "videoscale mapped %.1f,%.1f to %.1f,%.1f, expected %.1f,%.1f", windowPoint.x, windowPoint.y, x, y,
-                expected.x, expected.y);
+                "videoscale mapped %.1f,%.1f to %.1f,%.1f, expected %.1f,%.1f", windowPoint.x, windowPoint.y,
+                x, y, expected.x, expected.y);
     gst_event_unref(forwarded);
   }
 
@@ -106,7 +107,9 @@ class ClickHarness : public BusHarness {
   int frame_ = 0;
 };
 
-cv::Point2d centreOf(const cv::Rect2d &box) { return {box.x + box.width / 2, box.y + box.height / 2}; }
+cv::Point2d centreOf(const cv::Rect2d &box) {
+  return {box.x + box.width / 2, box.y + box.height / 2};
+}
 
 // Where the user clicks in the half-size window to hit `point` of the full frame.
 cv::Point2d inWindow(const cv::Point2d &point) {

@@ -31,7 +31,8 @@ using Outcome = BusOutcome;
 class Pipeline {
  public:
   explicit Pipeline(const std::string &middle) {
-    const std::string launch = "appsrc name=src format=time ! " + middle + " ! appsink name=sink sync=false wait-on-eos=false";
+    const std::string launch =
+        "appsrc name=src format=time ! " + middle + " ! appsink name=sink sync=false wait-on-eos=false";
     GError *error = nullptr;
     pipeline_ = gst_parse_launch(launch.c_str(), &error);
     fail_unless(pipeline_ != nullptr && error == nullptr, "cannot parse %s", launch.c_str());
@@ -132,8 +133,10 @@ class TempFile {
 
 void assertErrorNames(const Outcome &o, const std::string &property, const std::string &value) {
   fail_unless(o.error, "no error for %s '%s'", property.c_str(), value.c_str());
-  fail_unless(contains(o.errorText, property), "error does not name %s: %s", property.c_str(), o.errorText.c_str());
-  fail_unless(contains(o.errorText, value), "error does not name '%s': %s", value.c_str(), o.errorText.c_str());
+  fail_unless(contains(o.errorText, property), "error does not name %s: %s", property.c_str(),
+              o.errorText.c_str());
+  fail_unless(contains(o.errorText, value), "error does not name '%s': %s", value.c_str(),
+              o.errorText.c_str());
 }
 
 }  // namespace
@@ -168,7 +171,8 @@ GST_START_TEST(test_template_larger_than_frame) {
   fail_unless(cv::imwrite(file.path(), cv::Mat(200, 100, CV_8UC3, cv::Scalar(30, 60, 200))));
   const Outcome o = run("colortrack name=ct template-location=" + file.path(), scene);
   assertErrorNames(o, "template-location", file.path());
-  fail_unless(contains(o.errorText, "100x200") && contains(o.errorText, "160x120"), "%s", o.errorText.c_str());
+  fail_unless(contains(o.errorText, "100x200") && contains(o.errorText, "160x120"), "%s",
+              o.errorText.c_str());
 }
 GST_END_TEST;
 
@@ -188,9 +192,10 @@ GST_START_TEST(test_malformed_strings) {
     const char *property, *value;
   };
   const Case cases[] = {
-      {"bins", "16,16"},          {"bins", "a,b,c"},           {"bins", "0,16,8"},     {"bins", "16,16,300"},
-      {"channel-weights", "1,1"}, {"channel-weights", "2,1,1"}, {"channel-weights", "x"},
-      {"init-box", "1,2,3"},      {"init-box", "10,10,0,20"},   {"init-box", "-5,0,10,10"},
+      {"bins", "16,16"},          {"bins", "a,b,c"},          {"bins", "0,16,8"},
+      {"bins", "16,16,300"},      {"channel-weights", "1,1"}, {"channel-weights", "2,1,1"},
+      {"channel-weights", "x"},   {"init-box", "1,2,3"},      {"init-box", "10,10,0,20"},
+      {"init-box", "-5,0,10,10"},
   };
   for (const Case &c : cases) {
     // Quoted: some values hold characters the launch syntax would otherwise split on.
@@ -211,8 +216,8 @@ GST_START_TEST(test_bad_value_while_playing_keeps_old) {
   Pipeline p("colortrack name=ct init-box=" + boxString(scene.initBox()));
   fail_unless(p.play() != GST_STATE_CHANGE_FAILURE);
   for (int i = 0; i < 5; ++i) p.push(scene.render(i).bgr, i);
-  g_object_set(p.tracker(), "bins", "16,x,8", "channel-weights", "1,1,7", "init-box", "1,1,1", "template-location",
-               "/nonexistent-colortrack-dir/other.png", nullptr);
+  g_object_set(p.tracker(), "bins", "16,x,8", "channel-weights", "1,1,7", "init-box", "1,1,1",
+               "template-location", "/nonexistent-colortrack-dir/other.png", nullptr);
   for (int i = 5; i < 20; ++i) p.push(scene.render(i).bgr, i);
   const Outcome o = p.finish();
 

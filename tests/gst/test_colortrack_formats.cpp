@@ -43,9 +43,9 @@ cv::Mat bgrFromBuffer(GstBuffer *buffer, cv::Size size) {
   gst_video_info_set_format(&info, GST_VIDEO_FORMAT_BGR, size.width, size.height);
   GstVideoFrame frame;
   fail_unless(gst_video_frame_map(&frame, &info, buffer, GST_MAP_READ));
-  cv::Mat out = cv::Mat(size, CV_8UC3, GST_VIDEO_FRAME_PLANE_DATA(&frame, 0),
-                        GST_VIDEO_FRAME_PLANE_STRIDE(&frame, 0))
-                    .clone();
+  cv::Mat out =
+      cv::Mat(size, CV_8UC3, GST_VIDEO_FRAME_PLANE_DATA(&frame, 0), GST_VIDEO_FRAME_PLANE_STRIDE(&frame, 0))
+          .clone();
   gst_video_frame_unmap(&frame);
   return out;
 }
@@ -101,7 +101,8 @@ double closestOnLeftEdge(const cv::Mat &bgr, const cv::Rect &box, const cv::Vec3
   double best = 1e9;
   for (int x = std::max(0, box.x - 1); x <= std::min(bgr.cols - 1, box.x + 3); ++x) {
     const cv::Vec3b p = bgr.at<cv::Vec3b>(y, x);
-    best = std::min(best, cv::norm(cv::Vec3d(p[0], p[1], p[2]) - cv::Vec3d(expected[0], expected[1], expected[2])));
+    best = std::min(best,
+                    cv::norm(cv::Vec3d(p[0], p[1], p[2]) - cv::Vec3d(expected[0], expected[1], expected[2])));
   }
   return best;
 }
@@ -121,7 +122,8 @@ GST_START_TEST(test_format) {
 
   // BGR -> format under test, colortrack in that format, and back to BGR to look at the result.
   Harness toNative("videoconvert ! capsfilter caps=" + videoCaps(c.format, size), videoCaps("BGR", size));
-  Harness tracker("colortrack name=ct draw=box init-box=" + boxString(scene.initBox()), videoCaps(c.format, size));
+  Harness tracker("colortrack name=ct draw=box init-box=" + boxString(scene.initBox()),
+                  videoCaps(c.format, size));
   Harness toBgrOut("videoconvert ! capsfilter caps=" + videoCaps("BGR", size), videoCaps(c.format, size));
   Harness toBgrRef("videoconvert ! capsfilter caps=" + videoCaps("BGR", size), videoCaps(c.format, size));
 
@@ -154,12 +156,14 @@ GST_START_TEST(test_format) {
       cv::cvtColor(changed, changed, cv::COLOR_BGR2GRAY);
       cv::Mat allowed = cv::Mat::zeros(size, CV_8UC1);
       const int margin = 6;  // outline width, rounding to even, chroma interpolation
-      cv::rectangle(allowed, cv::Rect(m.box.x - margin, m.box.y - margin, m.box.width + 2 * margin,
-                                      m.box.height + 2 * margin),
-                    cv::Scalar(255), cv::FILLED);
-      cv::rectangle(allowed, cv::Rect(m.box.x + margin, m.box.y + margin, m.box.width - 2 * margin,
-                                      m.box.height - 2 * margin),
-                    cv::Scalar(0), cv::FILLED);
+      cv::rectangle(
+          allowed,
+          cv::Rect(m.box.x - margin, m.box.y - margin, m.box.width + 2 * margin, m.box.height + 2 * margin),
+          cv::Scalar(255), cv::FILLED);
+      cv::rectangle(
+          allowed,
+          cv::Rect(m.box.x + margin, m.box.y + margin, m.box.width - 2 * margin, m.box.height - 2 * margin),
+          cv::Scalar(0), cv::FILLED);
       changed.setTo(0, allowed);
       const int stray = cv::countNonZero(changed);
       fail_unless(stray == 0, "%s %dx%d frame %d: %d pixels changed away from the overlay", c.format, c.width,
@@ -171,8 +175,8 @@ GST_START_TEST(test_format) {
         const cv::Vec3b &expected = m.verified ? green : red;
         const double distance = closestOnLeftEdge(outBgr, m.box, expected);
         GST_INFO("frame %d: outline %s at distance %.1f", i, m.verified ? "green" : "red", distance);
-        fail_unless(distance < 40, "%s %dx%d frame %d: no %s outline pixel (closest at distance %.1f)", c.format,
-                    c.width, c.height, i, m.verified ? "green" : "red", distance);
+        fail_unless(distance < 40, "%s %dx%d frame %d: no %s outline pixel (closest at distance %.1f)",
+                    c.format, c.width, c.height, i, m.verified ? "green" : "red", distance);
         ++(m.verified ? greenChecks : redChecks);
       }
     }
@@ -181,11 +185,11 @@ GST_START_TEST(test_format) {
   }
   double meanIou = 0;
   for (double v : ious) meanIou += v / ious.size();
-  GST_INFO("%s %dx%d: mean IoU %.3f, %d green and %d red outline checks", c.format, c.width, c.height, meanIou,
-           greenChecks, redChecks);
+  GST_INFO("%s %dx%d: mean IoU %.3f, %d green and %d red outline checks", c.format, c.width, c.height,
+           meanIou, greenChecks, redChecks);
   fail_unless(meanIou >= 0.5, "%s %dx%d: mean IoU %.3f", c.format, c.width, c.height, meanIou);
-  fail_unless(greenChecks >= 1 && redChecks >= 1, "%s: %d green and %d red outline checks", c.format, greenChecks,
-              redChecks);
+  fail_unless(greenChecks >= 1 && redChecks >= 1, "%s: %d green and %d red outline checks", c.format,
+              greenChecks, redChecks);
 }
 GST_END_TEST;
 

@@ -99,7 +99,8 @@ class Harness : public BusHarness {
 const ObjectMeta *nearest(const std::vector<ObjectMeta> &metas, cv::Point2d point, double radius) {
   const ObjectMeta *best = nullptr;
   for (const ObjectMeta &m : metas)
-    if (cv::norm(m.centre() - point) < radius && (!best || cv::norm(m.centre() - point) < cv::norm(best->centre() - point)))
+    if (cv::norm(m.centre() - point) < radius &&
+        (!best || cv::norm(m.centre() - point) < cv::norm(best->centre() - point)))
       best = &m;
   return best;
 }
@@ -244,9 +245,11 @@ GST_START_TEST(test_mask_overlay) {
   gst_video_info_set_format(&info, GST_VIDEO_FORMAT_BGR, 640, 480);
   GstVideoFrame frame;
   fail_unless(gst_video_frame_map(&frame, &info, out, GST_MAP_READ));
-  const cv::Mat drawn(480, 640, CV_8UC3, GST_VIDEO_FRAME_PLANE_DATA(&frame, 0), GST_VIDEO_FRAME_PLANE_STRIDE(&frame, 0));
+  const cv::Mat drawn(480, 640, CV_8UC3, GST_VIDEO_FRAME_PLANE_DATA(&frame, 0),
+                      GST_VIDEO_FRAME_PLANE_STRIDE(&frame, 0));
   const cv::Vec3b before = bgr.at<cv::Vec3b>(ball), after = drawn.at<cv::Vec3b>(ball);
-  fail_unless(after[0] > before[0] + 80, "blue %d -> %d: not tinted", before[0], after[0]);  // magenta adds blue
+  fail_unless(after[0] > before[0] + 80, "blue %d -> %d: not tinted", before[0],
+              after[0]);  // magenta adds blue
   fail_unless(drawn.at<cv::Vec3b>(far) == bgr.at<cv::Vec3b>(far), "background changed");
   gst_video_frame_unmap(&frame);
   gst_buffer_unref(out);
@@ -261,8 +264,8 @@ using Outcome = BusOutcome;
 class Pipeline {
  public:
   explicit Pipeline(const std::string &properties) {
-    const std::string launch =
-        "appsrc name=src format=time ! colortrack name=ct " + properties + " ! appsink name=sink sync=false wait-on-eos=false drop=true max-buffers=2";
+    const std::string launch = "appsrc name=src format=time ! colortrack name=ct " + properties +
+                               " ! appsink name=sink sync=false wait-on-eos=false drop=true max-buffers=2";
     GError *error = nullptr;
     pipeline_ = gst_parse_launch(launch.c_str(), &error);
     fail_unless(pipeline_ != nullptr && error == nullptr, "cannot parse %s", launch.c_str());
@@ -284,7 +287,9 @@ class Pipeline {
   Pipeline &operator=(const Pipeline &) = delete;
 
   bool play() { return gst_element_set_state(pipeline_, GST_STATE_PLAYING) != GST_STATE_CHANGE_FAILURE; }
-  void push(const cv::Mat &bgr, int index) { gst_app_src_push_buffer(GST_APP_SRC(src_), frameBuffer(bgr, index)); }
+  void push(const cv::Mat &bgr, int index) {
+    gst_app_src_push_buffer(GST_APP_SRC(src_), frameBuffer(bgr, index));
+  }
   GstElement *element() const { return element_; }
 
   Outcome finish(bool endStream = true) {
@@ -323,8 +328,8 @@ GST_START_TEST(test_bad_settings_are_clear_errors) {
   for (const Case &c : cases) {
     const Outcome o = run("mode=threshold " + c.properties);
     fail_unless(o.error, "no error for %s", c.properties.c_str());
-    fail_unless(contains(o.errorText, c.mustName) && contains(o.errorText, c.value), "unclear error for %s: %s",
-                c.properties.c_str(), o.errorText.c_str());
+    fail_unless(contains(o.errorText, c.mustName) && contains(o.errorText, c.value),
+                "unclear error for %s: %s", c.properties.c_str(), o.errorText.c_str());
   }
   // A valid wrap-around range and a min-area of exactly the frame are fine.
   const Outcome ok = run("mode=threshold hsv-lower=350,0.5,0.2 hsv-upper=10,1,1 min-area=307200");

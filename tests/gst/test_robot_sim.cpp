@@ -54,17 +54,17 @@ struct Pty {
 };
 
 struct LoopResult {
-  int centredAt = -1;       // first frame of kHold consecutive frames centred at the set-point
-  double finalOffset = 0;   // |offset| / width at the end
-  double finalSize = 0;     // ball height / frame height at the end
-  int stopAfterHide = -1;   // frames from hiding the ball to the first stop received
+  int centredAt = -1;      // first frame of kHold consecutive frames centred at the set-point
+  double finalOffset = 0;  // |offset| / width at the end
+  double finalSize = 0;    // ball height / frame height at the end
+  int stopAfterHide = -1;  // frames from hiding the ball to the first stop received
   int commandsBeforeHide = 0, movingBeforeHide = 0;
   int rejected = 0;
 };
 
 // Runs the loop. `controller`: robotctl's controller; hideAt: frame at which the ball disappears (-1: never).
-LoopResult runLoop(const char *controller, const char *protocol, CommandDecoder::Protocol decoding, int maxFrames,
-                   int hideAt) {
+LoopResult runLoop(const char *controller, const char *protocol, CommandDecoder::Protocol decoding,
+                   int maxFrames, int hideAt) {
   constexpr int kHold = 10;
   RobotSimConfig config;
   // The ball 3 m ahead, 12 degrees to the right: off-centre and far (its height 0.115 of the frame).
@@ -78,14 +78,15 @@ LoopResult runLoop(const char *controller, const char *protocol, CommandDecoder:
   Pty pty;
   const cv::Rect2d first = robot.ballBox();
   char launch[1024];
-  std::snprintf(launch, sizeof launch,
-                "appsrc name=src format=time caps=video/x-raw,format=BGR,width=%d,height=%d,framerate=%d/1 ! "
-                "colortrack init-box=%d,%d,%d,%d draw=0 ! "
-                "robotctl name=ctl location=%s sync=false post-messages=true rate=200 controller=%s protocol=%s "
-                "set-point=%g max-linear=%g max-angular=%g lost-timeout=%u",
-                config.frameSize.width, config.frameSize.height, kFps, cvRound(first.x), cvRound(first.y),
-                cvRound(first.width), cvRound(first.height), pty.slave.c_str(), controller, protocol, kSetPoint,
-                maxLinear, maxAngular, kLostTimeoutMs);
+  std::snprintf(
+      launch, sizeof launch,
+      "appsrc name=src format=time caps=video/x-raw,format=BGR,width=%d,height=%d,framerate=%d/1 ! "
+      "colortrack init-box=%d,%d,%d,%d draw=0 ! "
+      "robotctl name=ctl location=%s sync=false post-messages=true rate=200 controller=%s protocol=%s "
+      "set-point=%g max-linear=%g max-angular=%g lost-timeout=%u",
+      config.frameSize.width, config.frameSize.height, kFps, cvRound(first.x), cvRound(first.y),
+      cvRound(first.width), cvRound(first.height), pty.slave.c_str(), controller, protocol, kSetPoint,
+      maxLinear, maxAngular, kLostTimeoutMs);
   GError *error = nullptr;
   GstElement *pipeline = gst_parse_launch(launch, &error);
   fail_unless(pipeline != nullptr, "%s", error ? error->message : "");
@@ -140,9 +141,10 @@ LoopResult runLoop(const char *controller, const char *protocol, CommandDecoder:
 
 GST_START_TEST(test_zone_controller_centres_the_ball) {
   const LoopResult r = runLoop("zone", "zone-char", CommandDecoder::Protocol::ZoneChar, 300, -1);
-  std::printf("zone: centred from frame %d, offset %.3f of the width, size %.3f (set-point %.2f)\n", r.centredAt,
-              r.finalOffset, r.finalSize, kSetPoint);
-  fail_unless(r.centredAt >= 0, "not centred within 300 frames (offset %.3f, size %.3f)", r.finalOffset, r.finalSize);
+  std::printf("zone: centred from frame %d, offset %.3f of the width, size %.3f (set-point %.2f)\n",
+              r.centredAt, r.finalOffset, r.finalSize, kSetPoint);
+  fail_unless(r.centredAt >= 0, "not centred within 300 frames (offset %.3f, size %.3f)", r.finalOffset,
+              r.finalSize);
   fail_unless_equals_int(r.rejected, 0);
 }
 GST_END_TEST;
@@ -151,7 +153,8 @@ GST_START_TEST(test_proportional_controller_centres_the_ball) {
   const LoopResult r = runLoop("proportional", "binary", CommandDecoder::Protocol::Binary, 300, -1);
   std::printf("proportional: centred from frame %d, offset %.3f of the width, size %.3f (set-point %.2f)\n",
               r.centredAt, r.finalOffset, r.finalSize, kSetPoint);
-  fail_unless(r.centredAt >= 0, "not centred within 300 frames (offset %.3f, size %.3f)", r.finalOffset, r.finalSize);
+  fail_unless(r.centredAt >= 0, "not centred within 300 frames (offset %.3f, size %.3f)", r.finalOffset,
+              r.finalSize);
   fail_unless_equals_int(r.rejected, 0);
 }
 GST_END_TEST;
@@ -161,8 +164,9 @@ GST_START_TEST(test_hidden_ball_stops_within_lost_timeout) {
   for (const char *controller : {"zone", "proportional"}) {
     const LoopResult r = runLoop(controller, "text", CommandDecoder::Protocol::Text, 120, 30);
     const int limit = static_cast<int>(std::ceil(kLostTimeoutMs / 1000.0 * kFps));
-    std::printf("%s: moving in %d of %d frames before hiding; stop %d frames (%.0f ms) after hiding\n", controller,
-                r.movingBeforeHide, r.commandsBeforeHide, r.stopAfterHide, r.stopAfterHide * 1000.0 / kFps);
+    std::printf("%s: moving in %d of %d frames before hiding; stop %d frames (%.0f ms) after hiding\n",
+                controller, r.movingBeforeHide, r.commandsBeforeHide, r.stopAfterHide,
+                r.stopAfterHide * 1000.0 / kFps);
     fail_unless(r.movingBeforeHide > 0);
     fail_unless(r.stopAfterHide >= 0, "%s: no stop after hiding the ball", controller);
     fail_unless(r.stopAfterHide <= limit, "%s: stop after %d frames, lost-timeout is %d frames", controller,

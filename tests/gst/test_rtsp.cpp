@@ -59,7 +59,9 @@ SceneConfig sceneConfig() {
   return config;
 }
 
-int checkBits(int index) { return (index ^ (index >> 8) ^ 0x5a) & 0xff; }
+int checkBits(int index) {
+  return (index ^ (index >> 8) ^ 0x5a) & 0xff;
+}
 
 // Paints `index` into the top kCell rows of a BGR frame.
 void paintFrameIndex(cv::Mat &bgr, int index) {
@@ -175,7 +177,8 @@ int serve(int port, gint64 epochNs) {
   const std::string launch =
       "( appsrc name=scene is-live=true format=time do-timestamp=true "
       "caps=video/x-raw,format=BGR,width=" +
-      std::to_string(size.width) + ",height=" + std::to_string(size.height) + ",framerate=" + std::to_string(kFps) +
+      std::to_string(size.width) + ",height=" + std::to_string(size.height) +
+      ",framerate=" + std::to_string(kFps) +
       "/1 ! videoconvert ! video/x-raw,format=I420 ! jpegenc quality=90 ! rtpjpegpay name=pay0 pt=26 )";
   GstRTSPMediaFactory *factory = gst_rtsp_media_factory_new();
   gst_rtsp_media_factory_set_launch(factory, launch.c_str());
@@ -211,8 +214,8 @@ class ServerProcess {
     // The child dies with the test (a failed assertion must not leave a server behind).
     auto dieWithParent = [](gpointer) { prctl(PR_SET_PDEATHSIG, SIGKILL); };
     const gboolean spawned =
-        g_spawn_async_with_pipes(nullptr, argv, nullptr, G_SPAWN_DO_NOT_REAP_CHILD, dieWithParent, nullptr, &pid_,
-                                 nullptr, &stdout_, nullptr, &error);
+        g_spawn_async_with_pipes(nullptr, argv, nullptr, G_SPAWN_DO_NOT_REAP_CHILD, dieWithParent, nullptr,
+                                 &pid_, nullptr, &stdout_, nullptr, &error);
     g_free(self);
     fail_unless(spawned, "cannot start the RTSP server process: %s", error ? error->message : "?");
   }
@@ -229,7 +232,8 @@ class ServerProcess {
         pending_.erase(0, end + 1);
         if (line.rfind(key + " ", 0) == 0) return g_ascii_strtoll(line.c_str() + key.size() + 1, nullptr, 10);
       }
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+      const auto left =
+          std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
       if (left <= 0 || !waitReadable(static_cast<int>(left))) return -1;
       char chunk[256];
       const ssize_t n = ::read(stdout_, chunk, sizeof chunk);
@@ -263,10 +267,10 @@ class ServerProcess {
 
 // What the appsink saw for one frame.
 struct Observation {
-  int index = -1;         // scene frame index painted by the server (-1: unreadable)
-  double seconds = 0;     // wall clock since the client started
-  int connection = 0;     // how many times the source had been (re)started when the frame arrived
-  bool hasMeta = false;   // colortrack attached a ROI meta
+  int index = -1;        // scene frame index painted by the server (-1: unreadable)
+  double seconds = 0;    // wall clock since the client started
+  int connection = 0;    // how many times the source had been (re)started when the frame arrived
+  bool hasMeta = false;  // colortrack attached a ROI meta
   cv::Rect2d box;
   std::string state;
 };
@@ -284,7 +288,8 @@ class RtspClient {
   RtspClient(const std::string &location, const cv::Rect &initBox) : start_(Clock::now()) {
     GError *error = nullptr;
     pipeline_ = gst_parse_launch(
-        "rtpjpegdepay name=depay ! jpegdec ! videoconvert ! video/x-raw,format=I420 ! colortrack name=tracker ! "
+        "rtpjpegdepay name=depay ! jpegdec ! videoconvert ! video/x-raw,format=I420 ! colortrack "
+        "name=tracker ! "
         "appsink name=sink sync=false",
         &error);
     fail_unless(pipeline_ != nullptr, "client pipeline: %s", error ? error->message : "?");
@@ -379,8 +384,7 @@ class RtspClient {
   }
 
   void handle(GstMessage *message) {
-    if (GST_MESSAGE_TYPE(message) == GST_MESSAGE_APPLICATION &&
-        gst_message_has_name(message, kSourceEos)) {
+    if (GST_MESSAGE_TYPE(message) == GST_MESSAGE_APPLICATION && gst_message_has_name(message, kSourceEos)) {
       ++sourceEnds_;
       GST_INFO("the source ended (server closed the connection): restarting it");
       if (restartAt_ < 0) scheduleRestart();
@@ -422,8 +426,9 @@ class RtspClient {
 
   static GstPadProbeReturn sourceEosToMessage(GstPad *, GstPadProbeInfo *info, gpointer source) {
     if (GST_EVENT_TYPE(GST_PAD_PROBE_INFO_EVENT(info)) != GST_EVENT_EOS) return GST_PAD_PROBE_OK;
-    gst_element_post_message(GST_ELEMENT(source), gst_message_new_application(GST_OBJECT(source),
-                                                                              gst_structure_new_empty(kSourceEos)));
+    gst_element_post_message(
+        GST_ELEMENT(source),
+        gst_message_new_application(GST_OBJECT(source), gst_structure_new_empty(kSourceEos)));
     return GST_PAD_PROBE_DROP;
   }
 
@@ -589,16 +594,20 @@ GST_START_TEST(test_track_over_rtsp_and_survive_server_restart) {
   const Quality q2 = quality(scene, settled);
   const int jump = afterRestart().empty() ? 0 : afterRestart().front().index - before.back().index;
 
-  g_print("rtsp: first frame %.2f s after start; before the restart %d frames (%d unreadable), mean IoU %.3f, "
-          "IoU>=0.5 in %d\n",
-          firstFrameAt, q1.frames, q1.unreadable, q1.meanIou, q1.tracked);
-  g_print("rtsp: server killed: noticed after %.2f s (%d source EOS, %d source errors, %d stalls), %d restart "
-          "attempts while down\n",
-          noticedAfter, client.sourceEnds(), client.sourceErrors(), client.stalls(), attemptsWhileDown);
-  g_print("rtsp: server back: first frame after %.2f s (scene %d frames on), target re-acquired after %.2f s; "
-          "then %d frames, mean IoU %.3f, IoU>=0.5 in %d\n",
-          reconnectSeconds, jump, reacquireSeconds, q2.frames, q2.meanIou, q2.tracked);
-  for (const std::string &e : client.otherErrors()) g_print("rtsp: error outside the source: %s\n", e.c_str());
+  g_print(
+      "rtsp: first frame %.2f s after start; before the restart %d frames (%d unreadable), mean IoU %.3f, "
+      "IoU>=0.5 in %d\n",
+      firstFrameAt, q1.frames, q1.unreadable, q1.meanIou, q1.tracked);
+  g_print(
+      "rtsp: server killed: noticed after %.2f s (%d source EOS, %d source errors, %d stalls), %d restart "
+      "attempts while down\n",
+      noticedAfter, client.sourceEnds(), client.sourceErrors(), client.stalls(), attemptsWhileDown);
+  g_print(
+      "rtsp: server back: first frame after %.2f s (scene %d frames on), target re-acquired after %.2f s; "
+      "then %d frames, mean IoU %.3f, IoU>=0.5 in %d\n",
+      reconnectSeconds, jump, reacquireSeconds, q2.frames, q2.meanIou, q2.tracked);
+  for (const std::string &e : client.otherErrors())
+    g_print("rtsp: error outside the source: %s\n", e.c_str());
 
   // Before the restart: at 30 fps for >= 3 s, few frames lost, the object tracked.
   fail_unless(q1.frames >= 2 * kFps, "only %d frames in the first session", q1.frames);
@@ -615,11 +624,12 @@ GST_START_TEST(test_track_over_rtsp_and_survive_server_restart) {
   fail_unless(reconnected && reconnectSeconds < 5.0, "no frame within %.1f s of the server's return",
               reconnectSeconds);
   fail_unless(jump >= kFps, "the scene moved on by only %d frames during the outage", jump);
-  fail_unless(reacquireSeconds >= 0 && reacquireSeconds < 6.0, "target not re-acquired (%.2f s)", reacquireSeconds);
+  fail_unless(reacquireSeconds >= 0 && reacquireSeconds < 6.0, "target not re-acquired (%.2f s)",
+              reacquireSeconds);
   fail_unless(q2.frames >= kFps, "only %d frames after re-acquisition", q2.frames);
   fail_unless(q2.meanIou >= 0.6, "mean IoU %.3f after re-acquisition", q2.meanIou);
-  fail_unless(q2.tracked >= 0.9 * q2.frames, "IoU >= 0.5 in only %d of %d frames after re-acquisition", q2.tracked,
-              q2.frames);
+  fail_unless(q2.tracked >= 0.9 * q2.frames, "IoU >= 0.5 in only %d of %d frames after re-acquisition",
+              q2.tracked, q2.frames);
   fail_unless_equals_int(client.pipelineState(), GST_STATE_PLAYING);
 }
 GST_END_TEST;

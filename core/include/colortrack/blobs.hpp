@@ -52,7 +52,9 @@ class RangeLut {
   static int index(std::uint8_t c0, std::uint8_t c1, std::uint8_t c2) {
     return ((c0 >> kShift) << (2 * kBits)) | ((c1 >> kShift) << kBits) | (c2 >> kShift);
   }
-  std::uint8_t at(std::uint8_t c0, std::uint8_t c1, std::uint8_t c2) const { return table_[index(c0, c1, c2)]; }
+  std::uint8_t at(std::uint8_t c0, std::uint8_t c1, std::uint8_t c2) const {
+    return table_[index(c0, c1, c2)];
+  }
   const std::uint8_t *table() const { return table_.data(); }
 
  private:
@@ -91,10 +93,10 @@ struct BlobSettings {
 
 // A connected component, in frame coordinates (measured on the decimated grid and scaled back).
 struct Blob {
-  double area = 0;        // pixel count, frame pixels
-  cv::Point2d centroid;   // centre of mass
-  cv::Rect box;           // bounding box: x1 = box.x, x2 = box.x + box.width - 1 (and y alike)
-  double fill = 0;        // area / box area
+  double area = 0;       // pixel count, frame pixels
+  cv::Point2d centroid;  // centre of mass
+  cv::Rect box;          // bounding box: x1 = box.x, x2 = box.x + box.width - 1 (and y alike)
+  double fill = 0;       // area / box area
 };
 
 int autoDecimation(cv::Size frame);

@@ -7,12 +7,13 @@ namespace colortrack {
 
 enum class VerifyMode { None, EdgeDensity, EdgeEnergy, Both };
 
-// Edges are computed on a patch resized to the template's size, capped at 96 px a side (so values compare across
-// scales, and the check stays cheap), after
-// stretching its contrast (so they hold under lighting changes).
+// Edges are computed on a patch resized to the template's size, capped at 96 px a side (so values compare
+// across scales, and the check stays cheap), after stretching its contrast (so they hold under lighting
+// changes).
 struct EdgeSignature {
   double density = 0;  // edge pixels / patch area
-  double energy = 0;   // k Σ|e - C|^2 over edge pixels, k = N_template / N_window, divided by N_template * area
+  double energy =
+      0;  // k Σ|e - C|^2 over edge pixels, k = N_template / N_window, divided by N_template * area
   int edgeCount = 0;
   bool valid() const { return edgeCount > 0; }
 };

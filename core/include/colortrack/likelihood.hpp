@@ -44,7 +44,7 @@ class ColorLikelihood {
 
  private:
   BinLayout layout_;
-  std::array<int, 3> jointBins_{};                        // bins per channel in the joint table
+  std::array<int, 3> jointBins_{};                         // bins per channel in the joint table
   std::array<std::array<std::uint8_t, 256>, 3> reduce_{};  // channel bin -> joint-table bin
   std::vector<float> objectCounts_, ringCounts_;           // scratch for learn(), kept between frames
   std::vector<float> table_;   // joint bin -> P(object | colour), unseen colours 0.5

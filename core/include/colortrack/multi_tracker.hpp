@@ -32,17 +32,17 @@ struct MultiTrackerSettings {
 
 // One track as reported.
 struct TrackedObject {
-  int id = 0;              // >= 1 once confirmed; 0 while tentative
+  int id = 0;  // >= 1 once confirmed; 0 while tentative
   bool confirmed = false;
   TrackState state = TrackState::Tracking;  // tracking: measured this frame; coasting: on the prediction
-  cv::Point2d centre;      // filtered centroid
-  cv::Rect2d box;          // filtered box around it
-  double area = 0;         // pixel count of the last blob that fed the track
-  double score = 0;        // this frame's blob fill ratio (area / box area); 0 when not measured
-  double scale = 1.0;      // filtered size relative to the size at acquisition
-  double vx = 0, vy = 0;   // filtered velocity, px/frame
-  int hits = 0;            // frames measured since creation
-  int misses = 0;          // consecutive frames without a measurement
+  cv::Point2d centre;                       // filtered centroid
+  cv::Rect2d box;                           // filtered box around it
+  double area = 0;                          // pixel count of the last blob that fed the track
+  double score = 0;       // this frame's blob fill ratio (area / box area); 0 when not measured
+  double scale = 1.0;     // filtered size relative to the size at acquisition
+  double vx = 0, vy = 0;  // filtered velocity, px/frame
+  int hits = 0;           // frames measured since creation
+  int misses = 0;         // consecutive frames without a measurement
 };
 
 class MultiTracker {

@@ -16,10 +16,10 @@ struct ScaleParams {
 };
 
 struct ScaleResult {
-  cv::Rect2d box;       // chosen box, same centre as the input
-  double factor = 1.0;  // chosen size relative to the input box
-  double match = 0;     // match value of the chosen window
-  double criterion = 0; // what was maximised
+  cv::Rect2d box;        // chosen box, same centre as the input
+  double factor = 1.0;   // chosen size relative to the input box
+  double match = 0;      // match value of the chosen window
+  double criterion = 0;  // what was maximised
 };
 
 // Tries the sizes factor * box.size for factor in [minFactor, maxFactor] at the box's centre. A raw

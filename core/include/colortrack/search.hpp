@@ -23,8 +23,9 @@ struct SearchResult {
 // Finds the window of size `window` inside `region` (frame coordinates; the whole window must lie inside
 // the region and the bin image) with the highest match value. The returned score is exact (computed on
 // the full-resolution bins). Cost: O(region pixels) + O(positions / step^2 * bins) + refinement.
-SearchResult searchWindow(const BinImage &bins, const cv::Rect &region, cv::Size window, const Histogram &model,
-                          const ChannelWeights &weights, const SearchParams &params = SearchParams());
+SearchResult searchWindow(const BinImage &bins, const cv::Rect &region, cv::Size window,
+                          const Histogram &model, const ChannelWeights &weights,
+                          const SearchParams &params = SearchParams());
 
 // Every position, exact match value each: O(positions * window area). The reference for tests.
 SearchResult searchWindowBruteForce(const BinImage &bins, const cv::Rect &region, cv::Size window,

@@ -51,14 +51,14 @@ struct TrackerSettings {
 
 struct TrackOutput {
   TrackState state = TrackState::Searching;
-  bool hasBox = false;   // a track exists (tracking or coasting)
-  int id = 0;            // track id, >= 1 once a track has existed; grows at every new acquisition
-  cv::Rect2d box;        // filtered box, frame coordinates
-  double score = 0;      // match value of this frame's detection (0 when coasting)
-  bool verified = false; // edge check passed (always true when verify = None)
-  double scale = 1.0;    // box size relative to the template
-  double vx = 0, vy = 0; // filtered velocity, px/frame
-  cv::Rect searchRegion; // where this frame was searched (empty if nothing was searched)
+  bool hasBox = false;    // a track exists (tracking or coasting)
+  int id = 0;             // track id, >= 1 once a track has existed; grows at every new acquisition
+  cv::Rect2d box;         // filtered box, frame coordinates
+  double score = 0;       // match value of this frame's detection (0 when coasting)
+  bool verified = false;  // edge check passed (always true when verify = None)
+  double scale = 1.0;     // box size relative to the template
+  double vx = 0, vy = 0;  // filtered velocity, px/frame
+  cv::Rect searchRegion;  // where this frame was searched (empty if nothing was searched)
 };
 
 // Thrown for unusable input (a template larger than the frame, an empty box ...). The text names the problem.
