@@ -21,9 +21,10 @@
  * Commands go out at a fixed #GstRobotCtl:rate from a writer thread, repeated when unchanged so a watchdog
  * on the robot stays fed; the streaming thread only leaves the newest command for it and never waits for the
  * port. The robot is sent stop on EOS, on a flush, when going from PLAYING to PAUSED and from PAUSED to
- * READY, a last one when the port is closed (READY to NULL), when no confirmed target was seen for #GstRobotCtl:lost-timeout ms, when upstream delivers no
- * buffer for that long, and when the element is disposed. A port that fails while running (a USB adapter
- * unplugged) posts a warning and is reopened with back-off; the first command after reconnecting is stop.
+ * READY, a last one when the port is closed (READY to NULL), when no confirmed target was seen for
+ * #GstRobotCtl:lost-timeout ms, when upstream delivers no buffer for that long, and when the element is
+ * disposed. A port that fails while running (a USB adapter unplugged) posts a warning and is reopened with
+ * back-off; the first command after reconnecting is stop.
  *
  * With #GstRobotCtl:post-messages, every command sent is also posted as an element message "robotctl" with
  * command (string), left and right (int, as sent), linear and angular (double), target-visible (boolean),
@@ -100,9 +101,9 @@ constexpr auto kLongestRetry = std::chrono::milliseconds(2000);
 constexpr int kFinalStopTimeoutMs = 250;
 
 // The rates a serial port can be set to portably (termios' Bxxx constants).
-constexpr guint kStandardBaudRates[] = {50,     75,     110,    134,    150,    200,    300,    600,
-                                        1200,   1800,   2400,   4800,   9600,   19200,  38400,  57600,
-                                        115200, 230400, 460800, 500000, 576000, 921600, 1000000, 1152000,
+constexpr guint kStandardBaudRates[] = {50,      75,      110,     134,     150,     200,    300,     600,
+                                        1200,    1800,    2400,    4800,    9600,    19200,  38400,   57600,
+                                        115200,  230400,  460800,  500000,  576000,  921600, 1000000, 1152000,
                                         1500000, 2000000, 2500000, 3000000, 3500000, 4000000};
 
 bool isStandardBaudRate(guint rate) {
@@ -110,7 +111,9 @@ bool isStandardBaudRate(guint rate) {
          std::end(kStandardBaudRates);
 }
 
-double monotonicSeconds() { return static_cast<double>(g_get_monotonic_time()) / G_USEC_PER_SEC; }
+double monotonicSeconds() {
+  return static_cast<double>(g_get_monotonic_time()) / G_USEC_PER_SEC;
+}
 
 // A text property checked at start: what the user wrote and, if it does not parse, why.
 struct TextSetting {
@@ -152,8 +155,10 @@ class Port {
   virtual bool open(std::string &why) = 0;
   virtual void close() = 0;
   virtual bool isOpen() const = 0;
-  // Writes all of `bytes` within `timeoutMs`. Busy: the reader did not take them in time (they are dropped).
-  virtual WriteResult write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::string &why) = 0;
+  // Writes all of `bytes` within `timeoutMs` (> 0). Busy: the reader did not take them all in time; `written`
+  // says how many went out (a frame may be cut: the caller sends the rest before anything else).
+  virtual WriteResult write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::size_t &written,
+                            std::string &why) = 0;
   virtual std::string describe() const = 0;
 };
 
@@ -198,9 +203,10 @@ class FilePort : public Port {
   }
   bool isOpen() const override { return fd_ >= 0; }
 
-  WriteResult write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::string &why) override {
+  WriteResult write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::size_t &done,
+                    std::string &why) override {
     const auto deadline = Clock::now() + std::chrono::milliseconds(timeoutMs);
-    std::size_t done = 0;
+    done = 0;
     while (done < bytes.size()) {
       const ssize_t n = ::write(fd_, bytes.data() + done, bytes.size() - done);
       if (n > 0) {
@@ -213,7 +219,8 @@ class FilePort : public Port {
         fail(why);
         return WriteResult::Failed;
       }
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+      const auto left =
+          std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
       if (left <= 0) return WriteResult::Busy;
       struct pollfd pfd = {fd_, POLLOUT, 0};
       const int ready = poll(&pfd, 1, static_cast<int>(left));
@@ -287,13 +294,18 @@ class SerialPort : public Port {
   }
   bool isOpen() const override { return port_ != nullptr; }
 
-  WriteResult write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::string &why) override {
-    const sp_return n = sp_blocking_write(port_, bytes.data(), bytes.size(), static_cast<unsigned>(timeoutMs));
+  WriteResult write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::size_t &written,
+                    std::string &why) override {
+    written = 0;
+    // A timeout of 0 would block for ever in libserialport.
+    const sp_return n =
+        sp_blocking_write(port_, bytes.data(), bytes.size(), static_cast<unsigned>(std::max(timeoutMs, 1)));
     if (n < 0) {
       check(n, "write", why);
       return WriteResult::Failed;
     }
-    return static_cast<std::size_t>(n) == bytes.size() ? WriteResult::Written : WriteResult::Busy;
+    written = static_cast<std::size_t>(n);
+    return written == bytes.size() ? WriteResult::Written : WriteResult::Busy;
   }
 
   std::string describe() const override { return "serial port '" + config_.device + "'"; }
@@ -303,7 +315,9 @@ class SerialPort : public Port {
     if (result >= 0) return true;
     char *message = result == SP_ERR_FAIL ? sp_last_error_message() : nullptr;
     why = std::string("could not ") + what + ": " +
-          (message ? message : result == SP_ERR_SUPP ? "not supported by this port" : "invalid argument");
+          (message                 ? message
+           : result == SP_ERR_SUPP ? "not supported by this port"
+                                   : "invalid argument");
     if (message) sp_free_error_message(message);
     return false;
   }
@@ -344,7 +358,7 @@ class SerialPort : public Port {
 // The writer: a thread that sends the newest command at a fixed rate.
 
 struct Command {
-  colortrack::DriveOutput output;        // default: stop
+  colortrack::DriveOutput output;                // default: stop
   GstClockTime timestamp = GST_CLOCK_TIME_NONE;  // of the buffer it was decided on
   const char *reason = "start";
 };
@@ -359,18 +373,27 @@ struct WriterConfig {
 class CommandWriter {
  public:
   CommandWriter(GstElement *element, std::unique_ptr<Port> port, const WriterConfig &config)
-      : element_(element), port_(std::move(port)), config_(config), encoder_(config.protocol),
+      : element_(element),
+        port_(std::move(port)),
+        config_(config),
+        encoder_(config.protocol),
+        stallTimeout_(config.stallTimeout),
         bufferWatchdog_(config.stallTimeout) {}
 
   ~CommandWriter() { shutdown(); }
 
-  void start() { thread_ = std::thread([this] { run(); }); }
+  void start() {
+    thread_ = std::thread([this] { run(); });
+  }
 
   // The streaming thread's decision; replaces any command not sent yet (a queue of one: newest wins).
+  // Ignored unless playing and not flushing: a render() still running when a pause or a flush sent stop must
+  // not bring a moving command back (the stall watchdog, off while not playing, would not stop it).
   void submit(const Command &command) {
     std::lock_guard<std::mutex> lock(mutex_);
-    pending_ = command;
     bufferWatchdog_.feed(monotonicSeconds());
+    if (!playing_ || flushing_) return;
+    pending_ = command;
   }
 
   // Stop now, not at the next tick.
@@ -384,11 +407,24 @@ class CommandWriter {
     wake_.notify_one();
   }
 
-  // Only a playing pipeline is expected to deliver buffers.
+  // Only a playing pipeline is expected to deliver buffers, and only its decisions are sent.
   void setPlaying(bool playing) {
     std::lock_guard<std::mutex> lock(mutex_);
     playing_ = playing;
     if (playing) bufferWatchdog_.feed(monotonicSeconds());
+  }
+
+  // Between flush-start and flush-stop decisions are dropped (see submit()).
+  void setFlushing(bool flushing) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    flushing_ = flushing;
+  }
+
+  // How long a playing pipeline may go without a buffer (lost-timeout, which may change while playing).
+  void setStallTimeout(double seconds) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stallTimeout_ = seconds;
+    bufferWatchdog_.setTimeout(seconds);
   }
 
   // Sends a last stop, ends the thread and closes the port. Idempotent.
@@ -410,7 +446,8 @@ class CommandWriter {
     sigaddset(&set, SIGPIPE);
     pthread_sigmask(SIG_BLOCK, &set, nullptr);
 
-    const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / config_.rate));
+    const auto period =
+        std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / config_.rate));
     auto nextTick = Clock::now();
     std::unique_lock<std::mutex> lock(mutex_);
     while (true) {
@@ -420,7 +457,7 @@ class CommandWriter {
       urgent_ = false;
       if (playing_ && bufferWatchdog_.expired(monotonicSeconds()) &&
           pending_.output.command != colortrack::DriveCommand::Stop) {
-        GST_INFO_OBJECT(element_, "no buffer for %.0f ms: stopping", config_.stallTimeout * 1000);
+        GST_INFO_OBJECT(element_, "no buffer for %.0f ms: stopping", stallTimeout_ * 1000);
         pending_ = Command{};
         pending_.reason = "stalled";
       }
@@ -429,7 +466,8 @@ class CommandWriter {
       send(command, writeTimeoutMs(period));
       lock.lock();
       const auto now = Clock::now();
-      // An urgent stop restarts the rhythm; a tick that fell far behind (a slow port) does not burst to catch up.
+      // An urgent stop restarts the rhythm; a tick that fell far behind (a slow port) does not burst to catch
+      // up.
       nextTick = urgent || nextTick + period < now ? now + period : nextTick + period;
     }
     lock.unlock();
@@ -443,7 +481,14 @@ class CommandWriter {
     return static_cast<int>(std::clamp<long long>(ms, 5, 100));
   }
 
+  // Time left until `deadline`, at least 1 ms (a port is always given a chance to take something).
+  static int msUntil(Clock::time_point deadline) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+    return static_cast<int>(std::max<long long>(left, 1));
+  }
+
   void send(const Command &command, int timeoutMs) {
+    const auto deadline = Clock::now() + std::chrono::milliseconds(timeoutMs);
     std::string why;
     if (!port_->isOpen()) {
       if (Clock::now() < retryAt_) return;
@@ -456,37 +501,75 @@ class CommandWriter {
                              std::chrono::duration_cast<std::chrono::milliseconds>(retryDelay_).count()));
         return;
       }
-      GST_ELEMENT_INFO(element_, RESOURCE, WRITE, ("Reconnected to %s.", port_->describe().c_str()), (nullptr));
+      GST_ELEMENT_INFO(element_, RESOURCE, WRITE, ("Reconnected to %s.", port_->describe().c_str()),
+                       (nullptr));
       // Whatever the robot did while it was cut off, it hears stop first.
       Command stop;
       stop.reason = "reconnected";
-      if (!write(stop, timeoutMs)) return;
+      if (!write(stop, deadline)) return;
       if (command.output.command == colortrack::DriveCommand::Stop) return;
     }
-    write(command, timeoutMs);
+    // The rest of a cut frame goes first: the robot would misread a newer frame glued to a fragment.
+    if (!finishUnsent(deadline)) return;
+    write(command, deadline);
   }
 
-  bool write(const Command &command, int timeoutMs) {
-    const std::vector<std::uint8_t> bytes = encoder_.encode(command.output);
+  // Sends the tail of the frame cut by an earlier timeout; true when there is none left.
+  bool finishUnsent(Clock::time_point deadline) {
+    if (unsent_.empty()) return true;
+    std::size_t written = 0;
     std::string why;
-    switch (port_->write(bytes, timeoutMs, why)) {
+    const WriteResult result = port_->write(unsent_, msUntil(deadline), written, why);
+    unsent_.erase(unsent_.begin(), unsent_.begin() + static_cast<std::ptrdiff_t>(written));
+    switch (result) {
+      case WriteResult::Written:
+        retryDelay_ = kFirstRetry;
+        if (config_.postMessages) post(unsentCommand_);
+        return true;
+      case WriteResult::Busy:
+        GST_LOG_OBJECT(element_, "%s is not taking data: %zu bytes of a command still to send",
+                       port_->describe().c_str(), unsent_.size());
+        return false;
+      case WriteResult::Failed:
+        break;
+    }
+    connectionLost(why);
+    return false;
+  }
+
+  bool write(const Command &command, Clock::time_point deadline) {
+    const std::vector<std::uint8_t> bytes = encoder_.encode(command.output);
+    std::size_t written = 0;
+    std::string why;
+    switch (port_->write(bytes, msUntil(deadline), written, why)) {
       case WriteResult::Written:
         retryDelay_ = kFirstRetry;
         if (config_.postMessages) post(command);
         return true;
       case WriteResult::Busy:
-        GST_LOG_OBJECT(element_, "%s is not taking data: command dropped", port_->describe().c_str());
+        if (written > 0) {
+          unsent_.assign(bytes.begin() + static_cast<std::ptrdiff_t>(written), bytes.end());
+          unsentCommand_ = command;  // posted once its last byte is out
+        }
+        GST_LOG_OBJECT(
+            element_, "%s is not taking data: %s", port_->describe().c_str(),
+            written > 0 ? "the rest of the command goes first on the next tick" : "command dropped");
         return false;
       case WriteResult::Failed:
         break;
     }
+    connectionLost(why);
+    return false;
+  }
+
+  void connectionLost(const std::string &why) {
     GST_ELEMENT_WARNING(element_, RESOURCE, WRITE,
                         ("Lost the connection to %s: %s. Retrying.", port_->describe().c_str(), why.c_str()),
                         (nullptr));
     port_->close();
+    unsent_.clear();  // a new connection starts with a whole frame (stop)
     retryDelay_ = kFirstRetry;
     retryAt_ = Clock::now() + retryDelay_;
-    return false;
   }
 
   void post(const Command &command) {
@@ -497,16 +580,18 @@ class CommandWriter {
         "robotctl", "command", G_TYPE_STRING, colortrack::toString(out.command), "left", G_TYPE_INT,
         stop ? 0 : colortrack::scaledSpeed(out.left, scale), "right", G_TYPE_INT,
         stop ? 0 : colortrack::scaledSpeed(out.right, scale), "linear", G_TYPE_DOUBLE, out.linear, "angular",
-        G_TYPE_DOUBLE, out.angular, "target-visible", G_TYPE_BOOLEAN, static_cast<gboolean>(out.targetVisible),
-        "timestamp", G_TYPE_UINT64, static_cast<guint64>(command.timestamp), "reason", G_TYPE_STRING,
-        command.reason, nullptr);
+        G_TYPE_DOUBLE, out.angular, "target-visible", G_TYPE_BOOLEAN,
+        static_cast<gboolean>(out.targetVisible), "timestamp", G_TYPE_UINT64,
+        static_cast<guint64>(command.timestamp), "reason", G_TYPE_STRING, command.reason, nullptr);
     gst_element_post_message(element_, gst_message_new_element(GST_OBJECT(element_), s));
   }
 
   GstElement *element_;
   std::unique_ptr<Port> port_;
   WriterConfig config_;
-  colortrack::ProtocolEncoder encoder_;  // writer thread only
+  colortrack::ProtocolEncoder encoder_;  // writer thread only, like the next five
+  std::vector<std::uint8_t> unsent_;     // the tail of a frame a timed-out write cut
+  Command unsentCommand_;                // the command that frame carries
   Clock::duration retryDelay_ = kFirstRetry;
   Clock::time_point retryAt_;
   std::thread thread_;
@@ -514,13 +599,15 @@ class CommandWriter {
   std::mutex mutex_;  // guards what follows; never held during I/O
   std::condition_variable wake_;
   Command pending_;
-  bool urgent_ = false, quit_ = false, playing_ = false;
+  bool urgent_ = false, quit_ = false, playing_ = false, flushing_ = false;
+  double stallTimeout_;
   colortrack::Watchdog bufferWatchdog_;
 };
 
 // What the streaming thread owns (and start()/stop(), which never run concurrently with it).
 struct State {
   std::unique_ptr<colortrack::RobotController> controller;
+  colortrack::ControllerKind controllerKind = colortrack::ControllerKind::Zone;  // of `controller`
   guint64 appliedControllerGeneration = 0;
   cv::Size frameSize;
   std::string roiType;
@@ -580,12 +667,12 @@ GST_ELEMENT_REGISTER_DEFINE(robotctl, "robotctl", GST_RANK_NONE, GST_TYPE_ROBOT_
 // ---------------------------------------------------------------------------------------------------------
 // Enum types
 
-#define DEFINE_ENUM_TYPE(function, name, ...)                                                       \
-  GType function(void) {                                                                            \
-    static gsize type = 0;                                                                          \
-    static const GEnumValue values[] = {__VA_ARGS__, {0, nullptr, nullptr}};                        \
-    if (g_once_init_enter(&type)) g_once_init_leave(&type, g_enum_register_static(name, values));    \
-    return type;                                                                                    \
+#define DEFINE_ENUM_TYPE(function, name, ...)                                                     \
+  GType function(void) {                                                                          \
+    static gsize type = 0;                                                                        \
+    static const GEnumValue values[] = {__VA_ARGS__, {0, nullptr, nullptr}};                      \
+    if (g_once_init_enter(&type)) g_once_init_leave(&type, g_enum_register_static(name, values)); \
+    return type;                                                                                  \
   }
 
 DEFINE_ENUM_TYPE(gst_robot_ctl_protocol_get_type, "GstRobotCtlProtocol",
@@ -614,8 +701,12 @@ DEFINE_ENUM_TYPE(gst_robot_ctl_flow_control_get_type, "GstRobotCtlFlowControl",
 
 namespace {
 
-Settings &settingsOf(GstRobotCtl *self) { return self->priv->settings; }
-State &stateOf(GstRobotCtl *self) { return self->priv->state; }
+Settings &settingsOf(GstRobotCtl *self) {
+  return self->priv->settings;
+}
+State &stateOf(GstRobotCtl *self) {
+  return self->priv->state;
+}
 
 // Where a double property lives in the settings, and whether it is a controller setting.
 double *doubleSetting(Settings &s, guint prop_id) {
@@ -652,7 +743,8 @@ double *doubleSetting(Settings &s, guint prop_id) {
 
 }  // namespace
 
-static void gst_robot_ctl_set_property(GObject *object, guint prop_id, const GValue *value, GParamSpec *pspec) {
+static void gst_robot_ctl_set_property(GObject *object, guint prop_id, const GValue *value,
+                                       GParamSpec *pspec) {
   GstRobotCtl *self = GST_ROBOT_CTL(object);
   GST_OBJECT_LOCK(self);
   Settings &s = settingsOf(self);
@@ -663,13 +755,14 @@ static void gst_robot_ctl_set_property(GObject *object, guint prop_id, const GVa
     std::string &error = prop_id == PROP_TURN_GAIN ? s.turnGainError : s.driveGainError;
     if (gain < 0) {
       const char *name = prop_id == PROP_TURN_GAIN ? "turn-gain" : "drive-gain";
-      const std::string why = std::string("Invalid value ") + std::to_string(gain) + " for property '" + name +
-                              "': a gain must not be negative (it would steer away from the target)";
+      const std::string why = std::string("Invalid value ") + std::to_string(gain) + " for property '" +
+                              name + "': a gain must not be negative (it would steer away from the target)";
       const bool running = s.running;
       const double kept = *doubleSetting(s, prop_id);
       if (!running) error = why;
       GST_OBJECT_UNLOCK(self);
-      if (running) GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS, ("%s. Keeping %g.", why.c_str(), kept), (nullptr));
+      if (running)
+        GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS, ("%s. Keeping %g.", why.c_str(), kept), (nullptr));
       return;
     }
     error.clear();
@@ -680,43 +773,49 @@ static void gst_robot_ctl_set_property(GObject *object, guint prop_id, const GVa
     GST_OBJECT_UNLOCK(self);
     return;
   }
+  // A setting read only at start that changes while started: said at once, or the user would think it
+  // applied.
+  bool startSettingChanged = false;
+  auto assign = [&startSettingChanged](auto &setting, auto value) {
+    startSettingChanged = !(setting == value);
+    setting = value;
+  };
+  auto text = [value] { return std::string(g_value_get_string(value) ? g_value_get_string(value) : ""); };
   switch (prop_id) {
     case PROP_DEVICE:
-      s.device = g_value_get_string(value) ? g_value_get_string(value) : "";
+      assign(s.device, text());
       break;
     case PROP_BAUD_RATE:
-      s.baudRate = g_value_get_uint(value);
+      assign(s.baudRate, g_value_get_uint(value));
       break;
     case PROP_DATA_BITS:
-      s.dataBits = g_value_get_int(value);
+      assign(s.dataBits, g_value_get_int(value));
       break;
     case PROP_PARITY:
-      s.parity = static_cast<GstRobotCtlParity>(g_value_get_enum(value));
+      assign(s.parity, static_cast<GstRobotCtlParity>(g_value_get_enum(value)));
       break;
     case PROP_STOP_BITS:
-      s.stopBits = g_value_get_int(value);
+      assign(s.stopBits, g_value_get_int(value));
       break;
     case PROP_FLOW_CONTROL:
-      s.flowControl = static_cast<GstRobotCtlFlowControl>(g_value_get_enum(value));
+      assign(s.flowControl, static_cast<GstRobotCtlFlowControl>(g_value_get_enum(value)));
       break;
     case PROP_LOCATION:
-      s.location = g_value_get_string(value) ? g_value_get_string(value) : "";
+      assign(s.location, text());
       break;
     case PROP_PROTOCOL:
-      s.protocol = static_cast<GstRobotCtlProtocol>(g_value_get_enum(value));
+      assign(s.protocol, static_cast<GstRobotCtlProtocol>(g_value_get_enum(value)));
       break;
-    case PROP_ZONE_CHARS: {
-      const char *text = g_value_get_string(value);
-      s.zoneChars.text = text ? text : "";
+    case PROP_ZONE_CHARS:
+      assign(s.zoneChars.text, text());
       s.zoneChars.error.clear();
       colortrack::parseZoneChars(s.zoneChars.text, &s.zoneChars.error);
       break;
-    }
     case PROP_OUTPUT_SCALE:
-      s.outputScale = g_value_get_int(value);
+      assign(s.outputScale, g_value_get_int(value));
       break;
     case PROP_RATE:
-      s.rate = g_value_get_double(value);
+      assign(s.rate, g_value_get_double(value));
       break;
     case PROP_CONTROLLER:
       s.controller.kind = g_value_get_enum(value) == GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL
@@ -745,13 +844,21 @@ static void gst_robot_ctl_set_property(GObject *object, guint prop_id, const GVa
       s.targetId = g_value_get_int(value);
       break;
     case PROP_POST_MESSAGES:
-      s.postMessages = g_value_get_boolean(value);
+      assign(s.postMessages, static_cast<bool>(g_value_get_boolean(value)));
       break;
     default:
       G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
       break;
   }
+  const bool warn = startSettingChanged && s.running;
   GST_OBJECT_UNLOCK(self);
+  if (warn)
+    GST_ELEMENT_WARNING(
+        self, RESOURCE, SETTINGS,
+        ("Property '%s' is read at start: the new value applies from the next start (READY to "
+         "NULL and back).",
+         pspec->name),
+        (nullptr));
 }
 
 static void gst_robot_ctl_get_property(GObject *object, guint prop_id, GValue *value, GParamSpec *pspec) {
@@ -857,17 +964,18 @@ static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
   GST_OBJECT_UNLOCK(self);
 
   if (s.device.empty() && s.location.empty()) {
-    GST_ELEMENT_ERROR(self, RESOURCE, NOT_FOUND,
-                      ("No output: set 'device' (a serial port) or 'location' (a file, FIFO, pseudo-terminal, "
-                       "or '-' for stdout)."),
-                      (nullptr));
+    GST_ELEMENT_ERROR(
+        self, RESOURCE, NOT_FOUND,
+        ("No output: set 'device' (a serial port) or 'location' (a file, FIFO, pseudo-terminal, "
+         "or '-' for stdout)."),
+        (nullptr));
     return FALSE;
   }
   if (!s.device.empty() && !s.location.empty()) {
-    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                      ("Set either 'device' ('%s') or 'location' ('%s'), not both.", s.device.c_str(),
-                       s.location.c_str()),
-                      (nullptr));
+    GST_ELEMENT_ERROR(
+        self, RESOURCE, SETTINGS,
+        ("Set either 'device' ('%s') or 'location' ('%s'), not both.", s.device.c_str(), s.location.c_str()),
+        (nullptr));
     return FALSE;
   }
   if (!s.device.empty() && !isStandardBaudRate(s.baudRate)) {
@@ -895,21 +1003,22 @@ static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
 
   std::unique_ptr<Port> port;
   if (!s.device.empty())
-    port = std::make_unique<SerialPort>(SerialConfig{s.device, s.baudRate, s.dataBits, s.stopBits, s.parity,
-                                                     s.flowControl});
+    port = std::make_unique<SerialPort>(
+        SerialConfig{s.device, s.baudRate, s.dataBits, s.stopBits, s.parity, s.flowControl});
   else
     port = std::make_unique<FilePort>(s.location);
   std::string why;
   if (!port->open(why)) {
     if (!s.device.empty())
-      GST_ELEMENT_ERROR(self, RESOURCE, OPEN_WRITE,
-                        ("Could not open serial port '%s' (property 'device'): %s", s.device.c_str(), why.c_str()),
-                        (nullptr));
+      GST_ELEMENT_ERROR(
+          self, RESOURCE, OPEN_WRITE,
+          ("Could not open serial port '%s' (property 'device'): %s", s.device.c_str(), why.c_str()),
+          (nullptr));
     else
-      GST_ELEMENT_ERROR(self, RESOURCE, OPEN_WRITE,
-                        ("Could not open '%s' (property 'location') for writing: %s", s.location.c_str(),
-                         why.c_str()),
-                        (nullptr));
+      GST_ELEMENT_ERROR(
+          self, RESOURCE, OPEN_WRITE,
+          ("Could not open '%s' (property 'location') for writing: %s", s.location.c_str(), why.c_str()),
+          (nullptr));
     return FALSE;
   }
   GST_INFO_OBJECT(self, "writing to %s", port->describe().c_str());
@@ -927,6 +1036,7 @@ static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
   State &state = stateOf(self);
   state = State{};
   state.controller = std::make_unique<colortrack::RobotController>(s.controller, s.failsafe);
+  state.controllerKind = s.controller.kind;
   state.appliedControllerGeneration = s.controllerGeneration;
   self->priv->resetRequested = false;
 
@@ -974,10 +1084,14 @@ static gboolean gst_robot_ctl_event(GstBaseSink *sink, GstEvent *event) {
       break;
     case GST_EVENT_FLUSH_START:
       GST_DEBUG_OBJECT(self, "flush: stop");
-      if (writer) writer->stopNow("flush");
+      if (writer) {
+        writer->setFlushing(true);
+        writer->stopNow("flush");
+      }
       break;
     case GST_EVENT_FLUSH_STOP:
       self->priv->resetRequested = true;  // what comes after a seek has nothing to do with before
+      if (writer) writer->setFlushing(false);
       break;
     default:
       break;
@@ -1000,7 +1114,8 @@ colortrack::TrackState parseState(const char *text) {
 void readTarget(GstBuffer *buffer, GQuark roiType, gint targetId, colortrack::Observation &o) {
   const GstVideoRegionOfInterestMeta *chosen = nullptr;
   gpointer iter = nullptr;
-  while (GstMeta *meta = gst_buffer_iterate_meta_filtered(buffer, &iter, GST_VIDEO_REGION_OF_INTEREST_META_API_TYPE)) {
+  while (GstMeta *meta =
+             gst_buffer_iterate_meta_filtered(buffer, &iter, GST_VIDEO_REGION_OF_INTEREST_META_API_TYPE)) {
     auto *roi = reinterpret_cast<GstVideoRegionOfInterestMeta *>(meta);
     if (roi->roi_type != roiType) continue;
     if (targetId >= 0 ? roi->id == targetId : (!chosen || roi->id < chosen->id)) chosen = roi;
@@ -1039,18 +1154,24 @@ static GstFlowReturn gst_robot_ctl_render(GstBaseSink *sink, GstBuffer *buffer) 
   GST_OBJECT_UNLOCK(self);
 
   if (generation != state.appliedControllerGeneration) {
-    state.controller = std::make_unique<colortrack::RobotController>(controllerSettings, failsafeSettings);
+    // A new gain or limit keeps the ramp and the lost-target hold; only another controller starts afresh.
+    if (controllerSettings.kind != state.controllerKind) {
+      state.controller = std::make_unique<colortrack::RobotController>(controllerSettings, failsafeSettings);
+      state.controllerKind = controllerSettings.kind;
+    } else {
+      state.controller->setSettings(controllerSettings, failsafeSettings);
+    }
+    writer->setStallTimeout(failsafeSettings.lostTimeout);
     state.appliedControllerGeneration = generation;
-  } else if (self->priv->resetRequested.exchange(false)) {
-    state.controller->reset();
   }
+  if (self->priv->resetRequested.exchange(false)) state.controller->reset();
 
   colortrack::Observation o;
   o.frameSize = state.frameSize;
   // Stream time drives the controller, so a file plays back the same decisions whatever the load.
   const GstClockTime pts = GST_BUFFER_PTS(buffer);
-  const GstClockTime running =
-      GST_CLOCK_TIME_IS_VALID(pts) ? gst_segment_to_running_time(&sink->segment, GST_FORMAT_TIME, pts)
+  const GstClockTime running = GST_CLOCK_TIME_IS_VALID(pts)
+                                   ? gst_segment_to_running_time(&sink->segment, GST_FORMAT_TIME, pts)
                                    : GST_CLOCK_TIME_NONE;
   o.time = GST_CLOCK_TIME_IS_VALID(running) ? static_cast<double>(running) / GST_SECOND : monotonicSeconds();
   readTarget(buffer, roiType, targetId, o);
@@ -1067,20 +1188,37 @@ static GstFlowReturn gst_robot_ctl_render(GstBaseSink *sink, GstBuffer *buffer) 
 
 static GstStateChangeReturn gst_robot_ctl_change_state(GstElement *element, GstStateChange transition) {
   GstRobotCtl *self = GST_ROBOT_CTL(element);
-  // Before the base class: the stop goes out before anything else of the pause happens.
-  if (transition == GST_STATE_CHANGE_PLAYING_TO_PAUSED && self->priv->writer) {
-    self->priv->writer->setPlaying(false);
-    self->priv->writer->stopNow("paused");
-  }
-  // GstBaseSink opens the port (start) from NULL to READY and closes it (stop, a final stop) from READY to
-  // NULL; in READY the robot keeps hearing stop at the rate.
-  if (transition == GST_STATE_CHANGE_PAUSED_TO_READY && self->priv->writer) {
-    self->priv->writer->setPlaying(false);
-    self->priv->writer->stopNow("ready");
+  // GstBaseSink opens the port (start(), which creates the writer) from NULL to READY and closes it (stop(),
+  // a final stop) from READY to NULL. Everything here happens before the base class: on the way down, the
+  // writer stops taking decisions (a render() still running cannot undo the stop) and the stop goes out
+  // before anything else of the change happens; on the way up, it takes decisions before the base class
+  // lets the first buffer of PLAYING (the preroll buffer) be rendered. In READY and PAUSED the robot keeps
+  // hearing stop at the rate.
+  CommandWriter *writer = self->priv->writer.get();
+  switch (transition) {
+    case GST_STATE_CHANGE_PAUSED_TO_PLAYING:
+    case GST_STATE_CHANGE_PLAYING_TO_PLAYING:  // back to PLAYING before a pause completed
+      if (writer) writer->setPlaying(true);
+      break;
+    case GST_STATE_CHANGE_PLAYING_TO_PAUSED:
+      if (writer) {
+        writer->setPlaying(false);
+        writer->stopNow("paused");
+      }
+      break;
+    case GST_STATE_CHANGE_PAUSED_TO_READY:
+      if (writer) {
+        writer->setPlaying(false);
+        writer->stopNow("ready");
+      }
+      break;
+    default:
+      break;
   }
   const GstStateChangeReturn ret = GST_ELEMENT_CLASS(parent_class)->change_state(element, transition);
-  if (ret == GST_STATE_CHANGE_FAILURE) return ret;
-  if (transition == GST_STATE_CHANGE_PAUSED_TO_PLAYING && self->priv->writer) self->priv->writer->setPlaying(true);
+  // Still paused: its decisions must not be sent.
+  if (ret == GST_STATE_CHANGE_FAILURE && transition == GST_STATE_CHANGE_PAUSED_TO_PLAYING && writer)
+    writer->setPlaying(false);
   return ret;
 }
 
@@ -1102,103 +1240,128 @@ static void gst_robot_ctl_class_init(GstRobotCtlClass *klass) {
   const colortrack::ControllerSettings c;
   const colortrack::FailsafeSettings f;
   constexpr auto rw = static_cast<GParamFlags>(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS);
-  // Read when the port opens (NULL to READY): changes apply from the next start.
-  constexpr auto ready = rw;
+  // Read by start() (NULL to READY): a change while started applies from the next start, with a warning.
+  constexpr auto readAtStart = rw;
   // Applied from the next buffer.
   constexpr auto live = static_cast<GParamFlags>(rw | GST_PARAM_MUTABLE_PLAYING);
-  auto install = [gobject_class](guint id, GParamSpec *spec) { g_object_class_install_property(gobject_class, id, spec); };
+  auto install = [gobject_class](guint id, GParamSpec *spec) {
+    g_object_class_install_property(gobject_class, id, spec);
+  };
 
   install(PROP_DEVICE, g_param_spec_string("device", "Device",
                                            "Serial port to send the commands to (e.g. /dev/ttyUSB0, COM3); "
-                                           "exclusive with 'location'",
-                                           nullptr, ready));
-  install(PROP_BAUD_RATE, g_param_spec_uint("baud-rate", "Baud rate",
-                                            "Serial port speed in bit/s; one of the standard rates 50 ... 4000000",
-                                            50, 4000000, kDefaultBaudRate, ready));
-  install(PROP_DATA_BITS,
-          g_param_spec_int("data-bits", "Data bits", "Serial port data bits", 5, 8, kDefaultDataBits, ready));
-  install(PROP_PARITY, g_param_spec_enum("parity", "Parity", "Serial port parity", GST_TYPE_ROBOT_CTL_PARITY,
-                                         GST_ROBOT_CTL_PARITY_NONE, ready));
-  install(PROP_STOP_BITS,
-          g_param_spec_int("stop-bits", "Stop bits", "Serial port stop bits", 1, 2, kDefaultStopBits, ready));
-  install(PROP_FLOW_CONTROL, g_param_spec_enum("flow-control", "Flow control", "Serial port flow control",
-                                               GST_TYPE_ROBOT_CTL_FLOW_CONTROL, GST_ROBOT_CTL_FLOW_CONTROL_NONE,
-                                               ready));
-  install(PROP_LOCATION, g_param_spec_string("location", "Location",
-                                             "File, FIFO or pseudo-terminal to write the commands to, '-' for "
-                                             "stdout (dry runs, tests); exclusive with 'device'",
-                                             nullptr, ready));
-  install(PROP_PROTOCOL, g_param_spec_enum("protocol", "Protocol", "How commands are encoded",
-                                           GST_TYPE_ROBOT_CTL_PROTOCOL, GST_ROBOT_CTL_PROTOCOL_ZONE_CHAR, ready));
-  install(PROP_ZONE_CHARS, g_param_spec_string("zone-chars", "Zone characters",
-                                               "The zone-char protocol's characters for forward, backward, left, "
-                                               "right and stop, in that order (five distinct printable characters)",
-                                               kDefaultZoneChars, ready));
-  install(PROP_OUTPUT_SCALE, g_param_spec_int("output-scale", "Output scale",
-                                              "Integer sent for full wheel speed by the text and binary protocols",
-                                              1, 32767, kDefaultOutputScale, ready));
-  install(PROP_RATE, g_param_spec_double("rate", "Rate",
-                                         "Commands per second; the current command is repeated at this rate",
-                                         0.5, 1000.0, kDefaultRate, ready));
-  install(PROP_CONTROLLER, g_param_spec_enum("controller", "Controller", "How commands are decided",
-                                             GST_TYPE_ROBOT_CTL_CONTROLLER, GST_ROBOT_CTL_CONTROLLER_ZONE, live));
-  install(PROP_DISTANCE_CUE, g_param_spec_enum("distance-cue", "Distance cue", "What tells how far the target is",
-                                               GST_TYPE_ROBOT_CTL_DISTANCE_CUE, GST_ROBOT_CTL_DISTANCE_CUE_SIZE,
-                                               live));
-  install(PROP_SET_POINT, g_param_spec_double("set-point", "Set-point",
-                                              "Wanted distance cue: box height (or box bottom) as a fraction of the "
-                                              "frame height",
-                                              0.01, 1.0, c.setPoint, live));
-  install(PROP_TURN_DEADBAND, g_param_spec_double("turn-deadband", "Turn deadband",
-                                                  "Horizontal offset (fraction of half the frame width) within "
-                                                  "which the target counts as centred",
-                                                  0.0, 1.0, c.turnDeadband, live));
-  install(PROP_DISTANCE_DEADBAND, g_param_spec_double("distance-deadband", "Distance deadband",
-                                                      "Relative distance error within which the distance counts "
-                                                      "as right",
-                                                      0.0, 1.0, c.distanceDeadband, live));
-  install(PROP_HYSTERESIS, g_param_spec_double("hysteresis", "Hysteresis",
-                                               "Zone controller: how far inside a deadband the error must come "
-                                               "back before a turn or drive ends",
-                                               0.0, 1.0, c.hysteresis, live));
-  install(PROP_TURN_GAIN, g_param_spec_double("turn-gain", "Turn gain",
-                                              "Proportional controller: angular speed per unit horizontal offset, 0-100 (a negative "
-                                              "value is refused)",
-                                              -100.0, 100.0, c.turnGain, live));
-  install(PROP_DRIVE_GAIN, g_param_spec_double("drive-gain", "Drive gain",
-                                               "Proportional controller: linear speed per unit relative distance "
-                                               "error, 0-100 (a negative value is refused)",
-                                               -100.0, 100.0, c.driveGain, live));
-  install(PROP_MAX_LINEAR, g_param_spec_double("max-linear", "Maximum linear speed",
-                                               "Largest forward/backward speed (fraction of full speed); the zone "
-                                               "controller's driving speed",
-                                               0.0, 1.0, c.maxLinear, live));
+                                           "exclusive with 'location'; read at start",
+                                           nullptr, readAtStart));
+  install(
+      PROP_BAUD_RATE,
+      g_param_spec_uint("baud-rate", "Baud rate",
+                        "Serial port speed in bit/s; one of the standard rates 50 ... 4000000; read at start",
+                        50, 4000000, kDefaultBaudRate, readAtStart));
+  install(PROP_DATA_BITS, g_param_spec_int("data-bits", "Data bits", "Serial port data bits; read at start",
+                                           5, 8, kDefaultDataBits, readAtStart));
+  install(PROP_PARITY, g_param_spec_enum("parity", "Parity", "Serial port parity; read at start",
+                                         GST_TYPE_ROBOT_CTL_PARITY, GST_ROBOT_CTL_PARITY_NONE, readAtStart));
+  install(PROP_STOP_BITS, g_param_spec_int("stop-bits", "Stop bits", "Serial port stop bits; read at start",
+                                           1, 2, kDefaultStopBits, readAtStart));
+  install(PROP_FLOW_CONTROL,
+          g_param_spec_enum("flow-control", "Flow control", "Serial port flow control; read at start",
+                            GST_TYPE_ROBOT_CTL_FLOW_CONTROL, GST_ROBOT_CTL_FLOW_CONTROL_NONE, readAtStart));
+  install(PROP_LOCATION,
+          g_param_spec_string("location", "Location",
+                              "File, FIFO or pseudo-terminal to write the commands to, '-' for "
+                              "stdout (dry runs, tests); exclusive with 'device'; read at start",
+                              nullptr, readAtStart));
+  install(PROP_PROTOCOL,
+          g_param_spec_enum("protocol", "Protocol", "How commands are encoded; read at start",
+                            GST_TYPE_ROBOT_CTL_PROTOCOL, GST_ROBOT_CTL_PROTOCOL_ZONE_CHAR, readAtStart));
+  install(
+      PROP_ZONE_CHARS,
+      g_param_spec_string("zone-chars", "Zone characters",
+                          "The zone-char protocol's characters for forward, backward, left, "
+                          "right and stop, in that order (five distinct printable characters); read at start",
+                          kDefaultZoneChars, readAtStart));
+  install(
+      PROP_OUTPUT_SCALE,
+      g_param_spec_int("output-scale", "Output scale",
+                       "Integer sent for full wheel speed by the text and binary protocols; read at start", 1,
+                       32767, kDefaultOutputScale, readAtStart));
+  install(PROP_RATE, g_param_spec_double(
+                         "rate", "Rate",
+                         "Commands per second; the current command is repeated at this rate; read at start",
+                         0.5, 1000.0, kDefaultRate, readAtStart));
+  install(PROP_CONTROLLER,
+          g_param_spec_enum("controller", "Controller", "How commands are decided",
+                            GST_TYPE_ROBOT_CTL_CONTROLLER, GST_ROBOT_CTL_CONTROLLER_ZONE, live));
+  install(PROP_DISTANCE_CUE,
+          g_param_spec_enum("distance-cue", "Distance cue", "What tells how far the target is",
+                            GST_TYPE_ROBOT_CTL_DISTANCE_CUE, GST_ROBOT_CTL_DISTANCE_CUE_SIZE, live));
+  install(PROP_SET_POINT,
+          g_param_spec_double("set-point", "Set-point",
+                              "Wanted distance cue: box height (or box bottom) as a fraction of the "
+                              "frame height",
+                              0.01, 1.0, c.setPoint, live));
+  install(PROP_TURN_DEADBAND,
+          g_param_spec_double("turn-deadband", "Turn deadband",
+                              "Horizontal offset (fraction of half the frame width) within "
+                              "which the target counts as centred",
+                              0.0, 1.0, c.turnDeadband, live));
+  install(PROP_DISTANCE_DEADBAND,
+          g_param_spec_double("distance-deadband", "Distance deadband",
+                              "Relative distance error within which the distance counts "
+                              "as right",
+                              0.0, 1.0, c.distanceDeadband, live));
+  install(PROP_HYSTERESIS,
+          g_param_spec_double("hysteresis", "Hysteresis",
+                              "Zone controller: how far inside a deadband the error must come "
+                              "back before a turn or drive ends",
+                              0.0, 1.0, c.hysteresis, live));
+  install(PROP_TURN_GAIN,
+          g_param_spec_double(
+              "turn-gain", "Turn gain",
+              "Proportional controller: angular speed per unit horizontal offset, 0-100 (a negative "
+              "value is refused)",
+              -100.0, 100.0, c.turnGain, live));
+  install(PROP_DRIVE_GAIN,
+          g_param_spec_double("drive-gain", "Drive gain",
+                              "Proportional controller: linear speed per unit relative distance "
+                              "error, 0-100 (a negative value is refused)",
+                              -100.0, 100.0, c.driveGain, live));
+  install(PROP_MAX_LINEAR,
+          g_param_spec_double("max-linear", "Maximum linear speed",
+                              "Largest forward/backward speed (fraction of full speed); the zone "
+                              "controller's driving speed",
+                              0.0, 1.0, c.maxLinear, live));
   install(PROP_MAX_ANGULAR, g_param_spec_double("max-angular", "Maximum angular speed",
                                                 "Largest turn speed (fraction of full wheel speed); the zone "
                                                 "controller's turning speed",
                                                 0.0, 1.0, c.maxAngular, live));
-  install(PROP_MAX_LINEAR_ACCEL, g_param_spec_double("max-linear-accel", "Maximum linear acceleration",
-                                                     "Proportional controller: largest change of the linear speed "
-                                                     "per second (0 = unlimited)",
-                                                     0.0, 1000.0, c.maxLinearAccel, live));
-  install(PROP_MAX_ANGULAR_ACCEL, g_param_spec_double("max-angular-accel", "Maximum angular acceleration",
-                                                      "Proportional controller: largest change of the angular "
-                                                      "speed per second (0 = unlimited)",
-                                                      0.0, 1000.0, c.maxAngularAccel, live));
-  install(PROP_LOST_TIMEOUT, g_param_spec_uint("lost-timeout", "Lost timeout",
-                                               "Milliseconds without a confirmed target, or without any buffer, "
-                                               "before the robot is stopped",
-                                               1, 600000, kDefaultLostTimeoutMs, live));
-  install(PROP_MIN_SCORE, g_param_spec_double("min-score", "Minimum score",
-                                              "A target with a lower score counts as not seen", 0.0, 1.0, f.minScore,
-                                              live));
-  install(PROP_SEARCH_TURN, g_param_spec_boolean("search-turn", "Search turn",
-                                                 "After lost-timeout turn slowly towards where the target was last "
-                                                 "seen instead of standing still",
-                                                 f.searchTurn, live));
-  install(PROP_SEARCH_SPEED, g_param_spec_double("search-speed", "Search speed",
-                                                 "Angular speed of the search turn (fraction of full wheel speed)",
-                                                 0.0, 1.0, f.searchSpeed, live));
+  install(PROP_MAX_LINEAR_ACCEL,
+          g_param_spec_double("max-linear-accel", "Maximum linear acceleration",
+                              "Proportional controller: largest change of the linear speed "
+                              "per second (0 = unlimited)",
+                              0.0, 1000.0, c.maxLinearAccel, live));
+  install(PROP_MAX_ANGULAR_ACCEL,
+          g_param_spec_double("max-angular-accel", "Maximum angular acceleration",
+                              "Proportional controller: largest change of the angular "
+                              "speed per second (0 = unlimited)",
+                              0.0, 1000.0, c.maxAngularAccel, live));
+  install(PROP_LOST_TIMEOUT,
+          g_param_spec_uint("lost-timeout", "Lost timeout",
+                            "Milliseconds without a confirmed target, or without any buffer, "
+                            "before the robot is stopped",
+                            1, 600000, kDefaultLostTimeoutMs, live));
+  install(PROP_MIN_SCORE,
+          g_param_spec_double("min-score", "Minimum score", "A target with a lower score counts as not seen",
+                              0.0, 1.0, f.minScore, live));
+  install(PROP_SEARCH_TURN,
+          g_param_spec_boolean("search-turn", "Search turn",
+                               "After lost-timeout turn slowly towards where the target was last "
+                               "seen instead of standing still",
+                               f.searchTurn, live));
+  install(PROP_SEARCH_SPEED,
+          g_param_spec_double("search-speed", "Search speed",
+                              "Angular speed of the search turn (fraction of full wheel speed)", 0.0, 1.0,
+                              f.searchSpeed, live));
   install(PROP_ROI_TYPE, g_param_spec_string("roi-type", "ROI type",
                                              "Type of the region-of-interest meta to follow (\"object\" for "
                                              "cvtracker)",
@@ -1206,9 +1369,10 @@ static void gst_robot_ctl_class_init(GstRobotCtlClass *klass) {
   install(PROP_TARGET_ID, g_param_spec_int("target-id", "Target id",
                                            "Id of the region of interest to follow; -1 = the lowest id", -1,
                                            G_MAXINT, kDefaultTargetId, live));
-  install(PROP_POST_MESSAGES, g_param_spec_boolean("post-messages", "Post messages",
-                                                   "Post a \"robotctl\" element message for every command sent",
-                                                   FALSE, ready));
+  install(PROP_POST_MESSAGES,
+          g_param_spec_boolean("post-messages", "Post messages",
+                               "Post a \"robotctl\" element message for every command sent; read at start",
+                               FALSE, readAtStart));
 
   gst_element_class_set_static_metadata(element_class, "Robot controller", "Sink/Video/Analyzer",
                                         "Drives a robot towards the tracked target: serial commands from "
@@ -1230,4 +1394,6 @@ static void gst_robot_ctl_class_init(GstRobotCtlClass *klass) {
   gst_type_mark_as_plugin_api(GST_TYPE_ROBOT_CTL_FLOW_CONTROL, static_cast<GstPluginAPIFlags>(0));
 }
 
-static void gst_robot_ctl_init(GstRobotCtl *self) { self->priv = new GstRobotCtlPrivate(); }
+static void gst_robot_ctl_init(GstRobotCtl *self) {
+  self->priv = new GstRobotCtlPrivate();
+}

@@ -38,7 +38,9 @@ const char *toString(DriveCommand command) {
   return "stop";
 }
 
-const char *toString(ControllerKind kind) { return kind == ControllerKind::Zone ? "zone" : "proportional"; }
+const char *toString(ControllerKind kind) {
+  return kind == ControllerKind::Zone ? "zone" : "proportional";
+}
 
 double horizontalOffset(const cv::Rect2d &box, cv::Size frame) {
   const double half = frame.width / 2.0;
@@ -97,8 +99,8 @@ int ZoneController::nextZone(int zone, double error, double enter, double leave)
 DriveOutput ZoneController::update(double offset, double distanceError) {
   const ControllerSettings &s = settings_;
   turnZone_ = nextZone(turnZone_, offset, s.turnDeadband, std::max(0.0, s.turnDeadband - s.hysteresis));
-  distanceZone_ =
-      nextZone(distanceZone_, distanceError, s.distanceDeadband, std::max(0.0, s.distanceDeadband - s.hysteresis));
+  distanceZone_ = nextZone(distanceZone_, distanceError, s.distanceDeadband,
+                           std::max(0.0, s.distanceDeadband - s.hysteresis));
 
   DriveOutput out;
   // Turning first: driving towards an off-centre target would lose it from the side of the frame.
@@ -133,6 +135,18 @@ RobotController::RobotController(const ControllerSettings &controller, const Fai
       zone_(controller),
       proportional_(controller),
       watchdog_(failsafe.lostTimeout) {}
+
+void RobotController::setSettings(const ControllerSettings &controller, const FailsafeSettings &failsafe) {
+  if (controller.kind != settings_.kind) {
+    zone_.reset();
+    proportional_.reset();
+  }
+  settings_ = controller;
+  failsafe_ = failsafe;
+  zone_.setSettings(controller);
+  proportional_.setSettings(controller);
+  watchdog_.setTimeout(failsafe.lostTimeout);
+}
 
 bool RobotController::confirmed(const Observation &o) const {
   return o.box && o.box->width > 0 && o.box->height > 0 && !o.frameSize.empty() &&

@@ -216,5 +216,55 @@ TEST(RobotController, ProportionalRampsAndFollows) {
   EXPECT_NEAR(out.left, 0.4, 1e-12);
 }
 
+TEST(RobotController, SetSettingsKeepsTheSlewStateAndTheHold) {
+  ControllerSettings c;
+  c.kind = ControllerKind::Proportional;
+  FailsafeSettings f;
+  RobotController robot(c, f);
+  // Centred and far (error 2/3): the linear speed ramps at 2/s.
+  EXPECT_DOUBLE_EQ(robot.update(seen(0.0, 0.0, 24)).linear, 0.0);
+  EXPECT_NEAR(robot.update(seen(0.1, 0.0, 24)).linear, 0.2, 1e-12);
+
+  // A gain change goes on from 0.2 (a rebuilt controller would restart from 0 with dt = 0).
+  c.turnGain = 3.0;
+  c.driveGain = 1.2;
+  robot.setSettings(c, f);
+  DriveOutput out = robot.update(seen(0.2, 0.0, 24));
+  EXPECT_NEAR(out.linear, 0.4, 1e-12);
+  // The new gain applies: an offset of 0.2 turns at -3 * (0.2 - 0.1) = -0.3, from 0 at 4/s: -0.3 in 0.1 s.
+  out = robot.update(seen(0.3, 0.2, 24));
+  EXPECT_NEAR(out.angular, -0.3, 1e-12);
+  EXPECT_NEAR(out.linear, 0.5, 1e-12);  // max-linear
+
+  // A lower limit applies at once (the clamp), the ramp state is not reset: 0.5 -> 0.3 within 0.1 s at 2/s.
+  c.maxLinear = 0.3;
+  robot.setSettings(c, f);
+  EXPECT_NEAR(robot.update(seen(0.4, 0.0, 24)).linear, 0.3, 1e-12);
+
+  // The lost-target hold survives a settings change, and the new lost-timeout counts from the last
+  // confirmed target (0.4 s).
+  f.lostTimeout = 0.3;
+  robot.setSettings(c, f);
+  out = robot.update(unseen(0.6));
+  EXPECT_NEAR(out.linear, 0.3, 1e-12);  // held
+  EXPECT_FALSE(out.targetVisible);
+  EXPECT_EQ(robot.update(unseen(0.75)).command, DriveCommand::Stop);
+}
+
+TEST(RobotController, SetSettingsWithAnotherKindStartsFromStandstill) {
+  ControllerSettings c;
+  c.kind = ControllerKind::Proportional;
+  FailsafeSettings f;
+  RobotController robot(c, f);
+  robot.update(seen(0.0, 0.0, 24));
+  EXPECT_NEAR(robot.update(seen(0.1, 0.0, 24)).linear, 0.2, 1e-12);
+  c.kind = ControllerKind::Zone;
+  robot.setSettings(c, f);
+  EXPECT_EQ(robot.update(seen(0.2, 0.0, 24)).command, DriveCommand::Forward);  // zone: max-linear at once
+  c.kind = ControllerKind::Proportional;
+  robot.setSettings(c, f);
+  EXPECT_NEAR(robot.update(seen(0.3, 0.0, 24)).linear, 0.2, 1e-12);  // ramps again from 0
+}
+
 }  // namespace
 }  // namespace colortrack

@@ -6,6 +6,7 @@
 #include <poll.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -72,7 +73,8 @@ struct Pty {
     while (Clock::now() - start < std::chrono::milliseconds(timeoutMs)) {
       for (std::uint8_t b : drain()) {
         if (b == byte)
-          return static_cast<int>(std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - start).count());
+          return static_cast<int>(
+              std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - start).count());
         if (seen) seen->push_back(b);
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -89,7 +91,9 @@ struct Roi {
   double score = 0.9;
 };
 
-GstClockTime ptsOf(int frame) { return gst_util_uint64_scale_int(frame, GST_SECOND, kFps); }
+GstClockTime ptsOf(int frame) {
+  return gst_util_uint64_scale_int(frame, GST_SECOND, kFps);
+}
 
 GstBuffer *frameWith(const std::vector<Roi> &rois, int frame) {
   GstBuffer *buffer = gst_buffer_new_allocate(nullptr, kWidth * kHeight, nullptr);
@@ -100,8 +104,8 @@ GstBuffer *frameWith(const std::vector<Roi> &rois, int frame) {
     meta->id = r.id;
     if (r.state)
       gst_video_region_of_interest_meta_add_param(
-          meta, gst_structure_new("colortrack", "state", G_TYPE_STRING, r.state, "score", G_TYPE_DOUBLE, r.score,
-                                  "verified", G_TYPE_BOOLEAN, TRUE, nullptr));
+          meta, gst_structure_new("colortrack", "state", G_TYPE_STRING, r.state, "score", G_TYPE_DOUBLE,
+                                  r.score, "verified", G_TYPE_BOOLEAN, TRUE, nullptr));
   }
   GST_BUFFER_PTS(buffer) = ptsOf(frame);
   GST_BUFFER_DURATION(buffer) = ptsOf(1);
@@ -109,11 +113,11 @@ GstBuffer *frameWith(const std::vector<Roi> &rois, int frame) {
 }
 
 // Boxes in a 320x240 frame (set-point 0.3 = 72 px high; deadband 0.1 of the half width = 16 px).
-const cv::Rect kRight(216, 100, 48, 48);       // offset +0.5, far
-const cv::Rect kLeft(40, 100, 48, 48);         // offset -0.5
-const cv::Rect kCentreFar(148, 100, 24, 24);   // size 0.1
-const cv::Rect kCentreNear(100, 60, 120, 120); // size 0.5
-const cv::Rect kCentreRight(124, 84, 72, 72);  // at the set-point
+const cv::Rect kRight(216, 100, 48, 48);        // offset +0.5, far
+const cv::Rect kLeft(40, 100, 48, 48);          // offset -0.5
+const cv::Rect kCentreFar(148, 100, 24, 24);    // size 0.1
+const cv::Rect kCentreNear(100, 60, 120, 120);  // size 0.5
+const cv::Rect kCentreRight(124, 84, 72, 72);   // at the set-point
 
 Roi roi(const cv::Rect &box, int id = 1) {
   Roi r;
@@ -154,20 +158,24 @@ struct Ctl {
   }
 };
 
-std::string asText(const Bytes &b) { return std::string(b.begin(), b.end()); }
+std::string asText(const Bytes &b) {
+  return std::string(b.begin(), b.end());
+}
 std::string lastLine(const Bytes &b) {
   const std::string t = asText(b);
   const std::size_t end = t.rfind('\n');
   fail_unless(end != std::string::npos);
   const std::size_t start = t.rfind('\n', end - 1);
-  return t.substr(start == std::string::npos ? 0 : start + 1, end - (start == std::string::npos ? 0 : start + 1) + 1);
+  return t.substr(start == std::string::npos ? 0 : start + 1,
+                  end - (start == std::string::npos ? 0 : start + 1) + 1);
 }
 
 std::uint8_t crc8(const std::uint8_t *data, std::size_t size) {
   std::uint8_t crc = 0;
   for (std::size_t i = 0; i < size; ++i) {
     crc ^= data[i];
-    for (int bit = 0; bit < 8; ++bit) crc = static_cast<std::uint8_t>(crc & 0x80 ? (crc << 1) ^ 0x07 : crc << 1);
+    for (int bit = 0; bit < 8; ++bit)
+      crc = static_cast<std::uint8_t>(crc & 0x80 ? (crc << 1) ^ 0x07 : crc << 1);
   }
   return crc;
 }
@@ -278,6 +286,17 @@ GST_START_TEST(test_stop_on_eos_flush_pause_and_ready) {
 }
 GST_END_TEST;
 
+GST_START_TEST(test_pause_then_play_again_follows_at_once) {
+  Ctl ctl("rate=10 lost-timeout=5000");
+  fail_unless_equals_int(ctl.decide({roi(kRight)}).back(), 'R');
+  gst_element_set_state(ctl.h->element, GST_STATE_PAUSED);
+  checkStopsAfter(ctl, "pause", 50);
+  gst_element_set_state(ctl.h->element, GST_STATE_PLAYING);
+  // The first buffer of PLAYING is a decision again (decide() waits for its message).
+  fail_unless_equals_int(ctl.decide({roi(kLeft)}).back(), 'L');
+}
+GST_END_TEST;
+
 GST_START_TEST(test_stop_when_upstream_stalls) {
   Ctl ctl("rate=100 lost-timeout=300");
   fail_unless_equals_int(ctl.decide({roi(kRight)}).back(), 'R');
@@ -285,9 +304,26 @@ GST_START_TEST(test_stop_when_upstream_stalls) {
   Bytes before;
   fail_unless(ctl.pty.waitForByte('S', 2000, &before) >= 0);
   const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - pushed).count();
-  std::printf("stalled upstream: stop %lld ms after the last buffer (lost-timeout 300)\n", static_cast<long long>(ms));
+  std::printf("stalled upstream: stop %lld ms after the last buffer (lost-timeout 300)\n",
+              static_cast<long long>(ms));
   fail_unless(ms >= 280 && ms <= 600, "stop after %lld ms", static_cast<long long>(ms));
   for (std::uint8_t b : before) fail_unless_equals_int(b, 'R');
+}
+GST_END_TEST;
+
+GST_START_TEST(test_lost_timeout_change_reaches_the_stall_watchdog) {
+  Ctl ctl("rate=100 lost-timeout=5000");
+  fail_unless_equals_int(ctl.decide({roi(kRight)}).back(), 'R');
+  GstElement *element = gst_harness_find_element(ctl.h, "robotctl");
+  g_object_set(element, "lost-timeout", 300u, nullptr);
+  gst_object_unref(element);
+  fail_unless_equals_int(ctl.decide({roi(kRight)}).back(), 'R');  // the change applies from this buffer
+  const auto pushed = Clock::now();
+  fail_unless(ctl.pty.waitForByte('S', 2000) >= 0, "no stop within 2 s");
+  const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - pushed).count();
+  std::printf("lost-timeout 5000 -> 300 while playing: stop %lld ms after the last buffer\n",
+              static_cast<long long>(ms));
+  fail_unless(ms >= 250 && ms <= 600, "stop after %lld ms", static_cast<long long>(ms));
 }
 GST_END_TEST;
 
@@ -373,6 +409,85 @@ GST_START_TEST(test_slow_reader_never_blocks_streaming) {
 }
 GST_END_TEST;
 
+// A congested pty: filled up before the element writes anything, then read more slowly than the element
+// writes, so its writes keep timing out, often part-way through a line (the pty frees room in blocks, and the
+// last write into a block is cut). Every line read must be whole and one of the commands the element reports
+// as sent. Text only: its lines have different lengths; the other protocols take the same path.
+GST_START_TEST(test_cut_frames_are_completed_before_the_next) {
+  Pty pty;
+  // Filled with '#' one byte at a time (no write can be cut).
+  std::size_t filler = 0;
+  const int fillFd = open(pty.slave.c_str(), O_WRONLY | O_NOCTTY | O_NONBLOCK);
+  fail_unless(fillFd >= 0);
+  while (write(fillFd, "#", 1) == 1) ++filler;
+  close(fillFd);
+
+  Bytes bytes;
+  std::vector<std::pair<int, int>> sent;
+  {
+    // 1000 lines of up to 18 bytes a second; read at about 13 bytes a millisecond.
+    Ctl ctl(
+        "rate=1000 lost-timeout=10000 controller=proportional max-linear-accel=0 max-angular-accel=0 "
+        "protocol=text output-scale=32767",
+        pty.slave);
+    const std::vector<cv::Rect> boxes = {kRight, kLeft, kCentreFar, kCentreNear, kCentreRight};
+    const auto end = Clock::now() + std::chrono::seconds(4);
+    std::uint8_t chunk[13];
+    for (int i = 0; bytes.size() < filler + 3000 && Clock::now() < end; ++i) {
+      if (i % 5 == 0) ctl.push({roi(boxes[(i / 5) % boxes.size()])});  // lines of different lengths
+      const ssize_t n = read(pty.master, chunk, sizeof chunk);
+      if (n > 0) bytes.insert(bytes.end(), chunk, chunk + n);
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    while (GstMessage *m = gst_bus_pop_filtered(ctl.bus, GST_MESSAGE_ELEMENT)) {
+      const GstStructure *st = gst_message_get_structure(m);
+      int left = 0, right = 0;
+      if (gst_structure_get_int(st, "left", &left) && gst_structure_get_int(st, "right", &right))
+        sent.emplace_back(left, right);
+      gst_message_unref(m);
+    }
+  }
+  // The filler first, untouched, then the element's lines.
+  std::size_t begin = 0;
+  while (begin < bytes.size() && bytes[begin] == '#') ++begin;
+  fail_unless_equals_int(begin, filler);
+  const std::string text = asText(bytes);
+  int lines = 0;
+  for (std::size_t end; (end = text.find('\n', begin)) != std::string::npos; begin = end + 1, ++lines) {
+    const std::string line = text.substr(begin, end - begin);
+    int left = 0, right = 0;
+    const bool whole = std::sscanf(line.c_str(), "L=%d R=%d", &left, &right) == 2 &&
+                       line == "L=" + std::to_string(left) + " R=" + std::to_string(right);
+    const bool wasSent = std::find(sent.begin(), sent.end(), std::make_pair(left, right)) != sent.end();
+    fail_unless(whole && wasSent, "line %d \"%s\" is not a command sent", lines, line.c_str());
+  }
+  std::printf("congested pty: %zu filler bytes, then %d whole lines (%zu commands posted)\n", filler, lines,
+              sent.size());
+  fail_unless(lines >= 100, "%d lines", lines);
+}
+GST_END_TEST;
+
+GST_START_TEST(test_start_settings_warn_when_changed) {
+  Ctl ctl("rate=100");
+  fail_unless_equals_int(ctl.decide({roi(kRight)}).back(), 'R');
+  GstElement *element = gst_harness_find_element(ctl.h, "robotctl");
+  // A live setting and a start setting set to its current value: no warning.
+  g_object_set(element, "turn-gain", 2.0, "rate", 100.0, nullptr);
+  g_object_set(element, "rate", 25.0, nullptr);
+  GstMessage *m = gst_bus_pop_filtered(ctl.bus, GST_MESSAGE_WARNING);
+  fail_unless(m != nullptr, "no warning for a change of 'rate' while started");
+  GError *error = nullptr;
+  gst_message_parse_warning(m, &error, nullptr);
+  std::printf("rate changed while playing: warning \"%s\"\n", error->message);
+  fail_unless(std::string(error->message).find("'rate'") != std::string::npos);
+  fail_unless(std::string(error->message).find("next start") != std::string::npos);
+  g_error_free(error);
+  gst_message_unref(m);
+  fail_unless(gst_bus_pop_filtered(ctl.bus, GST_MESSAGE_WARNING) == nullptr, "more than one warning");
+  gst_object_unref(element);
+}
+GST_END_TEST;
+
 GST_START_TEST(test_roi_selection) {
   {
     Ctl ctl("rate=100");  // the lowest colortrack id by default
@@ -411,7 +526,8 @@ GST_START_TEST(test_follows_cvtracker) {
     return;
   }
   gst_object_unref(factory);
-  // A textured square on the right of the frame (RGB: cvtracker's only format); cvtracker starts on it and attaches "object" ROI meta.
+  // A textured square on the right of the frame (RGB: cvtracker's only format); cvtracker starts on it and
+  // attaches "object" ROI meta.
   cv::Mat image(kHeight, kWidth, CV_8UC3, cv::Scalar(90, 90, 90));
   cv::RNG rng(7);
   cv::Mat patch(48, 48, CV_8UC3);
@@ -420,8 +536,10 @@ GST_START_TEST(test_follows_cvtracker) {
   Pty pty;
   const std::string launch =
       "appsrc name=src format=time caps=video/x-raw,format=RGB,width=320,height=240,framerate=30/1 ! "
-      "cvtracker object-initial-x=216 object-initial-y=100 object-initial-width=48 object-initial-height=48 ! "
-      "robotctl roi-type=object sync=false post-messages=true rate=100 location=" + pty.slave;
+      "cvtracker object-initial-x=216 object-initial-y=100 object-initial-width=48 object-initial-height=48 "
+      "! "
+      "robotctl roi-type=object sync=false post-messages=true rate=100 location=" +
+      pty.slave;
   GstElement *pipeline = gst_parse_launch(launch.c_str(), nullptr);
   fail_unless(pipeline != nullptr);
   GstElement *src = gst_bin_get_by_name(GST_BIN(pipeline), "src");
@@ -495,14 +613,19 @@ std::string startError(const std::string &launch) {
 
 GST_START_TEST(test_bad_settings_give_clear_errors) {
   const std::string src = "videotestsrc num-buffers=1 ! ";
-  fail_unless(startError(src + "robotctl device=/dev/ttyNOSUCHPORT").find("/dev/ttyNOSUCHPORT") != std::string::npos);
+  fail_unless(startError(src + "robotctl device=/dev/ttyNOSUCHPORT").find("/dev/ttyNOSUCHPORT") !=
+              std::string::npos);
   fail_unless(startError(src + "robotctl device=/dev/ttyNOSUCHPORT baud-rate=12345").find("12345") !=
               std::string::npos);
-  fail_unless(startError(src + "robotctl location=/dev/null turn-gain=-1").find("turn-gain") != std::string::npos);
-  fail_unless(startError(src + "robotctl location=/dev/null drive-gain=-0.5").find("drive-gain") != std::string::npos);
-  fail_unless(startError(src + "robotctl location=/dev/null zone-chars=FBL").find("zone-chars") != std::string::npos);
+  fail_unless(startError(src + "robotctl location=/dev/null turn-gain=-1").find("turn-gain") !=
+              std::string::npos);
+  fail_unless(startError(src + "robotctl location=/dev/null drive-gain=-0.5").find("drive-gain") !=
+              std::string::npos);
+  fail_unless(startError(src + "robotctl location=/dev/null zone-chars=FBL").find("zone-chars") !=
+              std::string::npos);
   fail_unless(startError(src + "robotctl").find("'location'") != std::string::npos);
-  fail_unless(startError(src + "robotctl location=/nonexistent-dir/x").find("/nonexistent-dir/x") != std::string::npos);
+  fail_unless(startError(src + "robotctl location=/nonexistent-dir/x").find("/nonexistent-dir/x") !=
+              std::string::npos);
 }
 GST_END_TEST;
 
@@ -515,10 +638,14 @@ Suite *robotctl_suite(void) {
   tcase_add_test(tc, test_binary_exact_packets);
   tcase_add_test(tc, test_repeats_at_rate);
   tcase_add_test(tc, test_stop_on_eos_flush_pause_and_ready);
+  tcase_add_test(tc, test_pause_then_play_again_follows_at_once);
   tcase_add_test(tc, test_stop_when_upstream_stalls);
+  tcase_add_test(tc, test_lost_timeout_change_reaches_the_stall_watchdog);
   tcase_add_test(tc, test_stop_after_lost_timeout_of_stream_time);
   tcase_add_test(tc, test_unplugged_port_warns_reconnects_and_stops_first);
   tcase_add_test(tc, test_slow_reader_never_blocks_streaming);
+  tcase_add_test(tc, test_cut_frames_are_completed_before_the_next);
+  tcase_add_test(tc, test_start_settings_warn_when_changed);
   tcase_add_test(tc, test_roi_selection);
   tcase_add_test(tc, test_follows_cvtracker);
   tcase_add_test(tc, test_message_fields);

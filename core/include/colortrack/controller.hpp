@@ -50,15 +50,15 @@ struct ControllerSettings {
   double driveGain = 1.5;         // proportional: linear per unit relative distance error
   double maxLinear = 0.5;         // output limits, also the zone controller's speeds
   double maxAngular = 0.3;
-  double maxLinearAccel = 2.0;    // slew limits per second (proportional; 0 = unlimited)
+  double maxLinearAccel = 2.0;  // slew limits per second (proportional; 0 = unlimited)
   double maxAngularAccel = 4.0;
 };
 
 struct FailsafeSettings {
-  double lostTimeout = 0.5;  // seconds without a confirmed target before stopping
-  double minScore = 0.0;     // a lower score counts as no target
-  bool searchTurn = false;   // after the timeout turn slowly towards where the target was last seen
-  double searchSpeed = 0.15; // angular of the search turn
+  double lostTimeout = 0.5;   // seconds without a confirmed target before stopping
+  double minScore = 0.0;      // a lower score counts as no target
+  bool searchTurn = false;    // after the timeout turn slowly towards where the target was last seen
+  double searchSpeed = 0.15;  // angular of the search turn
 };
 
 struct DriveOutput {
@@ -88,6 +88,8 @@ class ZoneController {
   explicit ZoneController(const ControllerSettings &settings) : settings_(settings) {}
   DriveOutput update(double offset, double distanceError);
   void reset() { turnZone_ = 0, distanceZone_ = 0; }
+  // New limits from the next update; the zones (the hysteresis state) are kept.
+  void setSettings(const ControllerSettings &settings) { settings_ = settings; }
 
  private:
   static int nextZone(int zone, double error, double enter, double leave);
@@ -105,6 +107,8 @@ class ProportionalController {
   DriveOutput update(double offset, double distanceError, double dt);
   // Starts again from standstill (after a stop, the slew limit ramps up from zero).
   void reset() { linear_ = 0, angular_ = 0; }
+  // New gains and limits from the next update; the current speeds (the slew state) are kept.
+  void setSettings(const ControllerSettings &settings) { settings_ = settings; }
 
  private:
   ControllerSettings settings_;
@@ -119,7 +123,8 @@ class Watchdog {
   void clear() { last_.reset(); }
   // True when never fed or the last feed is `timeout` or more ago.
   bool expired(double now) const { return !last_ || now - *last_ >= timeout_; }
-  std::optional<double> lastFeed() const { return last_; }
+  // Applies to the time since the last feed, which is kept.
+  void setTimeout(double timeout) { timeout_ = timeout; }
 
  private:
   double timeout_;
@@ -133,6 +138,10 @@ class Watchdog {
 class RobotController {
  public:
   RobotController(const ControllerSettings &controller, const FailsafeSettings &failsafe);
+  // New settings from the next update, keeping the dynamic state: the slew-limited speeds, the zones, the
+  // last decision and when the target was last confirmed (a held command stays held). A change of
+  // `controller.kind` starts both controllers from standstill (the idle one's state is stale).
+  void setSettings(const ControllerSettings &controller, const FailsafeSettings &failsafe);
   DriveOutput update(const Observation &observation);
   bool confirmed(const Observation &observation) const;
   void reset();
