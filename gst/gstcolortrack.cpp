@@ -1014,6 +1014,27 @@ static void draw_overlay(GstVideoFrame *frame, const Settings &settings, const S
   }
 }
 
+enum class InitBoxFit { Fits, Ignored, Error };
+
+// An init-box that does not lie inside the frame: an element error before streaming, a warning (and the box
+// ignored) when it was set while playing.
+static InitBoxFit check_init_box(GstColorTrack *self, const cv::Rect &box, cv::Size frame,
+                                 bool whileStreaming, const std::string &text) {
+  if ((box & cv::Rect(cv::Point(), frame)) == box) return InitBoxFit::Fits;
+  if (whileStreaming) {
+    GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS,
+                        ("Property 'init-box' '%s' does not fit in the %dx%d frame: ignored.", text.c_str(),
+                         frame.width, frame.height),
+                        (nullptr));
+    return InitBoxFit::Ignored;
+  }
+  GST_ELEMENT_ERROR(
+      self, RESOURCE, SETTINGS,
+      ("Property 'init-box' '%s' does not fit in the %dx%d frame.", text.c_str(), frame.width, frame.height),
+      (nullptr));
+  return InitBoxFit::Error;
+}
+
 // Applies the settings snapshot to the tracker: everything that changed since the last frame.
 // Returns false (after posting an error) when streaming must stop.
 static bool apply_settings(GstColorTrack *self, const Settings &snapshot,
@@ -1057,22 +1078,9 @@ static bool apply_settings(GstColorTrack *self, const Settings &snapshot,
   }
 
   if (initBox) {
-    const cv::Rect frameRect(cv::Point(), view.size());
-    if ((*initBox & frameRect) != *initBox) {
-      const cv::Size frame = view.size();
-      if (initBoxWhileStreaming) {
-        GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS,
-                            ("Property 'init-box' '%s' does not fit in the %dx%d frame: ignored.",
-                             initBoxText.c_str(), frame.width, frame.height),
-                            (nullptr));
-      } else {
-        GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                          ("Property 'init-box' '%s' does not fit in the %dx%d frame.", initBoxText.c_str(),
-                           frame.width, frame.height),
-                          (nullptr));
-        return false;
-      }
-    } else {
+    const InitBoxFit fit = check_init_box(self, *initBox, view.size(), initBoxWhileStreaming, initBoxText);
+    if (fit == InitBoxFit::Error) return false;
+    if (fit == InitBoxFit::Fits) {
       tracker.setTemplateFromBox(view, *initBox);
       state.templateOrigin = "init-box '" + initBoxText + "'";
       state.trail.clear();
@@ -1281,22 +1289,10 @@ static GstFlowReturn threshold_frame(GstColorTrack *self, GstVideoFrame *frame, 
   }
 
   if (initBox) {
-    if ((*initBox & cv::Rect(cv::Point(), size)) != *initBox) {
-      if (snapshot.initBoxSetWhileStreaming) {
-        GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS,
-                            ("Property 'init-box' '%s' does not fit in the %dx%d frame: ignored.",
-                             snapshot.initBox.text.c_str(), size.width, size.height),
-                            (nullptr));
-      } else {
-        GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                          ("Property 'init-box' '%s' does not fit in the %dx%d frame.",
-                           snapshot.initBox.text.c_str(), size.width, size.height),
-                          (nullptr));
-        return GST_FLOW_ERROR;
-      }
-    } else {
-      learn_range(self, frame, *initBox, "init-box " + snapshot.initBox.text);
-    }
+    const InitBoxFit fit =
+        check_init_box(self, *initBox, size, snapshot.initBoxSetWhileStreaming, snapshot.initBox.text);
+    if (fit == InitBoxFit::Error) return GST_FLOW_ERROR;
+    if (fit == InitBoxFit::Fits) learn_range(self, frame, *initBox, "init-box " + snapshot.initBox.text);
   }
 
   if (click && click->kind == ClickRequest::Kind::Stop) {
