@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <iterator>
+#include <string>
 #include <optional>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "colortrack/fused_detector.hpp"
 #include "colortrack/likelihood.hpp"
 
 namespace colortrack {
@@ -31,6 +34,20 @@ constexpr double kLikelihoodRing = 0.15;
 // Searches while tracking work on a region reduced so the box's smaller side is about this many pixels.
 constexpr double kReducedWindowSide = 40;
 constexpr double kAspectRate = 0.3;  // smoothing of the measured aspect ratio
+
+double tune(const char *name, double fallback) {
+  const char *v = std::getenv((std::string("COLORTRACK_TUNE_") + name).c_str());
+  return v ? std::atof(v) : fallback;
+}
+// Fused method: the confidence (peak-to-sidelobe ratio of the fused response) below which a frame is not a
+// detection, below which the models do not learn from it, and that a re-detection must reach.
+const double kLostConfidence = tune("LOST_PSR", 4.0);
+const double kLearnConfidence = tune("LEARN_PSR", 5.0);
+const double kRedetectConfidence = tune("REDETECT_PSR", 6.0);
+const int kRedetectPeriod = static_cast<int>(tune("REDETECT_PERIOD", 3));
+const int kRedetectCandidates = static_cast<int>(tune("CANDIDATES", 4));
+const bool kFusedFromPrediction = tune("FROM_PREDICTION", 1) > 0;
+const bool kFusedRawBox = tune("RAW_BOX", 0) > 0;
 
 cv::Rect roundRect(const cv::Rect2d &r) {
   return cv::Rect(cvRound(r.x), cvRound(r.y), std::max(1, cvRound(r.width)), std::max(1, cvRound(r.height)));
@@ -75,11 +92,18 @@ struct Tracker::Impl {
   ColorLikelihood likelihood;
   double aspect = 1.0;  // (box width / height) / (template width / height)
 
+  // The fused method's detector and where it last found the target.
+  FusedDetector fused;
+  cv::Point2d fusedCentre;
+  cv::Size2d fusedSize;
+  cv::Rect2d fusedBox;  // last measured box (reported instead of the filtered one when kFusedRawBox)
+
   // Scratch buffers reused across frames.
   cv::Mat bgr, small, gray, probability, integralP;
   BinImage bins, coarseBins, learnBins;
 
   bool hasTemplate() const { return !templateBgr.empty(); }
+  cv::Rect2d centredBoxNow() const { return centredBox(kalman.x(), kalman.y(), windowSize(kalman.scale())); }
   cv::Size2d windowSize(double scale) const {
     const double a = std::sqrt(aspect);
     return cv::Size2d(templateBgr.cols * scale * a, templateBgr.rows * scale / a);
@@ -89,7 +113,7 @@ struct Tracker::Impl {
     return std::sqrt(box.area() / (static_cast<double>(templateBgr.cols) * templateBgr.rows));
   }
   bool useLikelihood(const TrackerSettings &s) const {
-    return s.method == Method::Discriminative && !likelihood.empty();
+    return s.method != Method::Indexing && !likelihood.empty();
   }
 
   void rebuildModel(const TrackerSettings &s) {
@@ -307,7 +331,7 @@ struct Tracker::Impl {
   // Keeps the discriminative model current: learnt from scratch the first time (a template file gives no
   // surroundings), then adapted slowly.
   void learn(const ImageSource &frame, const cv::Rect2d &box, const TrackerSettings &s) {
-    if (s.method != Method::Discriminative) return;
+    if (s.method == Method::Indexing) return;
     if (likelihood.empty())
       learnLikelihood(frame, box, 1.0);
     else if (s.modelUpdateRate > 0)
@@ -355,6 +379,87 @@ struct Tracker::Impl {
     coastFrames = 0;
   }
 
+  // Fused method: starts the detector's filters on a detection.
+  void startFused(const ImageSource &frame, const cv::Rect2d &box) {
+    fused.start(frame, box);
+    fusedCentre = cv::Point2d(box.x + box.width / 2, box.y + box.height / 2);
+    fusedSize = box.size();
+    fusedBox = box;
+  }
+
+  // A fused estimate as a detection: the box, its confidence as the score, the edge check.
+  Detection fusedDetection(const ImageSource &frame, const FusedDetector::Estimate &e, const TrackerSettings &s) {
+    Detection d;
+    d.box = centredBox(e.centre.x, e.centre.y, e.size);
+    d.score = e.confidence;
+    d.verified = verify(frame, roundRect(d.box) & cv::Rect(cv::Point(), frame.size()), s);
+    return d;
+  }
+
+  // Fused method: the best re-detection over the whole frame (colour candidates and the last position, each
+  // searched with both cues), if it is confident enough.
+  std::optional<FusedDetector::Estimate> redetectFused(const ImageSource &frame) {
+    std::vector<cv::Point2d> candidates =
+        fused.colourCandidates(frame, fusedSize, *mapper, likelihood, kRedetectCandidates);
+    candidates.push_back(fusedCentre);
+    std::optional<FusedDetector::Estimate> best;
+    for (const cv::Point2d &c : candidates) {
+      const FusedDetector::Estimate e = fused.locate(frame, c, fusedSize, *mapper, likelihood, false);
+      if (!best || e.confidence > best->confidence) best = e;
+    }
+    if (!best || best->confidence < kRedetectConfidence) return std::nullopt;
+    return best;
+  }
+
+  // Fused method, once its filters have started: the frame's state change and the output's score.
+  void processFused(const ImageSource &frame, double dt, const TrackerSettings &s, TrackOutput &out) {
+    const cv::Rect frameRect(cv::Point(), frame.size());
+    const cv::Size2d minSize(std::min(8.0, fusedSize.width), std::min(8.0, fusedSize.height));
+    const auto fitSize = [&](cv::Size2d size) {
+      return cv::Size2d(std::clamp(size.width, minSize.width, double(frameRect.width)),
+                        std::clamp(size.height, minSize.height, double(frameRect.height)));
+    };
+    if (state == TrackState::Tracking || state == TrackState::Coasting) {
+      kalman.predict(dt);
+      const cv::Point2d centre = kFusedFromPrediction ? cv::Point2d(kalman.x(), kalman.y()) : fusedCentre;
+      FusedDetector::Estimate e = fused.locate(frame, centre, fusedSize, *mapper, likelihood);
+      out.searchRegion = roundRect(centredBox(centre.x, centre.y, fusedSize * 2.0)) & frameRect;
+      if (e.confidence < kLostConfidence && state == TrackState::Coasting && coastFrames % kRedetectPeriod == 0) {
+        if (const auto found = redetectFused(frame)) e = *found;
+        out.searchRegion = frameRect;
+      }
+      out.score = e.confidence;
+      if (e.confidence >= kLostConfidence) {
+        e.size = fitSize(e.size);
+        const Detection d = fusedDetection(frame, e, s);
+        updateTrack(d);
+        lastVerified = d.verified;
+        fusedCentre = e.centre;
+        fusedSize = e.size;
+        fusedBox = d.box;
+        if (e.confidence >= kLearnConfidence) {
+          fused.learn(frame, e.centre, e.size);
+          learn(frame, d.box, s);
+        }
+      } else {
+        kalman.holdForCoasting();
+        ++coastFrames;
+        state = coastFrames > s.maxCoastFrames ? TrackState::Lost : TrackState::Coasting;
+      }
+      return;
+    }
+    out.searchRegion = frameRect;
+    if (searchFrames++ % kRedetectPeriod != 0) return;
+    const auto found = redetectFused(frame);
+    if (!found) return;
+    const Detection d = fusedDetection(frame, *found, s);
+    startTrack(d, s);
+    lastVerified = d.verified;
+    fusedCentre = found->centre;
+    fusedBox = d.box;
+    out.score = found->confidence;
+  }
+
   // The search region around the prediction: the window grown by the margin on each side and by three
   // standard deviations of the predicted position.
   cv::Rect predictionRegion(const TrackerSettings &s) const {
@@ -389,6 +494,7 @@ void Tracker::setTemplate(const cv::Mat &bgr, const cv::Mat &mask) {
   impl_->templateBgr = bgr.clone();
   impl_->templateMask = mask.empty() ? cv::Mat() : mask.clone();
   impl_->likelihood = ColorLikelihood(settings_.bins);
+  impl_->fused.stop();
   impl_->aspect = 1.0;
   impl_->rebuildModel(settings_);
   reset();
@@ -413,6 +519,7 @@ void Tracker::setTemplateFromBox(const ImageSource &frame, const cv::Rect &box) 
   start.verified = true;
   impl_->startTrack(start, settings_);
   impl_->learn(frame, start.box, settings_);
+  if (settings_.method == Method::Fused) impl_->startFused(frame, start.box);
   // The first process() call predicts one frame ahead; start from zero motion at the box.
 }
 
@@ -447,7 +554,9 @@ TrackOutput Tracker::process(const ImageSource &frame, double dt) {
   if (m.state == TrackState::Lost) m.state = TrackState::Searching;
 
   std::optional<Impl::Detection> detection;
-  if (m.state == TrackState::Tracking || m.state == TrackState::Coasting) {
+  if (s.method == Method::Fused && m.fused.started()) {
+    m.processFused(frame, dt, s, out);
+  } else if (m.state == TrackState::Tracking || m.state == TrackState::Coasting) {
     m.kalman.predict(dt);
     // Keep the predicted scale sane: the window must fit in the frame.
     const double maxScale = std::min(static_cast<double>(frameSize.width) / m.templateBgr.cols,
@@ -499,12 +608,17 @@ TrackOutput Tracker::process(const ImageSource &frame, double dt) {
     }
   }
 
+  // The fused method starts its filters on the first detection of a template given as an image.
+  if (s.method == Method::Fused && !m.fused.started() && m.state == TrackState::Tracking)
+    m.startFused(frame, m.centredBoxNow());
+
   out.state = m.state;
   out.id = m.trackId;
   if (m.state == TrackState::Tracking || m.state == TrackState::Coasting) {
     out.hasBox = true;
     const double scale = m.kalman.scale();
-    out.box = centredBox(m.kalman.x(), m.kalman.y(), m.windowSize(scale));
+    out.box = m.centredBoxNow();
+    if (s.method == Method::Fused && kFusedRawBox && m.state == TrackState::Tracking) out.box = m.fusedBox;
     out.scale = scale;
     out.vx = m.kalman.vx();
     out.vy = m.kalman.vy();

@@ -34,4 +34,23 @@ class MatImageSource : public ImageSource {
   cv::Mat bgr_;
 };
 
+// Reads a region of a frame once, as a sample, and cuts patches of any sub-pixel rectangle out of it,
+// resampled to a fixed size; where a patch reaches outside the frame the frame's border is repeated. Lets a
+// tracker take several patches (a search window, a range of scales) for the price of one read.
+class PatchSampler {
+ public:
+  // Reads `region` (frame coordinates; may reach outside the frame) taking every `step`-th pixel.
+  void load(const ImageSource &frame, const cv::Rect2d &region, int step);
+  // `rect` (frame coordinates) resampled to `size` (bilinear), CV_8UC3 BGR.
+  void extract(const cv::Rect2d &rect, cv::Size size, cv::Mat &out) const;
+
+  // The sampling step that keeps at least one read pixel per output pixel for a patch of `rect` at `size`.
+  static int stepFor(const cv::Size2d &rect, cv::Size size);
+
+ private:
+  cv::Mat pixels_;
+  cv::Point origin_;  // frame coordinates of pixels_(0, 0)
+  int step_ = 1;
+};
+
 }  // namespace colortrack

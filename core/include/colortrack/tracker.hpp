@@ -28,6 +28,11 @@ enum class Method {
   // and aspect by the likelihood mass they enclose. Falls back to Indexing until it has been learnt (a
   // template file has no surroundings: the first detection teaches it).
   Discriminative,
+  // Two learners fused (as in Staple): a discriminative correlation filter over gradient-orientation cells
+  // and intensity (shape, learnt online in the Fourier domain) and the colour likelihood above, their
+  // response maps summed; a 1-D scale filter; the fused response's peak-to-sidelobe confidence decides
+  // tracking / coasting / lost and gates learning; a lost target is re-detected over the whole frame.
+  Fused,
 };
 
 struct TrackerSettings {

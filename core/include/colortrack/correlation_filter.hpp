@@ -1,0 +1,72 @@
+// Multi-channel discriminative correlation filter (MOSSE / DSST / Staple's translation filter), learnt online
+// in the Fourier domain over any feature channels of a fixed-size patch, and the 1-D variant over scales.
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace colortrack {
+
+// Translation filter over a grid of feature cells.
+class CorrelationFilter {
+ public:
+  // cells: the feature grid; sigma: width of the desired Gaussian response, in cells; lambda: regularisation.
+  void init(cv::Size cells, double sigma, double lambda);
+  bool empty() const { return numerator_.empty(); }
+  cv::Size cells() const { return window_.size(); }
+
+  // Learns from the channels of a patch centred on the target. rate 1 replaces the model; smaller values
+  // blend it into the old one.
+  void train(const std::vector<cv::Mat> &channels, double rate);
+
+  // Correlation response over the channels of a search patch (the same grid), CV_32FC1, centred: element
+  // (cols/2 + dx, rows/2 + dy) is the response to the target shifted by (dx, dy) cells. About 1 at a perfect
+  // match.
+  void respond(const std::vector<cv::Mat> &channels, cv::Mat &response) const;
+
+ private:
+  void transform(const std::vector<cv::Mat> &channels, std::vector<cv::Mat> &spectra) const;
+  cv::Mat window_;                  // Hann window, against the patch's wrap-around edges
+  cv::Mat labelSpectrum_;           // DFT of the desired response (a Gaussian peaked at zero shift)
+  std::vector<cv::Mat> numerator_;  // per channel: label * conj(feature spectrum), averaged over time
+  cv::Mat denominator_;             // sum over channels of |feature spectrum|^2, averaged over time
+  double lambda_ = 1e-3;
+  mutable std::vector<cv::Mat> spectra_;  // scratch
+};
+
+// Scale filter (DSST): one feature column per candidate scale, correlated along the scale axis.
+class ScaleFilter {
+ public:
+  // scales: number of candidate scales (odd); step: ratio between neighbouring scales.
+  void init(int scales, double step, double sigma, double lambda);
+  bool empty() const { return numerator_.empty(); }
+  // Scale factors of the candidates, relative to the current size, smallest first.
+  const std::vector<double> &factors() const { return factors_; }
+
+  // samples: one row per candidate scale (CV_32FC1, scales x features).
+  void train(const cv::Mat &samples, double rate);
+  // The factor by which the size changed (between candidates: the peak interpolated).
+  double estimate(const cv::Mat &samples) const;
+
+ private:
+  void transform(const cv::Mat &samples, cv::Mat &spectrum) const;
+  std::vector<double> factors_;
+  cv::Mat window_;          // Hann window over the scales, as a column
+  cv::Mat labelSpectrum_;   // 1 x scales, complex
+  cv::Mat numerator_;       // features x scales, complex
+  cv::Mat denominator_;     // 1 x scales, real
+  double lambda_ = 1e-2;
+  double step_ = 1.02;
+  mutable cv::Mat spectrum_;
+};
+
+// Sub-cell position of the maximum of `response` at `peak`: a parabola through the logarithms of the peak and
+// its neighbours in each direction (exact for a Gaussian peak), a plain parabola where a value is not positive.
+cv::Point2d subCellPeak(const cv::Mat &response, cv::Point peak);
+
+// Peak-to-sidelobe ratio: (peak - mean) / standard deviation of the response outside a square of radius
+// `exclude` cells around the peak. High for one sharp peak, low for a flat or many-peaked response.
+double peakToSidelobe(const cv::Mat &response, cv::Point peak, int exclude);
+
+}  // namespace colortrack

@@ -1,0 +1,63 @@
+// The fused method's detector: a correlation filter over gradient-orientation cells and intensity (shape) and
+// the object-versus-surroundings colour likelihood (colour), their response maps summed as in Staple
+// (Bertinetto et al. 2016), with a DSST scale filter and a peak-to-sidelobe confidence.
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "colortrack/color.hpp"
+#include "colortrack/correlation_filter.hpp"
+#include "colortrack/image_source.hpp"
+#include "colortrack/likelihood.hpp"
+
+namespace colortrack {
+
+class FusedDetector {
+ public:
+  struct Estimate {
+    cv::Point2d centre;     // frame coordinates
+    cv::Size2d size;        // the target's size after the scale filter
+    double confidence = 0;  // peak-to-sidelobe ratio of the fused response
+  };
+
+  // Learns both filters from scratch on `box`.
+  void start(const ImageSource &frame, const cv::Rect2d &box);
+  bool started() const { return !translation_.empty(); }
+  void stop() { translation_ = CorrelationFilter(); }
+
+  // The fused response in a window around `centre` at the target size `size`; the scale filter then runs at
+  // the position found. `colors` and `likelihood` give the colour cue (an empty likelihood leaves it out).
+  Estimate locate(const ImageSource &frame, cv::Point2d centre, cv::Size2d size, const BinMapper &colors,
+                  const ColorLikelihood &likelihood, bool withScale = true);
+
+  // Adapts both filters to the target at `centre`, `size`.
+  void learn(const ImageSource &frame, cv::Point2d centre, cv::Size2d size);
+
+  // Candidate target centres over the whole frame for re-detection: the `count` strongest, well-separated
+  // maxima of the colour likelihood averaged over a target-sized window, on a frame reduced so the target's
+  // smaller side is about 16 pixels.
+  std::vector<cv::Point2d> colourCandidates(const ImageSource &frame, cv::Size2d size, const BinMapper &colors,
+                                            const ColorLikelihood &likelihood, int count);
+
+ private:
+  cv::Size2d windowFor(cv::Size2d size) const;  // the search window around a target of `size`, frame px
+  void windowFeatures(const ImageSource &frame, cv::Point2d centre, cv::Size2d size);
+  void scaleSamples(const ImageSource &frame, cv::Point2d centre, cv::Size2d size);
+  void colourResponse(const BinMapper &colors, const ColorLikelihood &likelihood, cv::Size2d targetNormalised,
+                      cv::Mat &response);
+
+  CorrelationFilter translation_;
+  ScaleFilter scale_;
+  cv::Size window_;         // the normalised search window, px (whole cells)
+  cv::Size2d windowRatio_;  // window size / target size in the frame
+  cv::Size scaleModel_;     // the normalised patch of each scale sample, px (whole cells)
+
+  // Scratch reused across frames.
+  PatchSampler sampler_;
+  cv::Mat patch_, gray_, scaleSamples_, bins_, probability_, integral_, reduced_;
+  std::vector<cv::Mat> channels_;
+};
+
+}  // namespace colortrack

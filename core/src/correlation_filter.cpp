@@ -1,0 +1,208 @@
+#include "colortrack/correlation_filter.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <opencv2/imgproc.hpp>
+
+namespace colortrack {
+
+namespace {
+
+// Circular Gaussian label peaked at index 0 (zero shift), so no shift of the response is needed in training.
+cv::Mat circularGaussian(cv::Size size, double sigma) {
+  cv::Mat label(size, CV_32F);
+  for (int y = 0; y < size.height; ++y)
+    for (int x = 0; x < size.width; ++x) {
+      const int dx = x <= size.width / 2 ? x : x - size.width;
+      const int dy = y <= size.height / 2 ? y : y - size.height;
+      label.at<float>(y, x) = static_cast<float>(std::exp(-0.5 * (dx * dx + dy * dy) / (sigma * sigma)));
+    }
+  return label;
+}
+
+// Moves element (0,0) to (cols/2, rows/2).
+void centre(const cv::Mat &in, cv::Mat &out) {
+  const int cx = in.cols / 2, cy = in.rows / 2;
+  out.create(in.size(), in.type());
+  for (int y = 0; y < in.rows; ++y) {
+    const float *src = in.ptr<float>(y);
+    float *dst = out.ptr<float>((y + cy) % in.rows);
+    for (int x = 0; x < in.cols; ++x) dst[(x + cx) % in.cols] = src[x];
+  }
+}
+
+// A running average of a model term; rate 1 (or no model yet) replaces it.
+void blend(cv::Mat &model, const cv::Mat &fresh, double rate) {
+  if (rate >= 1 || model.empty())
+    fresh.copyTo(model);
+  else
+    cv::addWeighted(model, 1 - rate, fresh, rate, 0, model);
+}
+
+}  // namespace
+
+void CorrelationFilter::init(cv::Size cells, double sigma, double lambda) {
+  CV_Assert(cells.width >= 2 && cells.height >= 2);
+  cv::createHanningWindow(window_, cells, CV_32F);
+  // OpenCV's Hann window is zero on its first row and column; only its shape matters here.
+  cv::dft(circularGaussian(cells, sigma), labelSpectrum_, cv::DFT_COMPLEX_OUTPUT);
+  lambda_ = lambda;
+  numerator_.clear();
+  denominator_.release();
+}
+
+void CorrelationFilter::transform(const std::vector<cv::Mat> &channels, std::vector<cv::Mat> &spectra) const {
+  spectra.resize(channels.size());
+  cv::Mat windowed;
+  for (size_t c = 0; c < channels.size(); ++c) {
+    CV_Assert(channels[c].size() == window_.size());
+    cv::multiply(channels[c], window_, windowed);
+    cv::dft(windowed, spectra[c], cv::DFT_COMPLEX_OUTPUT);
+  }
+}
+
+void CorrelationFilter::train(const std::vector<cv::Mat> &channels, double rate) {
+  transform(channels, spectra_);
+  if (numerator_.size() != spectra_.size()) rate = 1;
+  numerator_.resize(spectra_.size());
+  cv::Mat energy = cv::Mat::zeros(window_.size(), CV_32FC2), product;
+  for (size_t c = 0; c < spectra_.size(); ++c) {
+    cv::mulSpectrums(labelSpectrum_, spectra_[c], product, 0, true);
+    blend(numerator_[c], product, rate);
+    cv::mulSpectrums(spectra_[c], spectra_[c], product, 0, true);
+    energy += product;
+  }
+  std::vector<cv::Mat> parts;
+  cv::split(energy, parts);
+  blend(denominator_, parts[0], rate);
+}
+
+void CorrelationFilter::respond(const std::vector<cv::Mat> &channels, cv::Mat &response) const {
+  CV_Assert(!empty() && channels.size() == numerator_.size());
+  transform(channels, spectra_);
+  cv::Mat sum = cv::Mat::zeros(window_.size(), CV_32FC2), product;
+  for (size_t c = 0; c < spectra_.size(); ++c) {
+    // z * label * conj(x): the correlation of the search patch with the learnt one, shaped by the label;
+    // divided by the learnt energy below.
+    cv::mulSpectrums(spectra_[c], numerator_[c], product, 0, false);
+    sum += product;
+  }
+  std::vector<cv::Mat> parts;
+  cv::split(sum, parts);
+  cv::Mat denominator = denominator_ + lambda_;
+  cv::divide(parts[0], denominator, parts[0]);
+  cv::divide(parts[1], denominator, parts[1]);
+  cv::merge(parts, sum);
+  cv::Mat circular;
+  cv::dft(sum, circular, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
+  centre(circular, response);
+}
+
+void ScaleFilter::init(int scales, double step, double sigma, double lambda) {
+  CV_Assert(scales >= 3 && scales % 2 == 1 && step > 1);
+  factors_.resize(scales);
+  cv::Mat label(1, scales, CV_32F);
+  for (int i = 0; i < scales; ++i) {
+    const int offset = i - scales / 2;
+    factors_[i] = std::pow(step, offset);
+    // Circular label peaked at index 0 = the middle candidate after the shift below.
+    const int circular = i <= scales / 2 ? i : i - scales;
+    label.at<float>(0, i) = static_cast<float>(std::exp(-0.5 * circular * circular / (sigma * sigma)));
+  }
+  cv::dft(label, labelSpectrum_, cv::DFT_COMPLEX_OUTPUT);
+  window_.create(scales, 1, CV_32F);  // Hann window without its zero ends
+  for (int i = 0; i < scales; ++i)
+    window_.at<float>(i, 0) = static_cast<float>(0.5 - 0.5 * std::cos(2 * CV_PI * (i + 1) / (scales + 1)));
+  lambda_ = lambda;
+  step_ = step;
+  numerator_.release();
+  denominator_.release();
+}
+
+// Features x scales complex spectrum of samples (scales x features), windowed over the scales, with the
+// candidates rotated so the middle one sits at index 0.
+void ScaleFilter::transform(const cv::Mat &samples, cv::Mat &spectrum) const {
+  const int n = samples.rows;
+  CV_Assert(n == static_cast<int>(factors_.size()));
+  cv::Mat rotated(samples.cols, n, CV_32F);
+  for (int i = 0; i < n; ++i) {
+    const int to = (i - n / 2 + n) % n;
+    cv::Mat column = samples.row(i).t() * window_.at<float>(i, 0);
+    column.copyTo(rotated.col(to));
+  }
+  cv::dft(rotated, spectrum, cv::DFT_ROWS | cv::DFT_COMPLEX_OUTPUT);
+}
+
+void ScaleFilter::train(const cv::Mat &samples, double rate) {
+  transform(samples, spectrum_);
+  cv::Mat numerator(spectrum_.size(), CV_32FC2), energy;
+  for (int r = 0; r < spectrum_.rows; ++r) {
+    cv::Mat row = numerator.row(r);
+    cv::mulSpectrums(labelSpectrum_, spectrum_.row(r), row, cv::DFT_ROWS, true);
+  }
+  cv::Mat power;
+  cv::mulSpectrums(spectrum_, spectrum_, power, cv::DFT_ROWS, true);
+  cv::reduce(power, energy, 0, cv::REDUCE_SUM);
+  std::vector<cv::Mat> parts;
+  cv::split(energy, parts);
+  if (numerator_.empty() || numerator_.size() != numerator.size()) rate = 1;
+  blend(numerator_, numerator, rate);
+  blend(denominator_, parts[0], rate);
+}
+
+double ScaleFilter::estimate(const cv::Mat &samples) const {
+  CV_Assert(!empty());
+  transform(samples, spectrum_);
+  cv::Mat product, sum;
+  cv::mulSpectrums(spectrum_, numerator_, product, cv::DFT_ROWS, false);
+  cv::reduce(product, sum, 0, cv::REDUCE_SUM);
+  std::vector<cv::Mat> parts;
+  cv::split(sum, parts);
+  cv::Mat denominator = denominator_ + lambda_;
+  cv::divide(parts[0], denominator, parts[0]);
+  cv::divide(parts[1], denominator, parts[1]);
+  cv::merge(parts, sum);
+  cv::Mat circular;
+  cv::dft(sum, circular, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT | cv::DFT_ROWS);
+  const int n = circular.cols;
+  cv::Mat response(1, n, CV_32F);
+  for (int i = 0; i < n; ++i) response.at<float>(0, (i + n / 2) % n) = circular.at<float>(0, i);
+  cv::Point peak;
+  cv::minMaxLoc(response, nullptr, nullptr, nullptr, &peak);
+  double offset = 0;
+  if (peak.x > 0 && peak.x < n - 1) {
+    const double l = response.at<float>(0, peak.x - 1), c = response.at<float>(0, peak.x),
+                 r = response.at<float>(0, peak.x + 1);
+    const double d = l - 2 * c + r;
+    if (d < 0) offset = std::clamp(0.5 * (l - r) / d, -0.5, 0.5);
+  }
+  return std::pow(step_, peak.x + offset - n / 2);
+}
+
+cv::Point2d subCellPeak(const cv::Mat &response, cv::Point peak) {
+  auto at = [&](int y, int x) { return static_cast<double>(response.at<float>(y, x)); };
+  auto offset = [](double l, double c, double r) {
+    if (l > 0 && c > 0 && r > 0) l = std::log(l), c = std::log(c), r = std::log(r);
+    const double d = l - 2 * c + r;
+    return d < 0 ? std::clamp(0.5 * (l - r) / d, -0.5, 0.5) : 0.0;
+  };
+  cv::Point2d p(peak);
+  if (peak.x > 0 && peak.x < response.cols - 1)
+    p.x += offset(at(peak.y, peak.x - 1), at(peak.y, peak.x), at(peak.y, peak.x + 1));
+  if (peak.y > 0 && peak.y < response.rows - 1)
+    p.y += offset(at(peak.y - 1, peak.x), at(peak.y, peak.x), at(peak.y + 1, peak.x));
+  return p;
+}
+
+double peakToSidelobe(const cv::Mat &response, cv::Point peak, int exclude) {
+  cv::Mat mask(response.size(), CV_8U, cv::Scalar(255));
+  const cv::Rect centreArea(peak.x - exclude, peak.y - exclude, 2 * exclude + 1, 2 * exclude + 1);
+  mask(centreArea & cv::Rect(cv::Point(), response.size())).setTo(0);
+  if (cv::countNonZero(mask) < 2) return 0;
+  cv::Scalar mean, deviation;
+  cv::meanStdDev(response, mean, deviation, mask);
+  return (response.at<float>(peak) - mean[0]) / std::max(deviation[0], 1e-6);
+}
+
+}  // namespace colortrack

@@ -1,0 +1,540 @@
+// colortrack-core-eval: accuracy and per-frame cost of colortrack::Tracker on OTB-layout sequences, without
+// GStreamer. Meant for quick tuning loops: it runs the core tracker directly on the decoded JPEGs, several
+// sequences at once.
+//
+//   colortrack-core-eval [--set key=value ...] [--param name=value ...] [--split tune|confirm|all]
+//                        [--threads N] [--frames-out DIR] SEQ_DIR_OR_PARENT...
+//
+// A SEQ_DIR holds img/<n>.jpg and groundtruth.txt (or OTB's groundtruth_rect.txt); a folder of such folders
+// stands for all of them (sorted by name). For example, from the project root:
+//
+//   build/tests/eval/colortrack-core-eval --set method=discriminative ../shared/sequences
+//
+// --set key=value   a TrackerSettings field: method=indexing|discriminative|fused, match-threshold,
+//                   likelihood-threshold, model-update-rate, search-margin, max-coast-frames, process-noise,
+//                   measurement-noise, adapt-aspect=0|1, verify=none|edge-density|edge-energy|both.
+// --param name=value  exported as COLORTRACK_TUNE_<NAME> (upper case, '-' -> '_') before tracking starts,
+//                   for experimental knobs the tracker reads from the environment.
+// --split           which half of the shared sequences to run (kTuneSplit / kConfirmSplit below); sequences
+//                   in neither list run with `all` (the default) only.
+// --threads N       sequences processed in parallel, one Tracker per sequence (default 2). OpenCV runs
+//                   single-threaded (cv::setNumThreads(1)), so the per-frame times are those of one core.
+// --frames-out DIR  DIR/<sequence>.csv: frame,x,y,w,h,state,score (the scored box; empty fields for a miss).
+//
+// The protocol is colortrack-eval's (OTB one-pass evaluation), so its figures compare with that tool's:
+// - ground-truth x and y are shifted by 1 (OTB's 1-based boxes) into 0-based pixels; w and h are kept;
+// - the init box is the shifted frame-1 box rounded to whole pixels and clipped to the frame, and frame 1 is
+//   scored with it;
+// - frames 2.. are scored with the tracker's box when it has one (TrackOutput::hasBox), rounded and clipped
+//   to the frame as the element does before publishing it; no box, or a box outside the frame, is a miss;
+// - frames without ground truth (NaN, no area) are not scored; success AUC and precision at 20 px come from
+//   metrics.hpp, and the means weigh every sequence equally.
+// Per-frame times cover Tracker::process() only (not decoding, not the frame-1 initialisation). "lost" counts
+// the frames whose state is TrackState::Lost.
+//
+// Output: one row per sequence, the mean AUC of each half and of all (over the sequences that ran), and last
+// a machine-readable line "MEAN tune=%.4f confirm=%.4f all=%.4f" ("nan" for a half with no sequence).
+// Exit status: 0, 1 when a sequence failed or could not be loaded, 2 for a bad command line.
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <mutex>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/core/utility.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "colortrack/image_source.hpp"
+#include "colortrack/tracker.hpp"
+#include "metrics.hpp"
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace colortrack::eval {
+namespace {
+
+// The shared sequences (../shared/sequences) split in two halves of seven, each mixing OTB, VOT, UAV123 and
+// DTB70 material: tune parameters on the first, then check on the second that the gain is not overfitting.
+const std::vector<std::string> kTuneSplit = {"Coke",     "Crossing", "bag",       "wakeboard4",
+                                             "person11", "David",    "DragonBaby"};
+const std::vector<std::string> kConfirmSplit = {"Tiger1",       "Couple",  "boat1",    "car16_1",
+                                                "MotorRolling", "Animal1", "Surfing06"};
+
+// Subtracted from ground-truth x and y: OTB boxes are 1-based (MATLAB), as in colortrack-eval's default.
+constexpr double kGtOrigin = 1.0;
+
+constexpr const char *kUsage =
+    "usage: colortrack-core-eval [--set key=value ...] [--param name=value ...] [--split tune|confirm|all]\n"
+    "                            [--threads N] [--frames-out DIR] SEQ_DIR_OR_PARENT...\n"
+    "\n"
+    "  SEQ_DIR_OR_PARENT   OTB layout (img/*.jpg + groundtruth.txt), or a folder of such folders\n"
+    "  --set key=value     tracker setting: method=indexing|discriminative|fused, match-threshold,\n"
+    "                      likelihood-threshold, model-update-rate, search-margin, max-coast-frames,\n"
+    "                      process-noise, measurement-noise, adapt-aspect=0|1,\n"
+    "                      verify=none|edge-density|edge-energy|both (repeatable)\n"
+    "  --param name=value  exported as COLORTRACK_TUNE_<NAME> before tracking (repeatable)\n"
+    "  --split S           tune, confirm or all (default all)\n"
+    "  --threads N         sequences run in parallel (default 2)\n"
+    "  --frames-out DIR    per-frame boxes and states in DIR/<sequence>.csv\n";
+
+// A command-line error: usage text, exit status 2.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+enum class Split { Tune, Confirm, All };
+
+struct Options {
+  TrackerSettings settings;
+  std::vector<std::pair<std::string, std::string>> environment;  // --param, as variable name and value
+  Split split = Split::All;
+  int threads = 2;
+  std::string framesOut;
+  std::vector<std::string> inputs;
+};
+
+struct Sequence {
+  std::string name;
+  fs::path dir;
+  FramePattern pattern;
+  std::vector<GroundTruthBox> groundTruth;
+  const char *half = "-";  // "tune", "confirm" or "-"
+};
+
+// What one sequence produced.
+struct Result {
+  bool ok = false;
+  std::string error;
+  std::string warning;
+  int frames = 0;
+  SequenceScore score;
+  double medianMs = 0, maxMs = 0;
+  int lostFrames = 0;
+};
+
+// ---------------------------------------------------------------------------------------------------------
+// Small helpers
+
+std::string format(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+std::string format(const char *fmt, ...) {
+  char buffer[1024];
+  va_list args;
+  va_start(args, fmt);
+  std::vsnprintf(buffer, sizeof buffer, fmt, args);
+  va_end(args);
+  return buffer;
+}
+
+std::string readFile(const fs::path &path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path.string());
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+bool contains(const std::vector<std::string> &list, const std::string &name) {
+  return std::find(list.begin(), list.end(), name) != list.end();
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Command line
+
+double parseNumber(const std::string &key, const std::string &value) {
+  std::size_t used = 0;
+  double number = 0;
+  try {
+    number = std::stod(value, &used);
+  } catch (const std::exception &) {
+    used = 0;
+  }
+  if (used == 0 || used != value.size() || !std::isfinite(number))
+    throw UsageError("--set " + key + ": '" + value + "' is not a number");
+  return number;
+}
+
+int parseInteger(const std::string &what, const std::string &value) {
+  std::size_t used = 0;
+  int number = 0;
+  try {
+    number = std::stoi(value, &used);
+  } catch (const std::exception &) {
+    used = 0;
+  }
+  if (used == 0 || used != value.size()) throw UsageError(what + ": '" + value + "' is not an integer");
+  return number;
+}
+
+// Splits "key=value"; `option` names the flag in the error.
+std::pair<std::string, std::string> splitAssignment(const std::string &option, const std::string &text) {
+  const std::size_t eq = text.find('=');
+  if (eq == std::string::npos || eq == 0) throw UsageError(option + " expects key=value, got '" + text + "'");
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+void applySetting(TrackerSettings &s, const std::string &key, const std::string &value) {
+  if (key == "method") {
+    if (value == "indexing")
+      s.method = Method::Indexing;
+    else if (value == "discriminative")
+      s.method = Method::Discriminative;
+    else if (value == "fused")
+      s.method = Method::Fused;
+    else
+      throw UsageError("--set method: '" + value + "' is not indexing, discriminative or fused");
+  } else if (key == "match-threshold") {
+    s.matchThreshold = parseNumber(key, value);
+  } else if (key == "likelihood-threshold") {
+    s.likelihoodThreshold = parseNumber(key, value);
+  } else if (key == "model-update-rate") {
+    s.modelUpdateRate = parseNumber(key, value);
+  } else if (key == "search-margin") {
+    s.searchMargin = parseNumber(key, value);
+  } else if (key == "max-coast-frames") {
+    s.maxCoastFrames = parseInteger("--set " + key, value);
+  } else if (key == "process-noise") {
+    s.kalman.processNoise = parseNumber(key, value);
+  } else if (key == "measurement-noise") {
+    s.kalman.measurementNoise = parseNumber(key, value);
+  } else if (key == "adapt-aspect") {
+    if (value != "0" && value != "1") throw UsageError("--set adapt-aspect: '" + value + "' is not 0 or 1");
+    s.adaptAspect = value == "1";
+  } else if (key == "verify") {
+    if (value == "none")
+      s.verify = VerifyMode::None;
+    else if (value == "edge-density")
+      s.verify = VerifyMode::EdgeDensity;
+    else if (value == "edge-energy")
+      s.verify = VerifyMode::EdgeEnergy;
+    else if (value == "both")
+      s.verify = VerifyMode::Both;
+    else
+      throw UsageError("--set verify: '" + value + "' is not none, edge-density, edge-energy or both");
+  } else {
+    throw UsageError("--set: unknown key '" + key + "'");
+  }
+}
+
+// "search-margin" -> "COLORTRACK_TUNE_SEARCH_MARGIN".
+std::string tuneVariable(const std::string &name) {
+  std::string variable = "COLORTRACK_TUNE_";
+  for (char c : name) {
+    if (c == '-')
+      variable += '_';
+    else if (std::isalnum(static_cast<unsigned char>(c)) || c == '_')
+      variable += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    else
+      throw UsageError("--param: '" + name + "' is not a valid name (letters, digits, '-', '_')");
+  }
+  return variable;
+}
+
+Options parseOptions(int argc, char **argv) {
+  Options options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) throw UsageError(arg + " needs a value");
+      return argv[++i];
+    };
+    if (arg == "-h" || arg == "--help") {
+      std::fputs(kUsage, stdout);
+      std::exit(0);
+    } else if (arg == "--set") {
+      const auto [key, value] = splitAssignment(arg, next());
+      applySetting(options.settings, key, value);
+    } else if (arg == "--param") {
+      const auto [name, value] = splitAssignment(arg, next());
+      options.environment.emplace_back(tuneVariable(name), value);
+    } else if (arg == "--split") {
+      const std::string value = next();
+      if (value == "tune")
+        options.split = Split::Tune;
+      else if (value == "confirm")
+        options.split = Split::Confirm;
+      else if (value == "all")
+        options.split = Split::All;
+      else
+        throw UsageError("--split: '" + value + "' is not tune, confirm or all");
+    } else if (arg == "--threads") {
+      options.threads = parseInteger(arg, next());
+      if (options.threads < 1) throw UsageError("--threads must be at least 1");
+    } else if (arg == "--frames-out") {
+      options.framesOut = next();
+    } else if (!arg.empty() && arg[0] == '-') {
+      throw UsageError("unknown option " + arg);
+    } else {
+      options.inputs.push_back(arg);
+    }
+  }
+  if (options.inputs.empty()) throw UsageError("no sequence given");
+  return options;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Sequences (the layout and the checks of colortrack-eval's loader; frames are decoded later, by the workers)
+
+Sequence loadSequence(const fs::path &dir) {
+  Sequence sequence;
+  sequence.dir = dir;
+  sequence.name = dir.filename().empty() ? dir.parent_path().filename().string() : dir.filename().string();
+  if (contains(kTuneSplit, sequence.name))
+    sequence.half = "tune";
+  else if (contains(kConfirmSplit, sequence.name))
+    sequence.half = "confirm";
+
+  std::vector<std::string> names;
+  for (const auto &entry : fs::directory_iterator(dir / "img"))
+    if (entry.is_regular_file()) names.push_back(entry.path().filename().string());
+  std::string error;
+  if (!detectFramePattern(names, sequence.pattern, &error))
+    throw std::runtime_error(dir.string() + "/img: " + error);
+
+  fs::path gtPath = dir / "groundtruth.txt";
+  if (!fs::exists(gtPath)) gtPath = dir / "groundtruth_rect.txt";  // the name in OTB's own downloads
+  if (!parseGroundTruth(readFile(gtPath), kGtOrigin, sequence.groundTruth, &error))
+    throw std::runtime_error(gtPath.string() + ": " + error);
+  if (sequence.groundTruth.empty()) throw std::runtime_error(gtPath.string() + ": no boxes");
+  if (!sequence.groundTruth[0])
+    throw std::runtime_error(gtPath.string() + ": frame 1 has no box to start from");
+  return sequence;
+}
+
+// Sequence folders, or folders of sequence folders (sorted by name).
+std::vector<Sequence> findSequences(const std::vector<std::string> &inputs) {
+  std::vector<Sequence> sequences;
+  for (const std::string &input : inputs) {
+    const fs::path path(input);
+    if (fs::is_directory(path / "img")) {
+      sequences.push_back(loadSequence(path));
+      continue;
+    }
+    if (!fs::is_directory(path)) throw std::runtime_error(input + ": not a directory");
+    std::vector<fs::path> children;
+    for (const auto &entry : fs::directory_iterator(path))
+      if (entry.is_directory() && fs::is_directory(entry.path() / "img")) children.push_back(entry.path());
+    if (children.empty())
+      throw std::runtime_error(input + ": neither a sequence (img/) nor a folder of sequences");
+    std::sort(children.begin(), children.end());
+    for (const fs::path &child : children) sequences.push_back(loadSequence(child));
+  }
+  return sequences;
+}
+
+bool selected(const Sequence &sequence, Split split) {
+  switch (split) {
+    case Split::Tune:
+      return contains(kTuneSplit, sequence.name);
+    case Split::Confirm:
+      return contains(kConfirmSplit, sequence.name);
+    case Split::All:
+      return true;
+  }
+  return false;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Tracking
+
+cv::Mat readFrame(const Sequence &sequence, int index) {
+  const fs::path path = sequence.dir / "img" /
+                        format(sequence.pattern.printfPattern().c_str(), sequence.pattern.startIndex + index);
+  cv::Mat image = cv::imread(path.string(), cv::IMREAD_COLOR);
+  if (image.empty()) throw std::runtime_error("cannot decode " + path.string());
+  return image;
+}
+
+// The box as the element publishes it: rounded to whole pixels, clipped to the frame.
+cv::Rect roundedClippedBox(const cv::Rect2d &box, cv::Size frame) {
+  const int x0 = static_cast<int>(std::lround(box.x)), y0 = static_cast<int>(std::lround(box.y));
+  const int x1 = static_cast<int>(std::lround(box.x + box.width));
+  const int y1 = static_cast<int>(std::lround(box.y + box.height));
+  return cv::Rect(cv::Point(x0, y0), cv::Point(x1, y1)) & cv::Rect(cv::Point(), frame);
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0;
+  const auto middle = values.begin() + values.size() / 2;
+  std::nth_element(values.begin(), middle, values.end());
+  if (values.size() % 2 == 1) return *middle;
+  return (*middle + *std::max_element(values.begin(), middle)) / 2;
+}
+
+void writeFrames(const fs::path &path, const std::vector<std::optional<cv::Rect2d>> &boxes,
+                 const std::vector<std::string> &states) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot write " + path.string());
+  out << "frame,x,y,w,h,state,score\n";
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    out << i + 1;
+    if (boxes[i])
+      out << format(",%.0f,%.0f,%.0f,%.0f", boxes[i]->x, boxes[i]->y, boxes[i]->width, boxes[i]->height);
+    else
+      out << ",,,,";
+    out << "," << states[i] << "\n";
+  }
+}
+
+Result runSequence(const Sequence &sequence, const Options &options) {
+  Result result;
+  try {
+    const int frames = sequence.pattern.count;
+    std::vector<std::optional<cv::Rect2d>> boxes;  // scored box per frame
+    std::vector<std::string> states;
+    std::vector<double> processMs;
+    boxes.reserve(frames);
+    states.reserve(frames);
+    processMs.reserve(frames);
+
+    Tracker tracker(options.settings);
+    for (int i = 0; i < frames; ++i) {
+      const cv::Mat image = readFrame(sequence, i);
+      const MatImageSource source(image);
+      if (i == 0) {
+        const cv::Rect2d &box = *sequence.groundTruth[0];
+        const cv::Rect rounded(cvRound(box.x), cvRound(box.y), cvRound(box.width), cvRound(box.height));
+        const cv::Rect initBox = rounded & cv::Rect(cv::Point(0, 0), image.size());
+        if (initBox.empty()) throw std::runtime_error("frame 1's box is outside the frame");
+        tracker.setTemplateFromBox(source, initBox);
+        boxes.emplace_back(cv::Rect2d(initBox));  // frame 1's result is the init box (OTB)
+        states.emplace_back("init,0");
+        continue;
+      }
+      const Clock::time_point start = Clock::now();
+      const TrackOutput out = tracker.process(source);
+      processMs.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+
+      const cv::Rect box = out.hasBox ? roundedClippedBox(out.box, image.size()) : cv::Rect();
+      boxes.push_back(box.empty() ? std::nullopt : std::optional<cv::Rect2d>(cv::Rect2d(box)));
+      states.emplace_back(format("%s,%.3f", toString(out.state), out.score));
+      if (out.state == TrackState::Lost) ++result.lostFrames;
+    }
+
+    result.frames = frames;
+    result.score = scoreSequence(sequence.groundTruth, boxes);
+    result.medianMs = median(processMs);
+    result.maxMs = processMs.empty() ? 0 : *std::max_element(processMs.begin(), processMs.end());
+    if (frames != static_cast<int>(sequence.groundTruth.size()))
+      result.warning = format("%d frames, %zu ground-truth lines", frames, sequence.groundTruth.size());
+    if (!options.framesOut.empty())
+      writeFrames(fs::path(options.framesOut) / (sequence.name + ".csv"), boxes, states);
+    result.ok = true;
+  } catch (const TrackerError &e) {
+    result.error = std::string("TrackerError: ") + e.what();
+  } catch (const std::exception &e) {
+    result.error = e.what();
+  }
+  return result;
+}
+
+// Runs every sequence on `threads` workers, each taking the next sequence not yet started.
+std::vector<Result> runAll(const std::vector<Sequence> &sequences, const Options &options) {
+  std::vector<Result> results(sequences.size());
+  std::atomic<std::size_t> nextIndex{0};
+  std::mutex printMutex;
+  auto worker = [&]() {
+    for (std::size_t i = nextIndex++; i < sequences.size(); i = nextIndex++) {
+      results[i] = runSequence(sequences[i], options);
+      const std::lock_guard<std::mutex> lock(printMutex);
+      std::fprintf(stderr, "  %-14s %s\n", sequences[i].name.c_str(),
+                   results[i].ok ? format("AUC %.3f", results[i].score.auc).c_str() : "FAILED");
+    }
+  };
+  const int count = static_cast<int>(std::min<std::size_t>(options.threads, sequences.size()));
+  std::vector<std::thread> threads;
+  for (int t = 0; t < count; ++t) threads.emplace_back(worker);
+  for (std::thread &thread : threads) thread.join();
+  return results;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+
+// Mean AUC over the sequences that ran and belong to `half` (nullptr: all); NaN when there are none.
+double meanAuc(const std::vector<Sequence> &sequences, const std::vector<Result> &results, const char *half,
+               int *count) {
+  std::vector<SequenceScore> scores;
+  for (std::size_t i = 0; i < sequences.size(); ++i)
+    if (results[i].ok && (!half || std::string(sequences[i].half) == half))
+      scores.push_back(results[i].score);
+  *count = static_cast<int>(scores.size());
+  return scores.empty() ? std::numeric_limits<double>::quiet_NaN() : averageScores(scores).auc;
+}
+
+int run(int argc, char **argv) {
+  const Options options = parseOptions(argc, argv);
+  cv::setNumThreads(1);
+  // Before any Tracker exists, and before the worker threads start (setenv is not thread-safe).
+  for (const auto &[variable, value] : options.environment) setenv(variable.c_str(), value.c_str(), 1);
+
+  std::vector<Sequence> sequences;
+  for (Sequence &sequence : findSequences(options.inputs))
+    if (selected(sequence, options.split)) sequences.push_back(std::move(sequence));
+  if (sequences.empty()) throw std::runtime_error("no sequence of the chosen split among the inputs");
+  if (!options.framesOut.empty()) fs::create_directories(options.framesOut);
+
+  const Clock::time_point start = Clock::now();
+  const std::vector<Result> results = runAll(sequences, options);
+  const double wallSeconds = std::chrono::duration<double>(Clock::now() - start).count();
+
+  std::printf("%-14s %-7s %6s %6s %6s %8s %8s %5s\n", "sequence", "half", "frames", "AUC", "P@20", "med ms",
+              "max ms", "lost");
+  bool failed = false;
+  for (std::size_t i = 0; i < sequences.size(); ++i) {
+    const Sequence &s = sequences[i];
+    const Result &r = results[i];
+    if (!r.ok) {
+      failed = true;
+      std::printf("%-14s %-7s FAILED: %s\n", s.name.c_str(), s.half, r.error.c_str());
+      continue;
+    }
+    std::printf("%-14s %-7s %6d %6.3f %6.3f %8.2f %8.2f %5d%s\n", s.name.c_str(), s.half, r.frames,
+                r.score.auc, r.score.precisionAt20, r.medianMs, r.maxMs, r.lostFrames,
+                r.warning.empty() ? "" : ("  (" + r.warning + ")").c_str());
+  }
+
+  int tuneCount = 0, confirmCount = 0, allCount = 0;
+  const double tune = meanAuc(sequences, results, "tune", &tuneCount);
+  const double confirm = meanAuc(sequences, results, "confirm", &confirmCount);
+  const double all = meanAuc(sequences, results, nullptr, &allCount);
+  std::printf("\n");
+  std::printf("mean AUC tune     %.3f  (%d sequences)\n", tune, tuneCount);
+  std::printf("mean AUC confirm  %.3f  (%d sequences)\n", confirm, confirmCount);
+  std::printf("mean AUC all      %.3f  (%d sequences)\n", all, allCount);
+  std::printf("wall time %.1f s, %d thread%s\n", wallSeconds, options.threads,
+              options.threads == 1 ? "" : "s");
+  std::printf("MEAN tune=%.4f confirm=%.4f all=%.4f\n", tune, confirm, all);
+  return failed ? 1 : 0;
+}
+
+}  // namespace
+}  // namespace colortrack::eval
+
+int main(int argc, char **argv) {
+  try {
+    return colortrack::eval::run(argc, argv);
+  } catch (const colortrack::eval::UsageError &e) {
+    std::fprintf(stderr, "colortrack-core-eval: %s\n\n%s", e.what(), colortrack::eval::kUsage);
+    return 2;
+  } catch (const std::exception &e) {
+    std::fprintf(stderr, "colortrack-core-eval: %s\n", e.what());
+    return 1;
+  }
+}
