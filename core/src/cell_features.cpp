@@ -15,32 +15,38 @@ constexpr float kEps = 1e-4f;
 void cellFeatures(const cv::Mat &gray, int cell, std::vector<cv::Mat> &channels) {
   CV_Assert(gray.type() == CV_32FC1 && cell >= 1);
   const int cw = gray.cols / cell, ch = gray.rows / cell;
-  // Raw orientation histograms, one matrix of (cells x kOrientations).
-  cv::Mat hist = cv::Mat::zeros(ch * cw, kOrientations, CV_32F);
-  const float binWidth = static_cast<float>(CV_PI / kOrientations);
+  // Scratch kept per thread: the scale filter calls this for a few dozen small patches per frame, where
+  // allocating these each time cost more than the arithmetic.
+  thread_local cv::Mat hist, energy, intensity;
+  // Raw orientation histograms, one row of kOrientations per cell. Gradients by [-1 0 1] differences (the
+  // border repeated), contrast-insensitive orientation (a and a + 180 degrees share a bin), each pixel's
+  // magnitude shared linearly between the two nearest bins.
+  hist.create(ch * cw, kOrientations, CV_32F);
+  hist.setTo(0);
+  const float binsPerDegree = kOrientations / 180.0f;
   for (int y = 0; y < ch * cell; ++y) {
     const float *row = gray.ptr<float>(y);
     const float *up = gray.ptr<float>(std::max(0, y - 1));
     const float *down = gray.ptr<float>(std::min(gray.rows - 1, y + 1));
     float *cellRow = hist.ptr<float>((y / cell) * cw);
+    const int last = gray.cols - 1;
     for (int x = 0; x < cw * cell; ++x) {
-      const float dx = row[std::min(gray.cols - 1, x + 1)] - row[std::max(0, x - 1)];
+      const float dx = row[std::min(last, x + 1)] - row[std::max(0, x - 1)];
       const float dy = down[x] - up[x];
       const float magnitude = std::sqrt(dx * dx + dy * dy);
       if (magnitude <= 0) continue;
-      float angle = std::atan2(dy, dx);  // (-pi, pi]; contrast-insensitive: fold into [0, pi)
-      if (angle < 0) angle += static_cast<float>(CV_PI);
-      // Linear vote between the two nearest orientation bins.
-      const float position = angle / binWidth - 0.5f;
-      const int lower = static_cast<int>(std::floor(position));
+      float angle = cv::fastAtan2(dy, dx);  // degrees in [0, 360), error ~0.3 degrees
+      if (angle >= 180) angle -= 180;
+      const float position = angle * binsPerDegree - 0.5f;
+      const int lower = position < 0 ? -1 : static_cast<int>(position);
       const float upperShare = position - lower;
       float *bins = cellRow + (x / cell) * kOrientations;
-      bins[(lower + kOrientations) % kOrientations] += magnitude * (1 - upperShare);
-      bins[(lower + 1) % kOrientations] += magnitude * upperShare;
+      bins[lower < 0 ? kOrientations - 1 : lower] += magnitude * (1 - upperShare);
+      bins[lower + 1 >= kOrientations ? 0 : lower + 1] += magnitude * upperShare;
     }
   }
   // Energy per cell, then the inverse norm of each 2x2 block (cells outside repeat the border).
-  cv::Mat energy(ch, cw, CV_32F);
+  energy.create(ch, cw, CV_32F);
   for (int i = 0; i < ch * cw; ++i) {
     const float *bins = hist.ptr<float>(i);
     float e = 0;
@@ -52,7 +58,6 @@ void cellFeatures(const cv::Mat &gray, int cell, std::vector<cv::Mat> &channels)
   };
   channels.resize(kCellChannels);
   for (auto &c : channels) c.create(ch, cw, CV_32F);
-  cv::Mat intensity;
   cv::resize(gray(cv::Rect(0, 0, cw * cell, ch * cell)), intensity, cv::Size(cw, ch), 0, 0, cv::INTER_AREA);
   for (int y = 0; y < ch; ++y)
     for (int x = 0; x < cw; ++x) {

@@ -106,9 +106,8 @@ void ScaleFilter::init(int scales, double step, double sigma, double lambda) {
   for (int i = 0; i < scales; ++i) {
     const int offset = i - scales / 2;
     factors_[i] = std::pow(step, offset);
-    // Circular label peaked at index 0 = the middle candidate after the shift below.
-    const int circular = i <= scales / 2 ? i : i - scales;
-    label.at<float>(0, i) = static_cast<float>(std::exp(-0.5 * circular * circular / (sigma * sigma)));
+    // Peaked at the middle candidate (no change of size), so the response's peak is the best candidate.
+    label.at<float>(0, i) = static_cast<float>(std::exp(-0.5 * offset * offset / (sigma * sigma)));
   }
   cv::dft(label, labelSpectrum_, cv::DFT_COMPLEX_OUTPUT);
   window_.create(scales, 1, CV_32F);  // Hann window without its zero ends
@@ -120,18 +119,12 @@ void ScaleFilter::init(int scales, double step, double sigma, double lambda) {
   denominator_.release();
 }
 
-// Features x scales complex spectrum of samples (scales x features), windowed over the scales, with the
-// candidates rotated so the middle one sits at index 0.
+// Features x scales complex spectrum of samples (scales x features), windowed over the scales.
 void ScaleFilter::transform(const cv::Mat &samples, cv::Mat &spectrum) const {
-  const int n = samples.rows;
-  CV_Assert(n == static_cast<int>(factors_.size()));
-  cv::Mat rotated(samples.cols, n, CV_32F);
-  for (int i = 0; i < n; ++i) {
-    const int to = (i - n / 2 + n) % n;
-    cv::Mat column = samples.row(i).t() * window_.at<float>(i, 0);
-    column.copyTo(rotated.col(to));
-  }
-  cv::dft(rotated, spectrum, cv::DFT_ROWS | cv::DFT_COMPLEX_OUTPUT);
+  CV_Assert(samples.rows == static_cast<int>(factors_.size()));
+  cv::multiply(samples, cv::repeat(window_, 1, samples.cols), windowed_);
+  cv::transpose(windowed_, transposed_);
+  cv::dft(transposed_, spectrum, cv::DFT_ROWS | cv::DFT_COMPLEX_OUTPUT);
 }
 
 void ScaleFilter::train(const cv::Mat &samples, double rate) {
@@ -166,8 +159,7 @@ double ScaleFilter::estimate(const cv::Mat &samples) const {
   cv::Mat circular;
   cv::dft(sum, circular, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT | cv::DFT_ROWS);
   const int n = circular.cols;
-  cv::Mat response(1, n, CV_32F);
-  for (int i = 0; i < n; ++i) response.at<float>(0, (i + n / 2) % n) = circular.at<float>(0, i);
+  const cv::Mat &response = circular;
   cv::Point peak;
   cv::minMaxLoc(response, nullptr, nullptr, nullptr, &peak);
   double offset = 0;

@@ -25,11 +25,14 @@ const double kLabelSigma = tune("LABEL_SIGMA", 1.0 / 16);   // of the desired re
 const double kLambda = 1e-3;
 const double kTranslationRate = tune("CF_RATE", 0.01);
 const double kColourWeight = tune("COLOUR_WEIGHT", 0.3);
-const int kScales = 33;
+const int kScales = static_cast<int>(tune("SCALES", 33));
 const double kScaleStep = tune("SCALE_STEP", 1.02);
 const double kScaleRate = tune("SCALE_RATE", 0.025);
-const double kScaleModelArea = 512;
+const double kScaleModelArea = tune("SCALE_AREA", 512);
+const double kReuseScale = tune("REUSE_SCALE", 1);
 const double kCandidateSide = 16;
+const double kAspectStep = tune("ASPECT_STEP", 0.0);
+const double kAspectRing = tune("ASPECT_RING", 0.15);
 
 }  // namespace
 
@@ -77,14 +80,13 @@ void FusedDetector::scaleSamples(const ImageSource &frame, cv::Point2d centre, c
                 cv::Rect2d(centre.x - largest.width / 2, centre.y - largest.height / 2, largest.width,
                            largest.height),
                 PatchSampler::stepFor(size * factors.front(), scaleModel_));
-  cv::Mat sample, gray;
+  sampler_.toGray();
+  cv::Mat gray;
   std::vector<cv::Mat> channels;
   for (size_t i = 0; i < factors.size(); ++i) {
     const cv::Size2d s = size * factors[i];
     sampler_.extract(cv::Rect2d(centre.x - s.width / 2, centre.y - s.height / 2, s.width, s.height), scaleModel_,
-                     sample);
-    cv::cvtColor(sample, gray, cv::COLOR_BGR2GRAY);
-    gray.convertTo(gray, CV_32F, 1.0 / 255);
+                     gray);
     cellFeatures(gray, static_cast<int>(kCell), channels);
     const int perChannel = channels[0].rows * channels[0].cols;
     if (i == 0) scaleSamples_.create(static_cast<int>(factors.size()), perChannel * kCellChannels, CV_32F);
@@ -117,6 +119,28 @@ void FusedDetector::colourResponse(const BinMapper &colors, const ColorLikelihoo
     }
 }
 
+cv::Size2d FusedDetector::refineAspect(cv::Point2d centre, cv::Size2d size) const {
+  const cv::Rect limits(cv::Point(), probability_.size());
+  cv::Size2d best = size;
+  double bestContrast = -1e18;
+  for (int i = -1; i <= 1; ++i)
+    for (int j = -1; j <= 1; ++j) {
+      if (i == j && i != 0) continue;  // uniform changes are the scale filter's
+      const cv::Size2d s(size.width * (1 + i * kAspectStep), size.height * (1 + j * kAspectStep));
+      const cv::Rect box(cvRound(centre.x - s.width / 2), cvRound(centre.y - s.height / 2), cvRound(s.width),
+                         cvRound(s.height));
+      const int ring = std::max(1, cvRound(kAspectRing * std::min(s.width, s.height)));
+      const cv::Rect inner = box & limits;
+      const cv::Rect outer = cv::Rect(box.x - ring, box.y - ring, box.width + 2 * ring, box.height + 2 * ring) & limits;
+      if (inner.area() <= 0 || outer.area() <= inner.area()) continue;
+      const double inside = boxSum(integral_, inner);
+      const double ringMean = (boxSum(integral_, outer) - inside) / (outer.area() - inner.area());
+      const double contrast = inside / inner.area() - ringMean - 1e-6 * (std::abs(i) + std::abs(j));
+      if (contrast > bestContrast) bestContrast = contrast, best = s;
+    }
+  return best;
+}
+
 FusedDetector::Estimate FusedDetector::locate(const ImageSource &frame, cv::Point2d centre, cv::Size2d size,
                                               const BinMapper &colors, const ColorLikelihood &likelihood,
                                               bool withScale) {
@@ -125,8 +149,8 @@ FusedDetector::Estimate FusedDetector::locate(const ImageSource &frame, cv::Poin
   translation_.respond(channels_, response);
   const cv::Size2d window = windowFor(size);
   const double z = window_.width / window.width;  // normalised px per frame px
+  cv::Mat shape = response.clone(), colour;
   if (!likelihood.empty() && kColourWeight > 0) {
-    cv::Mat colour;
     colourResponse(colors, likelihood, size * z, colour);
     cv::addWeighted(response, 1 - kColourWeight, colour, kColourWeight, 0, response);
   }
@@ -137,10 +161,16 @@ FusedDetector::Estimate FusedDetector::locate(const ImageSource &frame, cv::Poin
   e.centre = cv::Point2d(centre.x + (at.x - response.cols / 2) * kCell / z,
                          centre.y + (at.y - response.rows / 2) * kCell / z);
   e.size = size;
+  e.shapePeak = shape.at<float>(peak);
+  e.colourPeak = colour.empty() ? 0 : colour.at<float>(peak);
   e.confidence = peakToSidelobe(response, peak, std::max(1, cvRound(0.2 * std::min(response.cols, response.rows))));
   if (withScale) {
     scaleSamples(frame, e.centre, size);
     e.size = size * scale_.estimate(scaleSamples_);
+    if (kAspectStep > 0 && !likelihood.empty() && kColourWeight > 0) {
+      const cv::Point2d inWindow((at.x * kCell), (at.y * kCell));
+      e.size = refineAspect(inWindow, e.size * z) * (1 / z);
+    }
   }
   return e;
 }
@@ -148,7 +178,7 @@ FusedDetector::Estimate FusedDetector::locate(const ImageSource &frame, cv::Poin
 void FusedDetector::learn(const ImageSource &frame, cv::Point2d centre, cv::Size2d size) {
   windowFeatures(frame, centre, size);
   translation_.train(channels_, kTranslationRate);
-  scaleSamples(frame, centre, size);
+  if (kReuseScale <= 0 || scaleSamples_.empty()) scaleSamples(frame, centre, size);
   scale_.train(scaleSamples_, kScaleRate);
 }
 

@@ -43,6 +43,12 @@ void PatchSampler::load(const ImageSource &frame, const cv::Rect2d &region, int 
   origin_ = inside.tl();
 }
 
+void PatchSampler::toGray() {
+  cv::Mat gray;
+  cv::cvtColor(pixels_, gray, cv::COLOR_BGR2GRAY);
+  gray.convertTo(pixels_, CV_32F, 1.0 / 255);
+}
+
 void PatchSampler::extract(const cv::Rect2d &rect, cv::Size size, cv::Mat &out) const {
   // Output pixel i has its centre at frame x = rect.x + (i + 0.5) * rect.width / size.width - 0.5 (pixel
   // centres at whole coordinates), which is sample (x - origin.x) / step.

@@ -42,11 +42,17 @@ double tune(const char *name, double fallback) {
 // Fused method: the confidence (peak-to-sidelobe ratio of the fused response) below which a frame is not a
 // detection, below which the models do not learn from it, and that a re-detection must reach.
 const double kLostConfidence = tune("LOST_PSR", 4.0);
-const double kLearnConfidence = tune("LEARN_PSR", 5.0);
+const double kLearnConfidence = tune("LEARN_PSR", 4.0);
 const double kRedetectConfidence = tune("REDETECT_PSR", 6.0);
+const double kLostRatio = tune("LOST_RATIO", 0.5);
+const double kLearnRatio = tune("LEARN_RATIO", 0.0);
+const double kRedetectRatio = tune("REDETECT_RATIO", 0.6);
+const double kLostColourRatio = tune("LOST_COLOUR", 0.5);
+const double kConfidenceRate = tune("CONF_RATE", 0.1);
+const int kConfidenceWarmUp = static_cast<int>(tune("WARMUP", 5));
 const int kRedetectPeriod = static_cast<int>(tune("REDETECT_PERIOD", 3));
 const int kRedetectCandidates = static_cast<int>(tune("CANDIDATES", 4));
-const bool kFusedFromPrediction = tune("FROM_PREDICTION", 1) > 0;
+const bool kFusedFromPrediction = tune("FROM_PREDICTION", 0) > 0;
 const bool kFusedRawBox = tune("RAW_BOX", 0) > 0;
 
 cv::Rect roundRect(const cv::Rect2d &r) {
@@ -97,6 +103,9 @@ struct Tracker::Impl {
   cv::Point2d fusedCentre;
   cv::Size2d fusedSize;
   cv::Rect2d fusedBox;  // last measured box (reported instead of the filtered one when kFusedRawBox)
+  double usualConfidence = 0;  // running mean of the confidence of learnt frames
+  int confidenceSamples = 0;   // how many frames the mean has seen
+  double usualColour = 0;      // running mean of the colour cue at the peak of learnt frames
 
   // Scratch buffers reused across frames.
   cv::Mat bgr, small, gray, probability, integralP;
@@ -385,6 +394,23 @@ struct Tracker::Impl {
     fusedCentre = cv::Point2d(box.x + box.width / 2, box.y + box.height / 2);
     fusedSize = box.size();
     fusedBox = box;
+    usualConfidence = 0;
+    confidenceSamples = 0;
+    usualColour = 0;
+  }
+
+  // A frame's confidence relative to the track's usual one (1 before that is known).
+  double relativeConfidence(double confidence) const {
+    return confidenceSamples >= kConfidenceWarmUp ? confidence / usualConfidence : 1.0;
+  }
+  double relativeColour(double colour) const {
+    return confidenceSamples >= kConfidenceWarmUp && usualColour > 0 ? colour / usualColour : 1.0;
+  }
+  void noteConfidence(const FusedDetector::Estimate &e) {
+    ++confidenceSamples;
+    const double rate = std::max(kConfidenceRate, 1.0 / confidenceSamples);
+    usualConfidence = (1 - rate) * usualConfidence + rate * e.confidence;
+    usualColour = (1 - rate) * usualColour + rate * e.colourPeak;
   }
 
   // A fused estimate as a detection: the box, its confidence as the score, the edge check.
@@ -407,7 +433,12 @@ struct Tracker::Impl {
       const FusedDetector::Estimate e = fused.locate(frame, c, fusedSize, *mapper, likelihood, false);
       if (!best || e.confidence > best->confidence) best = e;
     }
-    if (!best || best->confidence < kRedetectConfidence) return std::nullopt;
+    if (std::getenv("CT_DEBUG") && best)
+      fprintf(stderr, "redetect %zu candidates best %.2f at %.0f,%.0f\n", candidates.size(), best->confidence,
+              best->centre.x, best->centre.y);
+    if (!best || best->confidence < kRedetectConfidence ||
+        relativeConfidence(best->confidence) < kRedetectRatio)
+      return std::nullopt;
     return best;
   }
 
@@ -424,12 +455,19 @@ struct Tracker::Impl {
       const cv::Point2d centre = kFusedFromPrediction ? cv::Point2d(kalman.x(), kalman.y()) : fusedCentre;
       FusedDetector::Estimate e = fused.locate(frame, centre, fusedSize, *mapper, likelihood);
       out.searchRegion = roundRect(centredBox(centre.x, centre.y, fusedSize * 2.0)) & frameRect;
-      if (e.confidence < kLostConfidence && state == TrackState::Coasting && coastFrames % kRedetectPeriod == 0) {
+      const auto accepted = [&](const FusedDetector::Estimate &e) {
+        return e.confidence >= kLostConfidence && relativeConfidence(e.confidence) >= kLostRatio &&
+               relativeColour(e.colourPeak) >= kLostColourRatio;
+      };
+      if (!accepted(e) && state == TrackState::Coasting && coastFrames % kRedetectPeriod == 0) {
         if (const auto found = redetectFused(frame)) e = *found;
         out.searchRegion = frameRect;
       }
-      out.score = e.confidence;
-      if (e.confidence >= kLostConfidence) {
+      out.score = std::min(1.0, relativeConfidence(e.confidence));
+      if (std::getenv("CT_DEBUG"))
+        fprintf(stderr, "psr %.2f %.2f %.3f %.3f\n", e.confidence, relativeConfidence(e.confidence), e.shapePeak,
+                e.colourPeak);
+      if (accepted(e)) {
         e.size = fitSize(e.size);
         const Detection d = fusedDetection(frame, e, s);
         updateTrack(d);
@@ -437,7 +475,10 @@ struct Tracker::Impl {
         fusedCentre = e.centre;
         fusedSize = e.size;
         fusedBox = d.box;
-        if (e.confidence >= kLearnConfidence) {
+        const bool learnable =
+            e.confidence >= kLearnConfidence && relativeConfidence(e.confidence) >= kLearnRatio;
+        if (learnable) noteConfidence(e);
+        if (learnable) {
           fused.learn(frame, e.centre, e.size);
           learn(frame, d.box, s);
         }
@@ -457,7 +498,7 @@ struct Tracker::Impl {
     lastVerified = d.verified;
     fusedCentre = found->centre;
     fusedBox = d.box;
-    out.score = found->confidence;
+    out.score = std::min(1.0, relativeConfidence(found->confidence));
   }
 
   // The search region around the prediction: the window grown by the margin on each side and by three

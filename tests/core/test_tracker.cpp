@@ -25,7 +25,8 @@ SceneConfig hardConfig() {
   return c;
 }
 
-// The behaviour tests run for both methods: the paper's colour indexing and the discriminative default.
+// The behaviour tests run for every method: the paper's colour indexing, the colour-only discriminative
+// method and the fused default.
 class TrackerMethod : public ::testing::TestWithParam<Method> {
  protected:
   TrackerSettings settings() const {
@@ -37,9 +38,12 @@ class TrackerMethod : public ::testing::TestWithParam<Method> {
 
 }  // namespace
 
-INSTANTIATE_TEST_SUITE_P(Methods, TrackerMethod, ::testing::Values(Method::Indexing, Method::Discriminative),
+INSTANTIATE_TEST_SUITE_P(Methods, TrackerMethod,
+                         ::testing::Values(Method::Indexing, Method::Discriminative, Method::Fused),
                          [](const auto &info) {
-                           return std::string(info.param == Method::Indexing ? "Indexing" : "Discriminative");
+                           return std::string(info.param == Method::Indexing         ? "Indexing"
+                                              : info.param == Method::Discriminative ? "Discriminative"
+                                                                                     : "Fused");
                          });
 
 TEST_P(TrackerMethod, FollowsMovingTurningScalingObjectUnderLightChanges) {

@@ -58,7 +58,7 @@ class ScaleFilter {
   cv::Mat denominator_;     // 1 x scales, real
   double lambda_ = 1e-2;
   double step_ = 1.02;
-  mutable cv::Mat spectrum_;
+  mutable cv::Mat spectrum_, windowed_, transposed_;  // scratch
 };
 
 // Sub-cell position of the maximum of `response` at `peak`: a parabola through the logarithms of the peak and

@@ -41,7 +41,9 @@ class PatchSampler {
  public:
   // Reads `region` (frame coordinates; may reach outside the frame) taking every `step`-th pixel.
   void load(const ImageSource &frame, const cv::Rect2d &region, int step);
-  // `rect` (frame coordinates) resampled to `size` (bilinear), CV_8UC3 BGR.
+  // Turns what was read into grey levels (CV_32FC1 in [0,1]), so that patches cut afterwards are grey.
+  void toGray();
+  // `rect` (frame coordinates) resampled to `size` (bilinear): CV_8UC3 BGR, or grey after toGray().
   void extract(const cv::Rect2d &rect, cv::Size size, cv::Mat &out) const;
 
   // The sampling step that keeps at least one read pixel per output pixel for a patch of `rect` at `size`.
