@@ -262,6 +262,8 @@ GType gst_color_track_method_get_type(void) {
       {GST_COLOR_TRACK_METHOD_DISCRIMINATIVE,
        "Object-versus-surroundings colour likelihood with motion prior (more accurate on real video)",
        "discriminative"},
+      {GST_COLOR_TRACK_METHOD_FUSED,
+       "Shape (correlation filter) and colour fused, with confidence and re-detection (most accurate)", "fused"},
       {0, nullptr, nullptr},
   };
   if (g_once_init_enter(&type))
@@ -297,9 +299,29 @@ GstColorTrackColorSpace fromColorSpace(colortrack::ColorSpace space) {
                                               : GST_COLOR_TRACK_COLOR_SPACE_HSV;
 }
 
+// Switches without a default, so that a method added to one side and not the other is a compiler warning.
 GstColorTrackMethod methodOf(colortrack::Method method) {
-  return method == colortrack::Method::Indexing ? GST_COLOR_TRACK_METHOD_INDEXING
-                                                : GST_COLOR_TRACK_METHOD_DISCRIMINATIVE;
+  switch (method) {
+    case colortrack::Method::Indexing:
+      return GST_COLOR_TRACK_METHOD_INDEXING;
+    case colortrack::Method::Discriminative:
+      return GST_COLOR_TRACK_METHOD_DISCRIMINATIVE;
+    case colortrack::Method::Fused:
+      return GST_COLOR_TRACK_METHOD_FUSED;
+  }
+  return GST_COLOR_TRACK_METHOD_FUSED;
+}
+
+colortrack::Method toMethod(gint value) {
+  switch (static_cast<GstColorTrackMethod>(value)) {
+    case GST_COLOR_TRACK_METHOD_INDEXING:
+      return colortrack::Method::Indexing;
+    case GST_COLOR_TRACK_METHOD_DISCRIMINATIVE:
+      return colortrack::Method::Discriminative;
+    case GST_COLOR_TRACK_METHOD_FUSED:
+      return colortrack::Method::Fused;
+  }
+  return colortrack::Method::Fused;
 }
 
 colortrack::VerifyMode toVerifyMode(gint value) {
@@ -600,9 +622,7 @@ static void gst_color_track_set_property(GObject *object, guint prop_id, const G
       t.verifyTolerance = g_value_get_double(value);
       break;
     case PROP_METHOD:
-      t.method = g_value_get_enum(value) == GST_COLOR_TRACK_METHOD_INDEXING
-                     ? colortrack::Method::Indexing
-                     : colortrack::Method::Discriminative;
+      t.method = toMethod(g_value_get_enum(value));
       break;
     case PROP_LIKELIHOOD_THRESHOLD:
       t.likelihoodThreshold = g_value_get_double(value);
@@ -1477,20 +1497,22 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
       g_param_spec_enum(
           "method", "Method",
           "How frames are searched: 'indexing' is the paper's colour indexing; 'discriminative' "
-          "also learns which colours tell the object from its surroundings",
+          "also learns which colours tell the object from its surroundings; 'fused' adds a shape cue (a "
+          "correlation filter), a scale filter, a confidence that gates learning, and re-detection",
           GST_TYPE_COLOR_TRACK_METHOD, methodOf(defaults.method), live));
   g_object_class_install_property(
       gobject_class, PROP_LIKELIHOOD_THRESHOLD,
       g_param_spec_double(
           "likelihood-threshold", "Likelihood threshold",
-          "method=discriminative: minimum mean object likelihood (0-1) in the box for a detection", 0.0, 1.0,
+          "method=discriminative (and fused, while acquiring a template image): minimum mean object "
+          "likelihood (0-1) in the box for a detection", 0.0, 1.0,
           defaults.likelihoodThreshold, live));
   g_object_class_install_property(
       gobject_class, PROP_MODEL_UPDATE_RATE,
       g_param_spec_double(
           "model-update-rate", "Model update rate",
-          "method=discriminative: how fast the colour likelihood follows appearance changes, per "
-          "frame (0 = learn once)",
+          "method=discriminative or fused: how fast the colour likelihood follows appearance changes, "
+          "per frame (0 = learn once)",
           0.0, 1.0, defaults.modelUpdateRate, live));
   g_object_class_install_property(
       gobject_class, PROP_ADAPT_ASPECT,

@@ -46,10 +46,14 @@ typedef enum {
  * @GST_COLOR_TRACK_METHOD_DISCRIMINATIVE: object-versus-surroundings colour likelihood learnt from the
  *     target and the ring around it, with a motion prior and adaptive aspect; detections are still accepted
  *     by the template's colour-indexing match value
+ * @GST_COLOR_TRACK_METHOD_FUSED: a correlation filter over gradient-orientation cells and intensity (shape)
+ *     fused with the colour likelihood, a scale filter, a confidence that decides tracking / coasting / lost
+ *     and gates learning, and re-detection over the whole frame once lost (the default)
  */
 typedef enum {
   GST_COLOR_TRACK_METHOD_INDEXING = 0,
   GST_COLOR_TRACK_METHOD_DISCRIMINATIVE = 1,
+  GST_COLOR_TRACK_METHOD_FUSED = 2,
 } GstColorTrackMethod;
 
 /**

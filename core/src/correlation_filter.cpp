@@ -187,6 +187,8 @@ cv::Point2d subCellPeak(const cv::Mat &response, cv::Point peak) {
   return p;
 }
 
+constexpr double kMaxPeakToSidelobe = 100;
+
 double peakToSidelobe(const cv::Mat &response, cv::Point peak, int exclude) {
   cv::Mat mask(response.size(), CV_8U, cv::Scalar(255));
   const cv::Rect centreArea(peak.x - exclude, peak.y - exclude, 2 * exclude + 1, 2 * exclude + 1);
@@ -194,7 +196,9 @@ double peakToSidelobe(const cv::Mat &response, cv::Point peak, int exclude) {
   if (cv::countNonZero(mask) < 2) return 0;
   cv::Scalar mean, deviation;
   cv::meanStdDev(response, mean, deviation, mask);
-  return (response.at<float>(peak) - mean[0]) / std::max(deviation[0], 1e-6);
+  // A floor under the deviation: a frame identical to the training view has almost no sidelobe at all.
+  const double peakValue = response.at<float>(peak);
+  return (peakValue - mean[0]) / std::max(deviation[0], std::max(1e-6, std::abs(peakValue) / kMaxPeakToSidelobe));
 }
 
 }  // namespace colortrack

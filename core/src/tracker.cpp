@@ -49,6 +49,8 @@ const double kLearnRatio = tune("LEARN_RATIO", 0.0);
 const double kRedetectRatio = tune("REDETECT_RATIO", 0.6);
 const double kLostColourRatio = tune("LOST_COLOUR", 0.5);
 const double kConfidenceRate = tune("CONF_RATE", 0.1);
+const double kConfidentPsr = tune("CONFIDENT_PSR", 12);
+const int kConfidenceSkip = static_cast<int>(tune("CONF_SKIP", 2));
 const int kConfidenceWarmUp = static_cast<int>(tune("WARMUP", 5));
 const int kRedetectPeriod = static_cast<int>(tune("REDETECT_PERIOD", 3));
 const int kRedetectCandidates = static_cast<int>(tune("CANDIDATES", 4));
@@ -105,6 +107,7 @@ struct Tracker::Impl {
   cv::Rect2d fusedBox;  // last measured box (reported instead of the filtered one when kFusedRawBox)
   double usualConfidence = 0;  // running mean of the confidence of learnt frames
   int confidenceSamples = 0;   // how many frames the mean has seen
+  int framesLearnt = 0;        // since the filters started
   double usualColour = 0;      // running mean of the colour cue at the peak of learnt frames
 
   // Scratch buffers reused across frames.
@@ -396,17 +399,20 @@ struct Tracker::Impl {
     fusedBox = box;
     usualConfidence = 0;
     confidenceSamples = 0;
+    framesLearnt = 0;
     usualColour = 0;
   }
 
   // A frame's confidence relative to the track's usual one (1 before that is known).
   double relativeConfidence(double confidence) const {
-    return confidenceSamples >= kConfidenceWarmUp ? confidence / usualConfidence : 1.0;
+    return confidenceSamples >= kConfidenceWarmUp ? confidence / std::min(usualConfidence, kConfidentPsr) : 1.0;
   }
   double relativeColour(double colour) const {
     return confidenceSamples >= kConfidenceWarmUp && usualColour > 0 ? colour / usualColour : 1.0;
   }
   void noteConfidence(const FusedDetector::Estimate &e) {
+    // The first frames after the filters start match their single training view unusually well.
+    if (++framesLearnt <= kConfidenceSkip) return;
     ++confidenceSamples;
     const double rate = std::max(kConfidenceRate, 1.0 / confidenceSamples);
     usualConfidence = (1 - rate) * usualConfidence + rate * e.confidence;
@@ -433,6 +439,9 @@ struct Tracker::Impl {
       const FusedDetector::Estimate e = fused.locate(frame, c, fusedSize, *mapper, likelihood, false);
       if (!best || e.confidence > best->confidence) best = e;
     }
+    // The filter's window tapers towards its edges: judge the best candidate again with the window centred
+    // where it was found.
+    if (best) best = fused.locate(frame, best->centre, fusedSize, *mapper, likelihood, false);
     if (std::getenv("CT_DEBUG") && best)
       fprintf(stderr, "redetect %zu candidates best %.2f at %.0f,%.0f\n", candidates.size(), best->confidence,
               best->centre.x, best->centre.y);

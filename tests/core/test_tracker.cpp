@@ -146,6 +146,27 @@ TEST_P(TrackerMethod, LosesAndReacquiresElsewhere) {
   EXPECT_LE(reacquiredAt, 95);
 }
 
+// What the element does on new caps: the template stays, the track is reset, frames are another size.
+TEST_P(TrackerMethod, ReacquiresAfterResetOnAnotherFrameSize) {
+  SceneConfig small;
+  small.frameSize = cv::Size(160, 120);
+  small.objectSize = cv::Size(32, 32);
+  SceneConfig large = small;
+  large.frameSize = cv::Size(240, 180);
+  const Scene a(small), b(large);
+  Tracker tracker(settings());
+  tracker.setTemplateFromBox(MatImageSource(a.render(0).bgr), a.initBox());
+  for (int i = 1; i < 10; ++i) tracker.process(MatImageSource(a.render(i).bgr));
+  tracker.reset();
+  int found = 0;
+  for (int i = 10; i < 30; ++i) {
+    const SceneFrame f = b.render(i);
+    const TrackOutput out = tracker.process(MatImageSource(f.bgr));
+    if (i >= 15 && out.hasBox && scene::iou(out.box, f.box) > 0.5) ++found;
+  }
+  EXPECT_GE(found, 13);
+}
+
 TEST(Tracker, RejectsTemplateLargerThanFrame) {
   Tracker tracker;
   tracker.setTemplate(cv::Mat(100, 100, CV_8UC3, cv::Scalar(0, 0, 255)));

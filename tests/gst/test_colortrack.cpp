@@ -225,7 +225,8 @@ GST_END_TEST;
 // An untextured disc of the object's colour. The object is tracked (verified) and then leaves for good, so
 // the search can only find the disc: it must be reported as a colour-only (unverified) match. The disc's
 // single colour only partly matches the object's several shades, hence the lower match threshold: this
-// test is about the edge check, not the colour match.
+// test is about the edge check, not the colour match. It runs the colour-only discriminative method: the
+// fused default's shape cue does not take the untextured disc for the object at all.
 GST_START_TEST(test_decoy_is_unverified) {
   SceneConfig config;
   config.frames = 200;
@@ -233,7 +234,7 @@ GST_START_TEST(test_decoy_is_unverified) {
   config.leaveFrom = 50;
   config.leaveTo = 100000;  // never comes back within the test
   const Scene scene(config);
-  Harness h(trackerLaunch("match-threshold=0.1 init-box=" + boxString(scene.initBox())), config.frameSize);
+  Harness h(trackerLaunch("method=discriminative match-threshold=0.1 init-box=" + boxString(scene.initBox())), config.frameSize);
 
   int objectFrames = 0, objectVerified = 0, decoyFrames = 0, decoyVerified = 0;
   for (int i = 0; i < 100; ++i) {

@@ -36,7 +36,7 @@ enum class Method {
 };
 
 struct TrackerSettings {
-  Method method = Method::Discriminative;
+  Method method = Method::Fused;
   ColorSpace colorSpace = ColorSpace::Hsv;
   BinLayout bins;
   ChannelWeights weights;
@@ -59,7 +59,10 @@ struct TrackOutput {
   bool hasBox = false;    // a track exists (tracking or coasting)
   int id = 0;             // track id, >= 1 once a track has existed; grows at every new acquisition
   cv::Rect2d box;         // filtered box, frame coordinates
-  double score = 0;       // match value of this frame's detection (0 when coasting)
+  // Indexing and discriminative: match value of this frame's detection against the template (0 when
+  // coasting). Fused: the frame's confidence relative to the track's usual one, capped at 1 (under 0.5: not
+  // a detection).
+  double score = 0;
   bool verified = false;  // edge check passed (always true when verify = None)
   double scale = 1.0;     // box size relative to the template
   double vx = 0, vy = 0;  // filtered velocity, px/frame
