@@ -263,7 +263,8 @@ GType gst_color_track_method_get_type(void) {
        "Object-versus-surroundings colour likelihood with motion prior (more accurate on real video)",
        "discriminative"},
       {GST_COLOR_TRACK_METHOD_FUSED,
-       "Shape (correlation filter) and colour fused, with confidence and re-detection (most accurate)", "fused"},
+       "Shape (correlation filter) and colour fused, with confidence and re-detection (most accurate)",
+       "fused"},
       {0, nullptr, nullptr},
   };
   if (g_once_init_enter(&type))
@@ -1505,8 +1506,8 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
       g_param_spec_double(
           "likelihood-threshold", "Likelihood threshold",
           "method=discriminative (and fused, while acquiring a template image): minimum mean object "
-          "likelihood (0-1) in the box for a detection", 0.0, 1.0,
-          defaults.likelihoodThreshold, live));
+          "likelihood (0-1) in the box for a detection",
+          0.0, 1.0, defaults.likelihoodThreshold, live));
   g_object_class_install_property(
       gobject_class, PROP_MODEL_UPDATE_RATE,
       g_param_spec_double(

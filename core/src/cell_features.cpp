@@ -65,9 +65,9 @@ void cellFeatures(const cv::Mat &gray, int cell, std::vector<cv::Mat> &channels)
       int k = 0;
       for (int by = -1; by <= 0; ++by)
         for (int bx = -1; bx <= 0; ++bx)
-          inverseNorm[k++] = 1.0f / std::sqrt(energyAt(y + by, x + bx) + energyAt(y + by, x + bx + 1) +
-                                              energyAt(y + by + 1, x + bx) +
-                                              energyAt(y + by + 1, x + bx + 1) + kEps);
+          inverseNorm[k++] =
+              1.0f / std::sqrt(energyAt(y + by, x + bx) + energyAt(y + by, x + bx + 1) +
+                               energyAt(y + by + 1, x + bx) + energyAt(y + by + 1, x + bx + 1) + kEps);
       const float *bins = hist.ptr<float>(y * cw + x);
       float texture[4] = {0, 0, 0, 0};
       for (int o = 0; o < kOrientations; ++o) {

@@ -129,6 +129,15 @@ void ScaleFilter::transform(const cv::Mat &samples, cv::Mat &spectrum) const {
 
 void ScaleFilter::train(const cv::Mat &samples, double rate) {
   transform(samples, spectrum_);
+  trainOnSpectrum(rate);
+}
+
+void ScaleFilter::trainOnLastEstimate(double rate) {
+  CV_Assert(!spectrum_.empty());
+  trainOnSpectrum(rate);
+}
+
+void ScaleFilter::trainOnSpectrum(double rate) {
   cv::Mat numerator(spectrum_.size(), CV_32FC2), energy;
   for (int r = 0; r < spectrum_.rows; ++r) {
     cv::Mat row = numerator.row(r);
@@ -198,7 +207,8 @@ double peakToSidelobe(const cv::Mat &response, cv::Point peak, int exclude) {
   cv::meanStdDev(response, mean, deviation, mask);
   // A floor under the deviation: a frame identical to the training view has almost no sidelobe at all.
   const double peakValue = response.at<float>(peak);
-  return (peakValue - mean[0]) / std::max(deviation[0], std::max(1e-6, std::abs(peakValue) / kMaxPeakToSidelobe));
+  return (peakValue - mean[0]) /
+         std::max(deviation[0], std::max(1e-6, std::abs(peakValue) / kMaxPeakToSidelobe));
 }
 
 }  // namespace colortrack

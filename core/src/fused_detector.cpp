@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <string>
 
 #include <opencv2/imgproc.hpp>
 
@@ -13,26 +11,24 @@ namespace colortrack {
 
 namespace {
 
-double tune(const char *name, double fallback) {
-  const char *v = std::getenv((std::string("COLORTRACK_TUNE_") + name).c_str());
-  return v ? std::atof(v) : fallback;
-}
-
-const double kCell = 4;
-const double kWindowArea = tune("WINDOW_AREA", 9216);       // normalised search window, px^2 (96 x 96)
-const double kPadding = tune("PADDING", 1.5);               // window = target + padding * mean side
-const double kLabelSigma = tune("LABEL_SIGMA", 1.0 / 16);   // of the desired response, per target side
-const double kLambda = 1e-3;
-const double kTranslationRate = tune("CF_RATE", 0.01);
-const double kColourWeight = tune("COLOUR_WEIGHT", 0.3);
-const int kScales = static_cast<int>(tune("SCALES", 33));
-const double kScaleStep = tune("SCALE_STEP", 1.02);
-const double kScaleRate = tune("SCALE_RATE", 0.025);
-const double kScaleModelArea = tune("SCALE_AREA", 512);
-const double kReuseScale = tune("REUSE_SCALE", 1);
-const double kCandidateSide = 16;
-const double kAspectStep = tune("ASPECT_STEP", 0.0);
-const double kAspectRing = tune("ASPECT_RING", 0.15);
+// The parameters were chosen on the tune half of ../shared/sequences (docs/benchmarks.md lists what was
+// tried); most are Staple's and DSST's published values, which held up.
+constexpr int kCell = 4;  // feature cell side, normalised px
+constexpr double kWindowArea =
+    96 * 96;                      // the search window is resampled to about this area (80^2, 112^2: worse)
+constexpr double kPadding = 1.5;  // window = target + padding * mean side (1.0 and 2.0: worse)
+constexpr double kLabelSigma = 1.0 / 16;   // width of the desired response, per target side
+constexpr double kLambda = 1e-3;           // regularisation of the translation filter
+constexpr double kTranslationRate = 0.01;  // learning rate of the translation filter (0.007, 0.015: worse)
+constexpr double kColourWeight =
+    0.3;                     // Staple's merge factor: fused = 0.7 shape + 0.3 colour (0.2-0.5 tried)
+constexpr int kScales = 33;  // DSST's scale range: 33 sizes 2 % apart (17, 21, 25: worse)
+constexpr double kScaleStep = 1.02;
+constexpr double kScaleRate = 0.025;
+constexpr double kScaleLambda = 1e-2;
+constexpr double kScaleModelArea = 512;  // each scale sample is resampled to at most this area (256: worse)
+// Re-detection candidates are found on a frame reduced so the target's smaller side is about this many px.
+constexpr double kCandidateSide = 16;
 
 }  // namespace
 
@@ -45,17 +41,17 @@ void FusedDetector::start(const ImageSource &frame, const cv::Rect2d &box) {
   const double pad = kPadding * (size.width + size.height) / 2;
   const cv::Size2d window(size.width + pad, size.height + pad);
   const double z = std::sqrt(kWindowArea / window.area());
-  window_ = cv::Size(std::max(4, cvRound(window.width * z / kCell)) * static_cast<int>(kCell),
-                     std::max(4, cvRound(window.height * z / kCell)) * static_cast<int>(kCell));
+  window_ = cv::Size(std::max(4, cvRound(window.width * z / kCell)) * kCell,
+                     std::max(4, cvRound(window.height * z / kCell)) * kCell);
   windowRatio_ = cv::Size2d(window.width / size.width, window.height / size.height);
   const double targetCells = std::sqrt(size.area()) * z / kCell;
-  translation_.init(cv::Size(window_.width / static_cast<int>(kCell), window_.height / static_cast<int>(kCell)),
+  translation_.init(cv::Size(window_.width / kCell, window_.height / kCell),
                     std::max(0.5, kLabelSigma * targetCells), kLambda);
 
   const double zs = std::min(1.0, std::sqrt(kScaleModelArea / size.area()));
-  scaleModel_ = cv::Size(std::max(2, cvRound(size.width * zs / kCell)) * static_cast<int>(kCell),
-                         std::max(2, cvRound(size.height * zs / kCell)) * static_cast<int>(kCell));
-  scale_.init(kScales, kScaleStep, std::sqrt(static_cast<double>(kScales)) / 4, 1e-2);
+  scaleModel_ = cv::Size(std::max(2, cvRound(size.width * zs / kCell)) * kCell,
+                         std::max(2, cvRound(size.height * zs / kCell)) * kCell);
+  scale_.init(kScales, kScaleStep, std::sqrt(static_cast<double>(kScales)) / 4, kScaleLambda);
   const cv::Point2d centre(box.x + box.width / 2, box.y + box.height / 2);
   windowFeatures(frame, centre, size);
   translation_.train(channels_, 1.0);
@@ -65,29 +61,30 @@ void FusedDetector::start(const ImageSource &frame, const cv::Rect2d &box) {
 
 void FusedDetector::windowFeatures(const ImageSource &frame, cv::Point2d centre, cv::Size2d size) {
   const cv::Size2d window = windowFor(size);
-  const cv::Rect2d rect(centre.x - window.width / 2, centre.y - window.height / 2, window.width, window.height);
+  const cv::Rect2d rect(centre.x - window.width / 2, centre.y - window.height / 2, window.width,
+                        window.height);
   sampler_.load(frame, rect, PatchSampler::stepFor(window, window_));
   sampler_.extract(rect, window_, patch_);
   cv::cvtColor(patch_, gray_, cv::COLOR_BGR2GRAY);
   gray_.convertTo(gray_, CV_32F, 1.0 / 255);
-  cellFeatures(gray_, static_cast<int>(kCell), channels_);
+  cellFeatures(gray_, kCell, channels_);
 }
 
 void FusedDetector::scaleSamples(const ImageSource &frame, cv::Point2d centre, cv::Size2d size) {
   const std::vector<double> &factors = scale_.factors();
   const cv::Size2d largest = size * factors.back();
-  sampler_.load(frame,
-                cv::Rect2d(centre.x - largest.width / 2, centre.y - largest.height / 2, largest.width,
-                           largest.height),
-                PatchSampler::stepFor(size * factors.front(), scaleModel_));
+  sampler_.load(
+      frame,
+      cv::Rect2d(centre.x - largest.width / 2, centre.y - largest.height / 2, largest.width, largest.height),
+      PatchSampler::stepFor(size * factors.front(), scaleModel_));
   sampler_.toGray();
-  cv::Mat gray;
-  std::vector<cv::Mat> channels;
+  cv::Mat &gray = scaleGray_;
+  std::vector<cv::Mat> &channels = scaleChannels_;
   for (size_t i = 0; i < factors.size(); ++i) {
     const cv::Size2d s = size * factors[i];
-    sampler_.extract(cv::Rect2d(centre.x - s.width / 2, centre.y - s.height / 2, s.width, s.height), scaleModel_,
-                     gray);
-    cellFeatures(gray, static_cast<int>(kCell), channels);
+    sampler_.extract(cv::Rect2d(centre.x - s.width / 2, centre.y - s.height / 2, s.width, s.height),
+                     scaleModel_, gray);
+    cellFeatures(gray, kCell, channels);
     const int perChannel = channels[0].rows * channels[0].cols;
     if (i == 0) scaleSamples_.create(static_cast<int>(factors.size()), perChannel * kCellChannels, CV_32F);
     float *row = scaleSamples_.ptr<float>(static_cast<int>(i));
@@ -119,28 +116,6 @@ void FusedDetector::colourResponse(const BinMapper &colors, const ColorLikelihoo
     }
 }
 
-cv::Size2d FusedDetector::refineAspect(cv::Point2d centre, cv::Size2d size) const {
-  const cv::Rect limits(cv::Point(), probability_.size());
-  cv::Size2d best = size;
-  double bestContrast = -1e18;
-  for (int i = -1; i <= 1; ++i)
-    for (int j = -1; j <= 1; ++j) {
-      if (i == j && i != 0) continue;  // uniform changes are the scale filter's
-      const cv::Size2d s(size.width * (1 + i * kAspectStep), size.height * (1 + j * kAspectStep));
-      const cv::Rect box(cvRound(centre.x - s.width / 2), cvRound(centre.y - s.height / 2), cvRound(s.width),
-                         cvRound(s.height));
-      const int ring = std::max(1, cvRound(kAspectRing * std::min(s.width, s.height)));
-      const cv::Rect inner = box & limits;
-      const cv::Rect outer = cv::Rect(box.x - ring, box.y - ring, box.width + 2 * ring, box.height + 2 * ring) & limits;
-      if (inner.area() <= 0 || outer.area() <= inner.area()) continue;
-      const double inside = boxSum(integral_, inner);
-      const double ringMean = (boxSum(integral_, outer) - inside) / (outer.area() - inner.area());
-      const double contrast = inside / inner.area() - ringMean - 1e-6 * (std::abs(i) + std::abs(j));
-      if (contrast > bestContrast) bestContrast = contrast, best = s;
-    }
-  return best;
-}
-
 FusedDetector::Estimate FusedDetector::locate(const ImageSource &frame, cv::Point2d centre, cv::Size2d size,
                                               const BinMapper &colors, const ColorLikelihood &likelihood,
                                               bool withScale) {
@@ -163,14 +138,12 @@ FusedDetector::Estimate FusedDetector::locate(const ImageSource &frame, cv::Poin
   e.size = size;
   e.shapePeak = shape.at<float>(peak);
   e.colourPeak = colour.empty() ? 0 : colour.at<float>(peak);
-  e.confidence = peakToSidelobe(response, peak, std::max(1, cvRound(0.2 * std::min(response.cols, response.rows))));
-  if (withScale) {
+  e.confidence =
+      peakToSidelobe(response, peak, std::max(1, cvRound(0.2 * std::min(response.cols, response.rows))));
+  scaleMeasured_ = withScale;
+  if (scaleMeasured_) {
     scaleSamples(frame, e.centre, size);
     e.size = size * scale_.estimate(scaleSamples_);
-    if (kAspectStep > 0 && !likelihood.empty() && kColourWeight > 0) {
-      const cv::Point2d inWindow((at.x * kCell), (at.y * kCell));
-      e.size = refineAspect(inWindow, e.size * z) * (1 / z);
-    }
   }
   return e;
 }
@@ -178,8 +151,9 @@ FusedDetector::Estimate FusedDetector::locate(const ImageSource &frame, cv::Poin
 void FusedDetector::learn(const ImageSource &frame, cv::Point2d centre, cv::Size2d size) {
   windowFeatures(frame, centre, size);
   translation_.train(channels_, kTranslationRate);
-  if (kReuseScale <= 0 || scaleSamples_.empty()) scaleSamples(frame, centre, size);
-  scale_.train(scaleSamples_, kScaleRate);
+  if (!scaleMeasured_) return;
+  scale_.trainOnLastEstimate(kScaleRate);
+  scaleMeasured_ = false;
 }
 
 std::vector<cv::Point2d> FusedDetector::colourCandidates(const ImageSource &frame, cv::Size2d size,
@@ -202,9 +176,10 @@ std::vector<cv::Point2d> FusedDetector::colourCandidates(const ImageSource &fram
     if (best <= 0) break;
     out.emplace_back((at.x + 0.5) * f, (at.y + 0.5) * f);
     // Suppress the neighbourhood so the next candidate is another place.
-    cv::rectangle(mean, cv::Rect(at.x - window.width, at.y - window.height, 2 * window.width + 1,
-                                 2 * window.height + 1),
-                  cv::Scalar(0), cv::FILLED);
+    cv::rectangle(
+        mean,
+        cv::Rect(at.x - window.width, at.y - window.height, 2 * window.width + 1, 2 * window.height + 1),
+        cv::Scalar(0), cv::FILLED);
   }
   return out;
 }

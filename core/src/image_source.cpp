@@ -30,12 +30,14 @@ void MatImageSource::sampledBgr(const cv::Rect &rect, int step, cv::Mat &out) co
 
 void PatchSampler::load(const ImageSource &frame, const cv::Rect2d &region, int step) {
   const cv::Rect frameRect(cv::Point(), frame.size());
-  const cv::Rect wanted(cvFloor(region.x), cvFloor(region.y), cvCeil(region.x + region.width) - cvFloor(region.x) + 1,
+  const cv::Rect wanted(cvFloor(region.x), cvFloor(region.y),
+                        cvCeil(region.x + region.width) - cvFloor(region.x) + 1,
                         cvCeil(region.y + region.height) - cvFloor(region.y) + 1);
   cv::Rect inside = wanted & frameRect;
   if (inside.empty()) {
     // Wholly outside: the nearest border pixel stands for everything.
-    const int x = std::clamp(wanted.x, 0, frameRect.width - 1), y = std::clamp(wanted.y, 0, frameRect.height - 1);
+    const int x = std::clamp(wanted.x, 0, frameRect.width - 1),
+              y = std::clamp(wanted.y, 0, frameRect.height - 1);
     inside = cv::Rect(x, y, 1, 1);
   }
   step_ = std::max(1, step);

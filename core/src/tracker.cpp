@@ -2,9 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <iterator>
-#include <string>
 #include <optional>
 
 #include <opencv2/imgcodecs.hpp>
@@ -35,27 +33,29 @@ constexpr double kLikelihoodRing = 0.15;
 constexpr double kReducedWindowSide = 40;
 constexpr double kAspectRate = 0.3;  // smoothing of the measured aspect ratio
 
-double tune(const char *name, double fallback) {
-  const char *v = std::getenv((std::string("COLORTRACK_TUNE_") + name).c_str());
-  return v ? std::atof(v) : fallback;
-}
-// Fused method: the confidence (peak-to-sidelobe ratio of the fused response) below which a frame is not a
-// detection, below which the models do not learn from it, and that a re-detection must reach.
-const double kLostConfidence = tune("LOST_PSR", 4.0);
-const double kLearnConfidence = tune("LEARN_PSR", 4.0);
-const double kRedetectConfidence = tune("REDETECT_PSR", 6.0);
-const double kLostRatio = tune("LOST_RATIO", 0.5);
-const double kLearnRatio = tune("LEARN_RATIO", 0.0);
-const double kRedetectRatio = tune("REDETECT_RATIO", 0.6);
-const double kLostColourRatio = tune("LOST_COLOUR", 0.5);
-const double kConfidenceRate = tune("CONF_RATE", 0.1);
-const double kConfidentPsr = tune("CONFIDENT_PSR", 12);
-const int kConfidenceSkip = static_cast<int>(tune("CONF_SKIP", 2));
-const int kConfidenceWarmUp = static_cast<int>(tune("WARMUP", 5));
-const int kRedetectPeriod = static_cast<int>(tune("REDETECT_PERIOD", 3));
-const int kRedetectCandidates = static_cast<int>(tune("CANDIDATES", 4));
-const bool kFusedFromPrediction = tune("FROM_PREDICTION", 0) > 0;
-const bool kFusedRawBox = tune("RAW_BOX", 0) > 0;
+// Fused method. The confidence is the fused response's peak-to-sidelobe ratio (PSR). A frame is a detection
+// when its PSR is at least kLostConfidence, at least kLostRatio of the track's usual PSR, and its colour cue
+// at least kLostColourRatio of the usual colour cue (a target that left takes its colours with it, while the
+// shape filter can still find some texture where it was); only detections are learnt from. The usual values
+// are running means (rate kConfidenceRate) over learnt frames, skipping the first kConfidenceSkip frames
+// after the filters start (they match their single training view unusually well), trusted after
+// kConfidenceWarmUp frames, and capped at kConfidentPsr (a video that starts with still frames would
+// otherwise set the bar out of reach once things move). Chosen on the tune half of ../shared/sequences
+// (docs/benchmarks.md).
+constexpr double kLostConfidence = 4.0;
+constexpr double kLostRatio = 0.5;
+constexpr double kLostColourRatio = 0.5;
+constexpr double kConfidenceRate = 0.1;
+constexpr double kConfidentPsr = 12;
+constexpr int kConfidenceSkip = 2;
+constexpr int kConfidenceWarmUp = 5;
+// Re-detection, once coasting or lost: every kRedetectPeriod frames the kRedetectCandidates strongest places
+// of the colour likelihood over the whole frame and the last position are searched with both cues; the best
+// is taken when its PSR reaches kRedetectConfidence and kRedetectRatio of the usual.
+constexpr double kRedetectConfidence = 6.0;
+constexpr double kRedetectRatio = 0.6;
+constexpr int kRedetectPeriod = 3;
+constexpr int kRedetectCandidates = 4;
 
 cv::Rect roundRect(const cv::Rect2d &r) {
   return cv::Rect(cvRound(r.x), cvRound(r.y), std::max(1, cvRound(r.width)), std::max(1, cvRound(r.height)));
@@ -104,7 +104,6 @@ struct Tracker::Impl {
   FusedDetector fused;
   cv::Point2d fusedCentre;
   cv::Size2d fusedSize;
-  cv::Rect2d fusedBox;  // last measured box (reported instead of the filtered one when kFusedRawBox)
   double usualConfidence = 0;  // running mean of the confidence of learnt frames
   int confidenceSamples = 0;   // how many frames the mean has seen
   int framesLearnt = 0;        // since the filters started
@@ -396,7 +395,6 @@ struct Tracker::Impl {
     fused.start(frame, box);
     fusedCentre = cv::Point2d(box.x + box.width / 2, box.y + box.height / 2);
     fusedSize = box.size();
-    fusedBox = box;
     usualConfidence = 0;
     confidenceSamples = 0;
     framesLearnt = 0;
@@ -405,7 +403,8 @@ struct Tracker::Impl {
 
   // A frame's confidence relative to the track's usual one (1 before that is known).
   double relativeConfidence(double confidence) const {
-    return confidenceSamples >= kConfidenceWarmUp ? confidence / std::min(usualConfidence, kConfidentPsr) : 1.0;
+    return confidenceSamples >= kConfidenceWarmUp ? confidence / std::min(usualConfidence, kConfidentPsr)
+                                                  : 1.0;
   }
   double relativeColour(double colour) const {
     return confidenceSamples >= kConfidenceWarmUp && usualColour > 0 ? colour / usualColour : 1.0;
@@ -420,7 +419,8 @@ struct Tracker::Impl {
   }
 
   // A fused estimate as a detection: the box, its confidence as the score, the edge check.
-  Detection fusedDetection(const ImageSource &frame, const FusedDetector::Estimate &e, const TrackerSettings &s) {
+  Detection fusedDetection(const ImageSource &frame, const FusedDetector::Estimate &e,
+                           const TrackerSettings &s) {
     Detection d;
     d.box = centredBox(e.centre.x, e.centre.y, e.size);
     d.score = e.confidence;
@@ -442,9 +442,6 @@ struct Tracker::Impl {
     // The filter's window tapers towards its edges: judge the best candidate again with the window centred
     // where it was found.
     if (best) best = fused.locate(frame, best->centre, fusedSize, *mapper, likelihood, false);
-    if (std::getenv("CT_DEBUG") && best)
-      fprintf(stderr, "redetect %zu candidates best %.2f at %.0f,%.0f\n", candidates.size(), best->confidence,
-              best->centre.x, best->centre.y);
     if (!best || best->confidence < kRedetectConfidence ||
         relativeConfidence(best->confidence) < kRedetectRatio)
       return std::nullopt;
@@ -461,7 +458,10 @@ struct Tracker::Impl {
     };
     if (state == TrackState::Tracking || state == TrackState::Coasting) {
       kalman.predict(dt);
-      const cv::Point2d centre = kFusedFromPrediction ? cv::Point2d(kalman.x(), kalman.y()) : fusedCentre;
+      // Searched around the last measured position, not the Kalman prediction: the filter's window is wide
+      // enough for the motion between frames, and the prediction overshoots when the target stops or turns
+      // (tune half: 0.626 from the last position, 0.605 from the prediction).
+      const cv::Point2d centre = fusedCentre;
       FusedDetector::Estimate e = fused.locate(frame, centre, fusedSize, *mapper, likelihood);
       out.searchRegion = roundRect(centredBox(centre.x, centre.y, fusedSize * 2.0)) & frameRect;
       const auto accepted = [&](const FusedDetector::Estimate &e) {
@@ -473,9 +473,6 @@ struct Tracker::Impl {
         out.searchRegion = frameRect;
       }
       out.score = std::min(1.0, relativeConfidence(e.confidence));
-      if (std::getenv("CT_DEBUG"))
-        fprintf(stderr, "psr %.2f %.2f %.3f %.3f\n", e.confidence, relativeConfidence(e.confidence), e.shapePeak,
-                e.colourPeak);
       if (accepted(e)) {
         e.size = fitSize(e.size);
         const Detection d = fusedDetection(frame, e, s);
@@ -483,14 +480,9 @@ struct Tracker::Impl {
         lastVerified = d.verified;
         fusedCentre = e.centre;
         fusedSize = e.size;
-        fusedBox = d.box;
-        const bool learnable =
-            e.confidence >= kLearnConfidence && relativeConfidence(e.confidence) >= kLearnRatio;
-        if (learnable) noteConfidence(e);
-        if (learnable) {
-          fused.learn(frame, e.centre, e.size);
-          learn(frame, d.box, s);
-        }
+        noteConfidence(e);
+        fused.learn(frame, e.centre, e.size);
+        learn(frame, d.box, s);
       } else {
         kalman.holdForCoasting();
         ++coastFrames;
@@ -506,7 +498,6 @@ struct Tracker::Impl {
     startTrack(d, s);
     lastVerified = d.verified;
     fusedCentre = found->centre;
-    fusedBox = d.box;
     out.score = std::min(1.0, relativeConfidence(found->confidence));
   }
 
@@ -668,7 +659,6 @@ TrackOutput Tracker::process(const ImageSource &frame, double dt) {
     out.hasBox = true;
     const double scale = m.kalman.scale();
     out.box = m.centredBoxNow();
-    if (s.method == Method::Fused && kFusedRawBox && m.state == TrackState::Tracking) out.box = m.fusedBox;
     out.scale = scale;
     out.vx = m.kalman.vx();
     out.vy = m.kalman.vy();

@@ -62,7 +62,8 @@ TEST(CellFeatures, OrientationOfAnEdge) {
   cv::Mat turned = gray.t();
   cellFeatures(turned, 4, channels);
   double middle = 0, others = 0;
-  for (int o = 0; o < kOrientations; ++o) (o == kOrientations / 2 ? middle : others) += cv::sum(channels[o])[0];
+  for (int o = 0; o < kOrientations; ++o)
+    (o == kOrientations / 2 ? middle : others) += cv::sum(channels[o])[0];
   EXPECT_GT(middle, 0);
   EXPECT_NEAR(others, 0, 1e-4);
 }

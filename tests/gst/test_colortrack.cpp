@@ -234,7 +234,8 @@ GST_START_TEST(test_decoy_is_unverified) {
   config.leaveFrom = 50;
   config.leaveTo = 100000;  // never comes back within the test
   const Scene scene(config);
-  Harness h(trackerLaunch("method=discriminative match-threshold=0.1 init-box=" + boxString(scene.initBox())), config.frameSize);
+  Harness h(trackerLaunch("method=discriminative match-threshold=0.1 init-box=" + boxString(scene.initBox())),
+            config.frameSize);
 
   int objectFrames = 0, objectVerified = 0, decoyFrames = 0, decoyVerified = 0;
   for (int i = 0; i < 100; ++i) {

@@ -46,23 +46,28 @@ class ScaleFilter {
 
   // samples: one row per candidate scale (CV_32FC1, scales x features).
   void train(const cv::Mat &samples, double rate);
+  // Learns from the samples last given to estimate(), whose spectrum is kept (saves a transform when a
+  // tracker learns at the place it just measured).
+  void trainOnLastEstimate(double rate);
   // The factor by which the size changed (between candidates: the peak interpolated).
   double estimate(const cv::Mat &samples) const;
 
  private:
   void transform(const cv::Mat &samples, cv::Mat &spectrum) const;
+  void trainOnSpectrum(double rate);
   std::vector<double> factors_;
-  cv::Mat window_;          // Hann window over the scales, as a column
-  cv::Mat labelSpectrum_;   // 1 x scales, complex
-  cv::Mat numerator_;       // features x scales, complex
-  cv::Mat denominator_;     // 1 x scales, real
+  cv::Mat window_;         // Hann window over the scales, as a column
+  cv::Mat labelSpectrum_;  // 1 x scales, complex
+  cv::Mat numerator_;      // features x scales, complex
+  cv::Mat denominator_;    // 1 x scales, real
   double lambda_ = 1e-2;
   double step_ = 1.02;
   mutable cv::Mat spectrum_, windowed_, transposed_;  // scratch
 };
 
 // Sub-cell position of the maximum of `response` at `peak`: a parabola through the logarithms of the peak and
-// its neighbours in each direction (exact for a Gaussian peak), a plain parabola where a value is not positive.
+// its neighbours in each direction (exact for a Gaussian peak), a plain parabola where a value is not
+// positive.
 cv::Point2d subCellPeak(const cv::Mat &response, cv::Point peak);
 
 // Peak-to-sidelobe ratio: (peak - mean) / standard deviation of the response outside a square of radius

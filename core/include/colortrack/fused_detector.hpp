@@ -40,12 +40,14 @@ class FusedDetector {
   // Candidate target centres over the whole frame for re-detection: the `count` strongest, well-separated
   // maxima of the colour likelihood averaged over a target-sized window, on a frame reduced so the target's
   // smaller side is about 16 pixels.
-  std::vector<cv::Point2d> colourCandidates(const ImageSource &frame, cv::Size2d size, const BinMapper &colors,
-                                            const ColorLikelihood &likelihood, int count);
+  std::vector<cv::Point2d> colourCandidates(const ImageSource &frame, cv::Size2d size,
+                                            const BinMapper &colors, const ColorLikelihood &likelihood,
+                                            int count);
 
  private:
   cv::Size2d windowFor(cv::Size2d size) const;
-  cv::Size2d refineAspect(cv::Point2d centre, cv::Size2d size) const;  // the search window around a target of `size`, frame px
+  cv::Size2d refineAspect(cv::Point2d centre,
+                          cv::Size2d size) const;  // the search window around a target of `size`, frame px
   void windowFeatures(const ImageSource &frame, cv::Point2d centre, cv::Size2d size);
   void scaleSamples(const ImageSource &frame, cv::Point2d centre, cv::Size2d size);
   void colourResponse(const BinMapper &colors, const ColorLikelihood &likelihood, cv::Size2d targetNormalised,
@@ -53,14 +55,16 @@ class FusedDetector {
 
   CorrelationFilter translation_;
   ScaleFilter scale_;
-  cv::Size window_;         // the normalised search window, px (whole cells)
-  cv::Size2d windowRatio_;  // window size / target size in the frame
-  cv::Size scaleModel_;     // the normalised patch of each scale sample, px (whole cells)
+  cv::Size window_;             // the normalised search window, px (whole cells)
+  cv::Size2d windowRatio_;      // window size / target size in the frame
+  cv::Size scaleModel_;         // the normalised patch of each scale sample, px (whole cells)
+  bool scaleMeasured_ = false;  // locate() ran the scale filter: learn() trains it on the same samples
 
   // Scratch reused across frames.
   PatchSampler sampler_;
   cv::Mat patch_, gray_, scaleSamples_, bins_, probability_, integral_, reduced_;
-  std::vector<cv::Mat> channels_;
+  std::vector<cv::Mat> channels_, scaleChannels_;
+  cv::Mat scaleGray_;
 };
 
 }  // namespace colortrack

@@ -56,9 +56,9 @@ struct TrackerSettings {
 
 struct TrackOutput {
   TrackState state = TrackState::Searching;
-  bool hasBox = false;    // a track exists (tracking or coasting)
-  int id = 0;             // track id, >= 1 once a track has existed; grows at every new acquisition
-  cv::Rect2d box;         // filtered box, frame coordinates
+  bool hasBox = false;  // a track exists (tracking or coasting)
+  int id = 0;           // track id, >= 1 once a track has existed; grows at every new acquisition
+  cv::Rect2d box;       // filtered box, frame coordinates
   // Indexing and discriminative: match value of this frame's detection against the template (0 when
   // coasting). Fused: the frame's confidence relative to the track's usual one, capped at 1 (under 0.5: not
   // a detection).
