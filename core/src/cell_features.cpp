@@ -8,44 +8,38 @@
 namespace colortrack {
 
 namespace {
+
 constexpr float kClip = 0.2f;  // the usual HOG clipping of normalised values
 constexpr float kEps = 1e-4f;
-}  // namespace
+constexpr float kBinsPerDegree = kOrientations / 180.0f;
 
-void cellFeatures(const cv::Mat &gray, int cell, std::vector<cv::Mat> &channels) {
-  CV_Assert(gray.type() == CV_32FC1 && cell >= 1);
-  const int cw = gray.cols / cell, ch = gray.rows / cell;
-  // Scratch kept per thread: the scale filter calls this for a few dozen small patches per frame, where
-  // allocating these each time cost more than the arithmetic.
-  thread_local cv::Mat hist, energy, intensity;
-  // Raw orientation histograms, one row of kOrientations per cell. Gradients by [-1 0 1] differences (the
-  // border repeated), contrast-insensitive orientation (a and a + 180 degrees share a bin), each pixel's
-  // magnitude shared linearly between the two nearest bins.
-  hist.create(ch * cw, kOrientations, CV_32F);
-  hist.setTo(0);
-  const float binsPerDegree = kOrientations / 180.0f;
-  for (int y = 0; y < ch * cell; ++y) {
-    const float *row = gray.ptr<float>(y);
-    const float *up = gray.ptr<float>(std::max(0, y - 1));
-    const float *down = gray.ptr<float>(std::min(gray.rows - 1, y + 1));
-    float *cellRow = hist.ptr<float>((y / cell) * cw);
-    const int last = gray.cols - 1;
-    for (int x = 0; x < cw * cell; ++x) {
-      const float dx = row[std::min(last, x + 1)] - row[std::max(0, x - 1)];
-      const float dy = down[x] - up[x];
-      const float magnitude = std::sqrt(dx * dx + dy * dy);
-      if (magnitude <= 0) continue;
-      float angle = cv::fastAtan2(dy, dx);  // degrees in [0, 360), error ~0.3 degrees
-      if (angle >= 180) angle -= 180;
-      const float position = angle * binsPerDegree - 0.5f;
-      const int lower = position < 0 ? -1 : static_cast<int>(position);
-      const float upperShare = position - lower;
-      float *bins = cellRow + (x / cell) * kOrientations;
-      bins[lower < 0 ? kOrientations - 1 : lower] += magnitude * (1 - upperShare);
-      bins[lower + 1 >= kOrientations ? 0 : lower + 1] += magnitude * upperShare;
-    }
-  }
-  // Energy per cell, then the inverse norm of each 2x2 block (cells outside repeat the border).
+// One pixel's gradient vote: contrast-insensitive orientation (a and a + 180 degrees share a bin), the
+// magnitude shared linearly between the two nearest bins.
+inline void vote(float dx, float dy, float *bins) {
+  const float magnitude = std::sqrt(dx * dx + dy * dy);
+  if (magnitude <= 0) return;
+  float angle = cv::fastAtan2(dy, dx);  // degrees in [0, 360), error ~0.3 degrees
+  if (angle >= 180) angle -= 180;
+  const float position = angle * kBinsPerDegree - 0.5f;
+  const int lower = position < 0 ? -1 : static_cast<int>(position);
+  const float upperShare = position - lower;
+  bins[lower < 0 ? kOrientations - 1 : lower] += magnitude * (1 - upperShare);
+  bins[lower + 1 >= kOrientations ? 0 : lower + 1] += magnitude * upperShare;
+}
+
+// [-1 0 1] gradients at (x, y), the border repeated.
+inline void gradient(const cv::Mat &gray, int x, int y, float &dx, float &dy) {
+  const float *row = gray.ptr<float>(y);
+  dx = row[std::min(gray.cols - 1, x + 1)] - row[std::max(0, x - 1)];
+  dy = gray.ptr<float>(std::min(gray.rows - 1, y + 1))[x] - gray.ptr<float>(std::max(0, y - 1))[x];
+}
+
+// From raw orientation histograms (one row of kOrientations per cell, cells in row order) and mean
+// intensities (ch x cw) to the kCellChannels feature maps: each histogram normalised by the four 2x2 cell
+// blocks around its cell (cells outside repeat the border) and clipped, as in Dalal-Triggs / Felzenszwalb.
+void normaliseCells(const cv::Mat &hist, const cv::Mat &intensity, std::vector<cv::Mat> &channels) {
+  const int ch = intensity.rows, cw = intensity.cols;
+  thread_local cv::Mat energy;
   energy.create(ch, cw, CV_32F);
   for (int i = 0; i < ch * cw; ++i) {
     const float *bins = hist.ptr<float>(i);
@@ -58,7 +52,6 @@ void cellFeatures(const cv::Mat &gray, int cell, std::vector<cv::Mat> &channels)
   };
   channels.resize(kCellChannels);
   for (auto &c : channels) c.create(ch, cw, CV_32F);
-  cv::resize(gray(cv::Rect(0, 0, cw * cell, ch * cell)), intensity, cv::Size(cw, ch), 0, 0, cv::INTER_AREA);
   for (int y = 0; y < ch; ++y)
     for (int x = 0; x < cw; ++x) {
       float inverseNorm[4];
@@ -82,6 +75,85 @@ void cellFeatures(const cv::Mat &gray, int cell, std::vector<cv::Mat> &channels)
       for (int n = 0; n < 4; ++n) channels[kOrientations + n].at<float>(y, x) = 0.2357f * texture[n];
       channels[kOrientations + 4].at<float>(y, x) = intensity.at<float>(y, x) - 0.5f;
     }
+}
+
+}  // namespace
+
+void cellFeatures(const cv::Mat &gray, int cell, std::vector<cv::Mat> &channels) {
+  CV_Assert(gray.type() == CV_32FC1 && cell >= 1);
+  const int cw = gray.cols / cell, ch = gray.rows / cell;
+  thread_local cv::Mat hist, intensity;
+  hist.create(ch * cw, kOrientations, CV_32F);
+  hist.setTo(0);
+  for (int y = 0; y < ch * cell; ++y) {
+    float *cellRow = hist.ptr<float>((y / cell) * cw);
+    for (int x = 0; x < cw * cell; ++x) {
+      float dx, dy;
+      gradient(gray, x, y, dx, dy);
+      vote(dx, dy, cellRow + (x / cell) * kOrientations);
+    }
+  }
+  cv::resize(gray(cv::Rect(0, 0, cw * cell, ch * cell)), intensity, cv::Size(cw, ch), 0, 0, cv::INTER_AREA);
+  normaliseCells(hist, intensity, channels);
+}
+
+void CellFeatureIntegral::build(const cv::Mat &gray) {
+  CV_Assert(gray.type() == CV_32FC1 && !gray.empty());
+  const int stride = kPlanes;
+  sums_.assign(static_cast<size_t>(gray.rows + 1) * (gray.cols + 1) * stride, 0.0);
+  size_ = gray.size();
+  float votes[kPlanes];
+  for (int y = 0; y < gray.rows; ++y) {
+    const double *above = &sums_[static_cast<size_t>(y) * (gray.cols + 1) * stride];
+    double *here = &sums_[static_cast<size_t>(y + 1) * (gray.cols + 1) * stride];
+    double rowSum[kPlanes] = {};
+    for (int x = 0; x < gray.cols; ++x) {
+      std::fill(votes, votes + kPlanes, 0.0f);
+      float dx, dy;
+      gradient(gray, x, y, dx, dy);
+      vote(dx, dy, votes);
+      votes[kOrientations] = gray.ptr<float>(y)[x];
+      for (int c = 0; c < kPlanes; ++c) {
+        rowSum[c] += votes[c];
+        here[(x + 1) * stride + c] = above[(x + 1) * stride + c] + rowSum[c];
+      }
+    }
+  }
+}
+
+void CellFeatureIntegral::features(const cv::Rect2d &rect, cv::Size cells,
+                                   std::vector<cv::Mat> &channels) const {
+  CV_Assert(!sums_.empty() && cells.width >= 1 && cells.height >= 1);
+  thread_local cv::Mat hist, intensity;
+  hist.create(cells.area(), kOrientations, CV_32F);
+  intensity.create(cells, CV_32F);
+  const int stride = kPlanes, rowStride = (size_.width + 1) * stride;
+  // Cell edges, rounded to whole pixels and kept inside the image with at least one pixel per cell.
+  auto edges = [](double start, double length, int count, int limit) {
+    std::vector<int> e(count + 1);
+    for (int i = 0; i <= count; ++i)
+      e[i] = std::clamp(static_cast<int>(std::lround(start + length * i / count)), 0, limit);
+    for (int i = 1; i <= count; ++i)
+      if (e[i] <= e[i - 1]) e[i] = std::min(limit, e[i - 1] + 1);
+    for (int i = count - 1; i >= 0; --i)
+      if (e[i] >= e[i + 1]) e[i] = std::max(0, e[i + 1] - 1);
+    return e;
+  };
+  const std::vector<int> xs = edges(rect.x, rect.width, cells.width, size_.width);
+  const std::vector<int> ys = edges(rect.y, rect.height, cells.height, size_.height);
+  for (int j = 0; j < cells.height; ++j)
+    for (int i = 0; i < cells.width; ++i) {
+      const double *a = &sums_[ys[j] * rowStride + xs[i] * stride];
+      const double *b = &sums_[ys[j] * rowStride + xs[i + 1] * stride];
+      const double *c = &sums_[ys[j + 1] * rowStride + xs[i] * stride];
+      const double *d = &sums_[ys[j + 1] * rowStride + xs[i + 1] * stride];
+      float *bins = hist.ptr<float>(j * cells.width + i);
+      for (int o = 0; o < kOrientations; ++o) bins[o] = static_cast<float>(d[o] - b[o] - c[o] + a[o]);
+      const double area = std::max(1, (xs[i + 1] - xs[i]) * (ys[j + 1] - ys[j]));
+      const int k = kOrientations;
+      intensity.at<float>(j, i) = static_cast<float>((d[k] - b[k] - c[k] + a[k]) / area);
+    }
+  normaliseCells(hist, intensity, channels);
 }
 
 }  // namespace colortrack

@@ -64,7 +64,7 @@ void FusedDetector::windowFeatures(const ImageSource &frame, cv::Point2d centre,
   const cv::Rect2d rect(centre.x - window.width / 2, centre.y - window.height / 2, window.width,
                         window.height);
   sampler_.load(frame, rect, PatchSampler::stepFor(window, window_));
-  sampler_.extract(rect, window_, patch_);
+  windowRect_ = sampler_.extract(rect, window_, patch_);
   cv::cvtColor(patch_, gray_, cv::COLOR_BGR2GRAY);
   gray_.convertTo(gray_, CV_32F, 1.0 / 255);
   cellFeatures(gray_, kCell, channels_);
@@ -78,14 +78,16 @@ void FusedDetector::scaleSamples(const ImageSource &frame, cv::Point2d centre, c
       cv::Rect2d(centre.x - largest.width / 2, centre.y - largest.height / 2, largest.width, largest.height),
       PatchSampler::stepFor(size * factors.front(), scaleModel_));
   sampler_.toGray();
-  cv::Mat &gray = scaleGray_;
+  // One gradient pass over the region, then each candidate's cells from integral images.
+  scaleIntegral_.build(sampler_.pixels());
+  const cv::Size cells(scaleModel_.width / kCell, scaleModel_.height / kCell);
   std::vector<cv::Mat> &channels = scaleChannels_;
   for (size_t i = 0; i < factors.size(); ++i) {
     const cv::Size2d s = size * factors[i];
-    sampler_.extract(cv::Rect2d(centre.x - s.width / 2, centre.y - s.height / 2, s.width, s.height),
-                     scaleModel_, gray);
-    cellFeatures(gray, kCell, channels);
-    const int perChannel = channels[0].rows * channels[0].cols;
+    scaleIntegral_.features(
+        sampler_.toSampled(cv::Rect2d(centre.x - s.width / 2, centre.y - s.height / 2, s.width, s.height)),
+        cells, channels);
+    const int perChannel = cells.area();
     if (i == 0) scaleSamples_.create(static_cast<int>(factors.size()), perChannel * kCellChannels, CV_32F);
     float *row = scaleSamples_.ptr<float>(static_cast<int>(i));
     for (int c = 0; c < kCellChannels; ++c) {
@@ -122,19 +124,21 @@ FusedDetector::Estimate FusedDetector::locate(const ImageSource &frame, cv::Poin
   windowFeatures(frame, centre, size);
   cv::Mat response;
   translation_.respond(channels_, response);
-  const cv::Size2d window = windowFor(size);
-  const double z = window_.width / window.width;  // normalised px per frame px
+  // Normalised px per frame px, and where the window actually lies (its position snapped to whole pixels).
+  const double zx = window_.width / windowRect_.width, zy = window_.height / windowRect_.height;
+  const cv::Point2d windowCentre(windowRect_.x + windowRect_.width / 2,
+                                 windowRect_.y + windowRect_.height / 2);
   cv::Mat shape = response.clone(), colour;
   if (!likelihood.empty() && kColourWeight > 0) {
-    colourResponse(colors, likelihood, size * z, colour);
+    colourResponse(colors, likelihood, cv::Size2d(size.width * zx, size.height * zy), colour);
     cv::addWeighted(response, 1 - kColourWeight, colour, kColourWeight, 0, response);
   }
   cv::Point peak;
   cv::minMaxLoc(response, nullptr, nullptr, nullptr, &peak);
   const cv::Point2d at = subCellPeak(response, peak);
   Estimate e;
-  e.centre = cv::Point2d(centre.x + (at.x - response.cols / 2) * kCell / z,
-                         centre.y + (at.y - response.rows / 2) * kCell / z);
+  e.centre = cv::Point2d(windowCentre.x + (at.x - response.cols / 2) * kCell / zx,
+                         windowCentre.y + (at.y - response.rows / 2) * kCell / zy);
   e.size = size;
   e.shapePeak = shape.at<float>(peak);
   e.colourPeak = colour.empty() ? 0 : colour.at<float>(peak);

@@ -51,7 +51,8 @@ constexpr int kConfidenceSkip = 2;
 constexpr int kConfidenceWarmUp = 5;
 // Re-detection, once coasting or lost: every kRedetectPeriod frames the kRedetectCandidates strongest places
 // of the colour likelihood over the whole frame and the last position are searched with both cues; the best
-// is taken when its PSR reaches kRedetectConfidence and kRedetectRatio of the usual.
+// is taken when its PSR reaches kRedetectConfidence and kRedetectRatio of the usual, and its colour cue
+// kLostColourRatio of the usual.
 constexpr double kRedetectConfidence = 6.0;
 constexpr double kRedetectRatio = 0.6;
 constexpr int kRedetectPeriod = 3;
@@ -443,7 +444,8 @@ struct Tracker::Impl {
     // where it was found.
     if (best) best = fused.locate(frame, best->centre, fusedSize, *mapper, likelihood, false);
     if (!best || best->confidence < kRedetectConfidence ||
-        relativeConfidence(best->confidence) < kRedetectRatio)
+        relativeConfidence(best->confidence) < kRedetectRatio ||
+        relativeColour(best->colourPeak) < kLostColourRatio)
       return std::nullopt;
     return best;
   }

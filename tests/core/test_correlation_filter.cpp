@@ -68,6 +68,48 @@ TEST(CellFeatures, OrientationOfAnEdge) {
   EXPECT_NEAR(others, 0, 1e-4);
 }
 
+// The integral-image path (the scale filter's samples) gives the same features as the direct one for a
+// rectangle on the cell grid, away from its border (where the direct path repeats the patch's edge and the
+// integral one sees the image beyond it).
+TEST(CellFeatures, IntegralPathMatchesDirectPath) {
+  cv::Mat gray;
+  cv::cvtColor(texture(cv::Size(96, 96), 4), gray, cv::COLOR_BGR2GRAY);
+  gray.convertTo(gray, CV_32F, 1.0 / 255);
+  const cv::Rect rect(12, 16, 64, 64);
+  std::vector<cv::Mat> direct, integral;
+  cellFeatures(gray(rect), 4, direct);
+  CellFeatureIntegral sums;
+  sums.build(gray);
+  sums.features(cv::Rect2d(rect), cv::Size(16, 16), integral);
+  ASSERT_EQ(integral.size(), direct.size());
+  for (size_t c = 0; c < direct.size(); ++c) {
+    const cv::Rect inner(2, 2, 12, 12);
+    EXPECT_LT(cv::norm(direct[c](inner), integral[c](inner), cv::NORM_INF), 1e-4) << "channel " << c;
+  }
+}
+
+TEST(PatchSampler, PatchCoversTheRectangleItReports) {
+  // x + 2y as the blue channel: a patch's pixels say where they came from.
+  cv::Mat image(120, 160, CV_8UC3);
+  for (int y = 0; y < image.rows; ++y)
+    for (int x = 0; x < image.cols; ++x) image.at<cv::Vec3b>(y, x) = cv::Vec3b((x + 2 * y) / 2, 0, 0);
+  PatchSampler sampler;
+  const cv::Rect2d wanted(20.4, 30.6, 40.2, 30.1);
+  sampler.load(MatImageSource(image), wanted, 1);
+  cv::Mat patch;
+  const cv::Rect2d got = sampler.extract(wanted, cv::Size(40, 30), patch);
+  EXPECT_NEAR(got.x, wanted.x, 0.5);
+  EXPECT_NEAR(got.y, wanted.y, 0.5);
+  EXPECT_EQ(got.size(), cv::Size2d(40, 30));
+  EXPECT_EQ(patch.at<cv::Vec3b>(0, 0)[0], image.at<cv::Vec3b>(cvRound(got.y), cvRound(got.x))[0]);
+  // Reaching outside the frame repeats its border instead of failing.
+  const cv::Rect2d outside(-30, -20, 60, 40);
+  sampler.load(MatImageSource(image), outside, 2);
+  const cv::Rect2d got2 = sampler.extract(outside, cv::Size(30, 20), patch);
+  EXPECT_EQ(got2.size(), cv::Size2d(60, 40));
+  EXPECT_EQ(patch.at<cv::Vec3b>(0, 0), image.at<cv::Vec3b>(0, 0));
+}
+
 TEST(CorrelationFilter, PeaksAtTheShiftOfTheTrainingPatch) {
   const cv::Mat image = texture(cv::Size(160, 160), 3);
   cv::Mat gray;

@@ -4,6 +4,8 @@
 
 #include <cstdio>
 
+#include <opencv2/imgproc.hpp>
+
 #include "colortrack/tracker.hpp"
 #include "scene.hpp"
 
@@ -215,4 +217,43 @@ TEST(ImageSource, SamplesEveryStepthPixelFromTheCorner) {
       ASSERT_EQ(p[0], rect.x + 4 * i) << i << "," << j;
       ASSERT_EQ(p[1], rect.y + 4 * j) << i << "," << j;
     }
+}
+
+// The fused method's confidence: a grey board hides the object for 30 frames while it keeps moving. The
+// confidence (the output's score) falls under the loss threshold, nothing is reported as tracking behind
+// the board, and the object is found again within 10 frames where it comes out.
+TEST(FusedTracker, ConfidenceFallsBehindAnOccluderAndTheTargetIsReacquired) {
+  const Scene scene(hardConfig());
+  Tracker tracker;  // the defaults: method fused
+  ASSERT_EQ(tracker.settings().method, Method::Fused);
+  tracker.setTemplateFromBox(MatImageSource(scene.render(0).bgr), scene.initBox());
+  constexpr int kFrom = 60, kTo = 90;
+  int trackingBehind = 0, lowConfidence = 0, reacquiredAt = -1;
+  double visibleScore = 0;
+  for (int i = 1; i < 120 && reacquiredAt < 0; ++i) {
+    SceneFrame f = scene.render(i);
+    const bool hidden = i >= kFrom && i < kTo;
+    if (hidden) {
+      const cv::Rect2d board(f.box.x - 0.2 * f.box.width, f.box.y - 0.2 * f.box.height, 1.4 * f.box.width,
+                             1.4 * f.box.height);
+      cv::rectangle(f.bgr, cv::Rect(board) & cv::Rect(cv::Point(), f.bgr.size()), cv::Scalar(128, 128, 128),
+                    cv::FILLED);
+    }
+    const TrackOutput out = tracker.process(MatImageSource(f.bgr));
+    if (i < kFrom && i >= 10) visibleScore += out.score / (kFrom - 10);
+    if (hidden) {
+      trackingBehind += out.state == TrackState::Tracking;
+      lowConfidence += out.score < 0.5;
+    }
+    if (i >= kTo && out.state == TrackState::Tracking && scene::iou(out.box, f.box) > 0.5) reacquiredAt = i;
+  }
+  std::printf(
+      "mean score while visible %.2f; behind the board: %d/%d frames under 0.5, %d tracking; "
+      "reacquired at frame %d\n",
+      visibleScore, lowConfidence, kTo - kFrom, trackingBehind, reacquiredAt);
+  EXPECT_GT(visibleScore, 0.8);
+  EXPECT_GE(lowConfidence, kTo - kFrom - 1);
+  EXPECT_LE(trackingBehind, 1);
+  ASSERT_GE(reacquiredAt, kTo);
+  EXPECT_LT(reacquiredAt, kTo + 10);
 }

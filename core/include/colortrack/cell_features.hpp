@@ -21,4 +21,23 @@ constexpr int kCellChannels = kOrientations + 4 + 1;
 // (width / cell) x (height / cell), CV_32FC1, reusing the matrices in `channels`.
 void cellFeatures(const cv::Mat &gray, int cell, std::vector<cv::Mat> &channels);
 
+// The same features for many rectangles of one image (a scale filter's samples): every pixel's orientation
+// votes and intensity are summed once into integral images, after which each cell costs a few lookups
+// instead of resampling and re-differentiating every sample. Gradients are taken at the image's resolution,
+// so a cell of a large rectangle sums more pixels than one of a small rectangle; the block normalisation
+// makes the features comparable.
+class CellFeatureIntegral {
+ public:
+  // gray: CV_32FC1 in [0,1].
+  void build(const cv::Mat &gray);
+  // Features of `rect` (image coordinates, may be fractional; cells are rounded to whole pixels and kept
+  // inside the image) divided into `cells` cells.
+  void features(const cv::Rect2d &rect, cv::Size cells, std::vector<cv::Mat> &channels) const;
+
+ private:
+  static constexpr int kPlanes = kOrientations + 1;  // orientation votes and intensity
+  std::vector<double> sums_;                         // (rows + 1) x (cols + 1) x kPlanes
+  cv::Size size_;
+};
+
 }  // namespace colortrack

@@ -7,6 +7,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "colortrack/cell_features.hpp"
 #include "colortrack/color.hpp"
 #include "colortrack/correlation_filter.hpp"
 #include "colortrack/image_source.hpp"
@@ -57,6 +58,7 @@ class FusedDetector {
   ScaleFilter scale_;
   cv::Size window_;             // the normalised search window, px (whole cells)
   cv::Size2d windowRatio_;      // window size / target size in the frame
+  cv::Rect2d windowRect_;       // the frame rectangle the last window's features came from
   cv::Size scaleModel_;         // the normalised patch of each scale sample, px (whole cells)
   bool scaleMeasured_ = false;  // locate() ran the scale filter: learn() trains it on the same samples
 
@@ -64,7 +66,7 @@ class FusedDetector {
   PatchSampler sampler_;
   cv::Mat patch_, gray_, scaleSamples_, bins_, probability_, integral_, reduced_;
   std::vector<cv::Mat> channels_, scaleChannels_;
-  cv::Mat scaleGray_;
+  CellFeatureIntegral scaleIntegral_;
 };
 
 }  // namespace colortrack

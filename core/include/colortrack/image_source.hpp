@@ -34,17 +34,24 @@ class MatImageSource : public ImageSource {
   cv::Mat bgr_;
 };
 
-// Reads a region of a frame once, as a sample, and cuts patches of any sub-pixel rectangle out of it,
-// resampled to a fixed size; where a patch reaches outside the frame the frame's border is repeated. Lets a
-// tracker take several patches (a search window, a range of scales) for the price of one read.
+// Reads a region of a frame once, as a sample, and cuts patches out of it resampled to a fixed size; where a
+// patch reaches outside the frame the frame's border is repeated. Lets a tracker take several patches (a
+// search window, a range of scales) for the price of one read.
 class PatchSampler {
  public:
   // Reads `region` (frame coordinates; may reach outside the frame) taking every `step`-th pixel.
   void load(const ImageSource &frame, const cv::Rect2d &region, int step);
-  // Turns what was read into grey levels (CV_32FC1 in [0,1]), so that patches cut afterwards are grey.
+  // Turns what was read into grey levels (CV_32FC1 in [0,1]), for pixels().
   void toGray();
-  // `rect` (frame coordinates) resampled to `size` (bilinear): CV_8UC3 BGR, or grey after toGray().
-  void extract(const cv::Rect2d &rect, cv::Size size, cv::Mat &out) const;
+  // `rect` moved and sized to whole read pixels, resampled to `size` (area-averaging when shrinking,
+  // bilinear otherwise), CV_8UC3 BGR. Snapping the position to the read grid makes this several times
+  // cheaper than a sub-pixel warp; callers measure positions against the returned frame rectangle, which the
+  // patch actually covers, so no precision is lost.
+  cv::Rect2d extract(const cv::Rect2d &rect, cv::Size size, cv::Mat &out) const;
+
+  // What was read (BGR, or grey after toGray()), and a frame rectangle in its pixel coordinates.
+  const cv::Mat &pixels() const { return pixels_; }
+  cv::Rect2d toSampled(const cv::Rect2d &rect) const;
 
   // The sampling step that keeps at least one read pixel per output pixel for a patch of `rect` at `size`.
   static int stepFor(const cv::Size2d &rect, cv::Size size);
