@@ -12,6 +12,9 @@ namespace {
 constexpr float kClip = 0.2f;  // the usual HOG clipping of normalised values
 constexpr float kEps = 1e-4f;
 constexpr float kBinsPerDegree = kOrientations / 180.0f;
+// The texture channels sum kOrientations clipped values; scaled by 1/sqrt(2 * kOrientations) (FHOG's choice)
+// so they weigh about as much as one orientation channel.
+const float kTextureScale = 1.0f / std::sqrt(2.0f * kOrientations);
 
 // One pixel's gradient vote: contrast-insensitive orientation (a and a + 180 degrees share a bin), the
 // magnitude shared linearly between the two nearest bins.
@@ -72,7 +75,7 @@ void normaliseCells(const cv::Mat &hist, const cv::Mat &intensity, std::vector<c
         }
         channels[o].at<float>(y, x) = 0.5f * sum;
       }
-      for (int n = 0; n < 4; ++n) channels[kOrientations + n].at<float>(y, x) = 0.2357f * texture[n];
+      for (int n = 0; n < 4; ++n) channels[kOrientations + n].at<float>(y, x) = kTextureScale * texture[n];
       channels[kOrientations + 4].at<float>(y, x) = intensity.at<float>(y, x) - 0.5f;
     }
 }

@@ -9,6 +9,17 @@ namespace colortrack {
 
 namespace {
 
+// Peak-to-sidelobe ratios are capped here: a frame identical to the training view has almost no sidelobe.
+constexpr double kMaxPeakToSidelobe = 100;
+
+// Offset in (-0.5, 0.5) of the vertex of the parabola through three neighbouring values around a maximum;
+// through their logarithms when `logarithmic` and all are positive (exact for a Gaussian peak).
+double parabolicOffset(double l, double c, double r, bool logarithmic) {
+  if (logarithmic && l > 0 && c > 0 && r > 0) l = std::log(l), c = std::log(c), r = std::log(r);
+  const double d = l - 2 * c + r;
+  return d < 0 ? std::clamp(0.5 * (l - r) / d, -0.5, 0.5) : 0.0;
+}
+
 // Circular Gaussian label peaked at index 0 (zero shift), so no shift of the response is needed in training.
 cv::Mat circularGaussian(cv::Size size, double sigma) {
   cv::Mat label(size, CV_32F);
@@ -120,7 +131,7 @@ void ScaleFilter::init(int scales, double step, double sigma, double lambda) {
 }
 
 // Features x scales complex spectrum of samples (scales x features), windowed over the scales.
-void ScaleFilter::transform(const cv::Mat &samples, cv::Mat &spectrum) const {
+void ScaleFilter::transform(const cv::Mat &samples, cv::Mat &spectrum) {
   CV_Assert(samples.rows == static_cast<int>(factors_.size()));
   cv::multiply(samples, cv::repeat(window_, 1, samples.cols), windowed_);
   cv::transpose(windowed_, transposed_);
@@ -128,23 +139,24 @@ void ScaleFilter::transform(const cv::Mat &samples, cv::Mat &spectrum) const {
 }
 
 void ScaleFilter::train(const cv::Mat &samples, double rate) {
-  transform(samples, spectrum_);
-  trainOnSpectrum(rate);
+  cv::Mat spectrum;
+  transform(samples, spectrum);
+  trainOnSpectrum(spectrum, rate);
 }
 
 void ScaleFilter::trainOnLastEstimate(double rate) {
-  CV_Assert(!spectrum_.empty());
-  trainOnSpectrum(rate);
+  CV_Assert(!lastSpectrum_.empty());
+  trainOnSpectrum(lastSpectrum_, rate);
 }
 
-void ScaleFilter::trainOnSpectrum(double rate) {
-  cv::Mat numerator(spectrum_.size(), CV_32FC2), energy;
-  for (int r = 0; r < spectrum_.rows; ++r) {
+void ScaleFilter::trainOnSpectrum(const cv::Mat &spectrum, double rate) {
+  cv::Mat numerator(spectrum.size(), CV_32FC2), energy;
+  for (int r = 0; r < spectrum.rows; ++r) {
     cv::Mat row = numerator.row(r);
-    cv::mulSpectrums(labelSpectrum_, spectrum_.row(r), row, cv::DFT_ROWS, true);
+    cv::mulSpectrums(labelSpectrum_, spectrum.row(r), row, cv::DFT_ROWS, true);
   }
   cv::Mat power;
-  cv::mulSpectrums(spectrum_, spectrum_, power, cv::DFT_ROWS, true);
+  cv::mulSpectrums(spectrum, spectrum, power, cv::DFT_ROWS, true);
   cv::reduce(power, energy, 0, cv::REDUCE_SUM);
   std::vector<cv::Mat> parts;
   cv::split(energy, parts);
@@ -153,11 +165,11 @@ void ScaleFilter::trainOnSpectrum(double rate) {
   blend(denominator_, parts[0], rate);
 }
 
-double ScaleFilter::estimate(const cv::Mat &samples) const {
+double ScaleFilter::estimate(const cv::Mat &samples) {
   CV_Assert(!empty());
-  transform(samples, spectrum_);
+  transform(samples, lastSpectrum_);
   cv::Mat product, sum;
-  cv::mulSpectrums(spectrum_, numerator_, product, cv::DFT_ROWS, false);
+  cv::mulSpectrums(lastSpectrum_, numerator_, product, cv::DFT_ROWS, false);
   cv::reduce(product, sum, 0, cv::REDUCE_SUM);
   std::vector<cv::Mat> parts;
   cv::split(sum, parts);
@@ -168,26 +180,18 @@ double ScaleFilter::estimate(const cv::Mat &samples) const {
   cv::Mat circular;
   cv::dft(sum, circular, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT | cv::DFT_ROWS);
   const int n = circular.cols;
-  const cv::Mat &response = circular;
   cv::Point peak;
-  cv::minMaxLoc(response, nullptr, nullptr, nullptr, &peak);
+  cv::minMaxLoc(circular, nullptr, nullptr, nullptr, &peak);
   double offset = 0;
-  if (peak.x > 0 && peak.x < n - 1) {
-    const double l = response.at<float>(0, peak.x - 1), c = response.at<float>(0, peak.x),
-                 r = response.at<float>(0, peak.x + 1);
-    const double d = l - 2 * c + r;
-    if (d < 0) offset = std::clamp(0.5 * (l - r) / d, -0.5, 0.5);
-  }
+  if (peak.x > 0 && peak.x < n - 1)
+    offset = parabolicOffset(circular.at<float>(0, peak.x - 1), circular.at<float>(0, peak.x),
+                             circular.at<float>(0, peak.x + 1), false);
   return std::pow(step_, peak.x + offset - n / 2);
 }
 
 cv::Point2d subCellPeak(const cv::Mat &response, cv::Point peak) {
   auto at = [&](int y, int x) { return static_cast<double>(response.at<float>(y, x)); };
-  auto offset = [](double l, double c, double r) {
-    if (l > 0 && c > 0 && r > 0) l = std::log(l), c = std::log(c), r = std::log(r);
-    const double d = l - 2 * c + r;
-    return d < 0 ? std::clamp(0.5 * (l - r) / d, -0.5, 0.5) : 0.0;
-  };
+  auto offset = [](double l, double c, double r) { return parabolicOffset(l, c, r, true); };
   cv::Point2d p(peak);
   if (peak.x > 0 && peak.x < response.cols - 1)
     p.x += offset(at(peak.y, peak.x - 1), at(peak.y, peak.x), at(peak.y, peak.x + 1));
@@ -196,8 +200,6 @@ cv::Point2d subCellPeak(const cv::Mat &response, cv::Point peak) {
   return p;
 }
 
-constexpr double kMaxPeakToSidelobe = 100;
-
 double peakToSidelobe(const cv::Mat &response, cv::Point peak, int exclude) {
   cv::Mat mask(response.size(), CV_8U, cv::Scalar(255));
   const cv::Rect centreArea(peak.x - exclude, peak.y - exclude, 2 * exclude + 1, 2 * exclude + 1);
@@ -205,7 +207,6 @@ double peakToSidelobe(const cv::Mat &response, cv::Point peak, int exclude) {
   if (cv::countNonZero(mask) < 2) return 0;
   cv::Scalar mean, deviation;
   cv::meanStdDev(response, mean, deviation, mask);
-  // A floor under the deviation: a frame identical to the training view has almost no sidelobe at all.
   const double peakValue = response.at<float>(peak);
   return (peakValue - mean[0]) /
          std::max(deviation[0], std::max(1e-6, std::abs(peakValue) / kMaxPeakToSidelobe));

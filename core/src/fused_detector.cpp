@@ -5,8 +5,6 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "colortrack/cell_features.hpp"
-
 namespace colortrack {
 
 namespace {
@@ -81,17 +79,16 @@ void FusedDetector::scaleSamples(const ImageSource &frame, cv::Point2d centre, c
   // One gradient pass over the region, then each candidate's cells from integral images.
   scaleIntegral_.build(sampler_.pixels());
   const cv::Size cells(scaleModel_.width / kCell, scaleModel_.height / kCell);
-  std::vector<cv::Mat> &channels = scaleChannels_;
   for (size_t i = 0; i < factors.size(); ++i) {
     const cv::Size2d s = size * factors[i];
     scaleIntegral_.features(
         sampler_.toSampled(cv::Rect2d(centre.x - s.width / 2, centre.y - s.height / 2, s.width, s.height)),
-        cells, channels);
+        cells, scaleChannels_);
     const int perChannel = cells.area();
     if (i == 0) scaleSamples_.create(static_cast<int>(factors.size()), perChannel * kCellChannels, CV_32F);
     float *row = scaleSamples_.ptr<float>(static_cast<int>(i));
     for (int c = 0; c < kCellChannels; ++c) {
-      const cv::Mat flat = channels[c].reshape(1, 1);
+      const cv::Mat flat = scaleChannels_[c].reshape(1, 1);
       std::copy(flat.ptr<float>(), flat.ptr<float>() + perChannel, row + c * perChannel);
     }
   }
@@ -128,8 +125,8 @@ FusedDetector::Estimate FusedDetector::locate(const ImageSource &frame, cv::Poin
   const double zx = window_.width / windowRect_.width, zy = window_.height / windowRect_.height;
   const cv::Point2d windowCentre(windowRect_.x + windowRect_.width / 2,
                                  windowRect_.y + windowRect_.height / 2);
-  cv::Mat shape = response.clone(), colour;
-  if (!likelihood.empty() && kColourWeight > 0) {
+  cv::Mat colour;
+  if (!likelihood.empty()) {
     colourResponse(colors, likelihood, cv::Size2d(size.width * zx, size.height * zy), colour);
     cv::addWeighted(response, 1 - kColourWeight, colour, kColourWeight, 0, response);
   }
@@ -140,7 +137,6 @@ FusedDetector::Estimate FusedDetector::locate(const ImageSource &frame, cv::Poin
   e.centre = cv::Point2d(windowCentre.x + (at.x - response.cols / 2) * kCell / zx,
                          windowCentre.y + (at.y - response.rows / 2) * kCell / zy);
   e.size = size;
-  e.shapePeak = shape.at<float>(peak);
   e.colourPeak = colour.empty() ? 0 : colour.at<float>(peak);
   e.confidence =
       peakToSidelobe(response, peak, std::max(1, cvRound(0.2 * std::min(response.cols, response.rows))));

@@ -30,6 +30,7 @@ void MatImageSource::sampledBgr(const cv::Rect &rect, int step, cv::Mat &out) co
 
 void PatchSampler::load(const ImageSource &frame, const cv::Rect2d &region, int step) {
   const cv::Rect frameRect(cv::Point(), frame.size());
+  CV_Assert(!frameRect.empty());
   const cv::Rect wanted(cvFloor(region.x), cvFloor(region.y),
                         cvCeil(region.x + region.width) - cvFloor(region.x) + 1,
                         cvCeil(region.y + region.height) - cvFloor(region.y) + 1);
@@ -43,6 +44,19 @@ void PatchSampler::load(const ImageSource &frame, const cv::Rect2d &region, int 
   step_ = std::max(1, step);
   frame.sampledBgr(inside, step_, pixels_);
   origin_ = inside.tl();
+  // Where the region reaches outside the frame, repeat the frame's border, so that everything cut from the
+  // region sees the same kind of edge.
+  const int left = (origin_.x - wanted.x + step_ - 1) / step_,
+            top = (origin_.y - wanted.y + step_ - 1) / step_;
+  const int right = std::max(0, (wanted.br().x - (origin_.x + pixels_.cols * step_) + step_ - 1) / step_);
+  const int bottom = std::max(0, (wanted.br().y - (origin_.y + pixels_.rows * step_) + step_ - 1) / step_);
+  if (left > 0 || top > 0 || right > 0 || bottom > 0) {
+    cv::Mat padded;
+    cv::copyMakeBorder(pixels_, padded, std::max(0, top), bottom, std::max(0, left), right,
+                       cv::BORDER_REPLICATE);
+    pixels_ = padded;
+    origin_ -= cv::Point(std::max(0, left) * step_, std::max(0, top) * step_);
+  }
 }
 
 void PatchSampler::toGray() {
@@ -61,8 +75,7 @@ cv::Rect2d PatchSampler::extract(const cv::Rect2d &rect, cv::Size size, cv::Mat 
   } else if (inside.empty()) {
     // Wholly outside what was read: the nearest read pixel stands for everything.
     const cv::Point nearest(std::clamp(roi.x, 0, pixels_.cols - 1), std::clamp(roi.y, 0, pixels_.rows - 1));
-    source = cv::Mat(roi.size(), pixels_.type());
-    source.setTo(cv::Scalar(pixels_(cv::Rect(nearest, cv::Size(1, 1))).at<cv::Vec3b>(0)));
+    source = cv::Mat(roi.size(), pixels_.type(), cv::mean(pixels_(cv::Rect(nearest, cv::Size(1, 1)))));
   } else {
     cv::copyMakeBorder(pixels_(inside), source, inside.y - roi.y, roi.br().y - inside.br().y,
                        inside.x - roi.x, roi.br().x - inside.br().x, cv::BORDER_REPLICATE);

@@ -32,6 +32,9 @@ constexpr double kLikelihoodRing = 0.15;
 // Searches while tracking work on a region reduced so the box's smaller side is about this many pixels.
 constexpr double kReducedWindowSide = 40;
 constexpr double kAspectRate = 0.3;  // smoothing of the measured aspect ratio
+// The object may have changed size while it was away: each search of the whole frame tries the next scale of
+// this list (the last size first), which keeps the cost of a frame to one search.
+constexpr double kSearchScales[] = {1.0, 1.0 / 1.4, 1.4, 0.5, 2.0};
 
 // Fused method. The confidence is the fused response's peak-to-sidelobe ratio (PSR). A frame is a detection
 // when its PSR is at least kLostConfidence, at least kLostRatio of the track's usual PSR, and its colour cue
@@ -105,9 +108,11 @@ struct Tracker::Impl {
   FusedDetector fused;
   cv::Point2d fusedCentre;
   cv::Size2d fusedSize;
+  cv::Size2d fusedMinSize;     // the box never shrinks below this (8 px, or the start size if smaller)
   double usualConfidence = 0;  // running mean of the confidence of learnt frames
   int confidenceSamples = 0;   // how many frames the mean has seen
   int framesLearnt = 0;        // since the filters started
+  int redetectAttempts = 0;    // since the last detection (picks the size to try)
   double usualColour = 0;      // running mean of the colour cue at the peak of learnt frames
 
   // Scratch buffers reused across frames.
@@ -391,21 +396,31 @@ struct Tracker::Impl {
     coastFrames = 0;
   }
 
-  // Fused method: starts the detector's filters on a detection.
+  // Fused method: starts the detector's filters on a detection (a box of at least a pixel).
   void startFused(const ImageSource &frame, const cv::Rect2d &box) {
-    fused.start(frame, box);
-    fusedCentre = cv::Point2d(box.x + box.width / 2, box.y + box.height / 2);
-    fusedSize = box.size();
+    const cv::Rect2d fitted(box.x, box.y, std::max(1.0, box.width), std::max(1.0, box.height));
+    stopFused();
+    fused.start(frame, fitted);
+    fusedCentre = cv::Point2d(fitted.x + fitted.width / 2, fitted.y + fitted.height / 2);
+    fusedSize = fitted.size();
+    fusedMinSize = cv::Size2d(std::min(8.0, fusedSize.width), std::min(8.0, fusedSize.height));
+  }
+  // Forgets the fused filters (a new template, another method, another colour model): the next detection of
+  // the colour search starts them again.
+  void stopFused() {
+    fused.stop();
     usualConfidence = 0;
     confidenceSamples = 0;
     framesLearnt = 0;
     usualColour = 0;
+    redetectAttempts = 0;
   }
 
-  // A frame's confidence relative to the track's usual one (1 before that is known).
+  // A frame's confidence relative to the track's usual one. Until that is known, relative to the lowest
+  // usual PSR a detection could have, so that the same 0.5 separates detections from the rest.
   double relativeConfidence(double confidence) const {
     return confidenceSamples >= kConfidenceWarmUp ? confidence / std::min(usualConfidence, kConfidentPsr)
-                                                  : 1.0;
+                                                  : confidence * kLostRatio / kLostConfidence;
   }
   double relativeColour(double colour) const {
     return confidenceSamples >= kConfidenceWarmUp && usualColour > 0 ? colour / usualColour : 1.0;
@@ -432,17 +447,21 @@ struct Tracker::Impl {
   // Fused method: the best re-detection over the whole frame (colour candidates and the last position, each
   // searched with both cues), if it is confident enough.
   std::optional<FusedDetector::Estimate> redetectFused(const ImageSource &frame) {
+    // The target may come back at another size: each attempt tries the next size of a short list (the last
+    // one first), as the colour search does.
+    const double factor = kSearchScales[redetectAttempts++ % std::size(kSearchScales)];
+    const cv::Size2d size = fitSize(fusedSize * factor, frame.size());
     std::vector<cv::Point2d> candidates =
-        fused.colourCandidates(frame, fusedSize, *mapper, likelihood, kRedetectCandidates);
+        fused.colourCandidates(frame, size, *mapper, likelihood, kRedetectCandidates);
     candidates.push_back(fusedCentre);
     std::optional<FusedDetector::Estimate> best;
     for (const cv::Point2d &c : candidates) {
-      const FusedDetector::Estimate e = fused.locate(frame, c, fusedSize, *mapper, likelihood, false);
+      const FusedDetector::Estimate e = fused.locate(frame, c, size, *mapper, likelihood, false);
       if (!best || e.confidence > best->confidence) best = e;
     }
     // The filter's window tapers towards its edges: judge the best candidate again with the window centred
     // where it was found.
-    if (best) best = fused.locate(frame, best->centre, fusedSize, *mapper, likelihood, false);
+    if (best) best = fused.locate(frame, best->centre, size, *mapper, likelihood, false);
     if (!best || best->confidence < kRedetectConfidence ||
         relativeConfidence(best->confidence) < kRedetectRatio ||
         relativeColour(best->colourPeak) < kLostColourRatio)
@@ -450,14 +469,17 @@ struct Tracker::Impl {
     return best;
   }
 
+  // A fused size kept between the minimum and the frame.
+  cv::Size2d fitSize(cv::Size2d size, cv::Size frameSize) const {
+    return cv::Size2d(std::clamp(size.width, std::min(fusedMinSize.width, double(frameSize.width)),
+                                 double(frameSize.width)),
+                      std::clamp(size.height, std::min(fusedMinSize.height, double(frameSize.height)),
+                                 double(frameSize.height)));
+  }
+
   // Fused method, once its filters have started: the frame's state change and the output's score.
   void processFused(const ImageSource &frame, double dt, const TrackerSettings &s, TrackOutput &out) {
     const cv::Rect frameRect(cv::Point(), frame.size());
-    const cv::Size2d minSize(std::min(8.0, fusedSize.width), std::min(8.0, fusedSize.height));
-    const auto fitSize = [&](cv::Size2d size) {
-      return cv::Size2d(std::clamp(size.width, minSize.width, double(frameRect.width)),
-                        std::clamp(size.height, minSize.height, double(frameRect.height)));
-    };
     if (state == TrackState::Tracking || state == TrackState::Coasting) {
       kalman.predict(dt);
       // Searched around the last measured position, not the Kalman prediction: the filter's window is wide
@@ -465,7 +487,7 @@ struct Tracker::Impl {
       // (tune half: 0.626 from the last position, 0.605 from the prediction).
       const cv::Point2d centre = fusedCentre;
       FusedDetector::Estimate e = fused.locate(frame, centre, fusedSize, *mapper, likelihood);
-      out.searchRegion = roundRect(centredBox(centre.x, centre.y, fusedSize * 2.0)) & frameRect;
+      out.searchRegion = roundRect(centredBox(centre.x, centre.y, fused.windowFor(fusedSize))) & frameRect;
       const auto accepted = [&](const FusedDetector::Estimate &e) {
         return e.confidence >= kLostConfidence && relativeConfidence(e.confidence) >= kLostRatio &&
                relativeColour(e.colourPeak) >= kLostColourRatio;
@@ -476,7 +498,8 @@ struct Tracker::Impl {
       }
       out.score = std::min(1.0, relativeConfidence(e.confidence));
       if (accepted(e)) {
-        e.size = fitSize(e.size);
+        e.size = fitSize(e.size, frame.size());
+        redetectAttempts = 0;
         const Detection d = fusedDetection(frame, e, s);
         updateTrack(d);
         lastVerified = d.verified;
@@ -494,12 +517,15 @@ struct Tracker::Impl {
     }
     out.searchRegion = frameRect;
     if (searchFrames++ % kRedetectPeriod != 0) return;
-    const auto found = redetectFused(frame);
+    auto found = redetectFused(frame);
     if (!found) return;
+    found->size = fitSize(found->size, frame.size());
     const Detection d = fusedDetection(frame, *found, s);
     startTrack(d, s);
     lastVerified = d.verified;
     fusedCentre = found->centre;
+    fusedSize = found->size;
+    redetectAttempts = 0;
     out.score = std::min(1.0, relativeConfidence(found->confidence));
   }
 
@@ -523,6 +549,8 @@ Tracker::~Tracker() = default;
 
 void Tracker::setSettings(const TrackerSettings &settings) {
   const bool modelChanged = settings.colorSpace != settings_.colorSpace || !(settings.bins == settings_.bins);
+  // The fused filters were learnt with the old colour model, or went stale while another method tracked.
+  if (modelChanged || settings.method != settings_.method) impl_->stopFused();
   settings_ = settings;
   impl_->kalman.setParams(settings_.kalman);
   if (modelChanged) impl_->rebuildModel(settings_);
@@ -537,7 +565,7 @@ void Tracker::setTemplate(const cv::Mat &bgr, const cv::Mat &mask) {
   impl_->templateBgr = bgr.clone();
   impl_->templateMask = mask.empty() ? cv::Mat() : mask.clone();
   impl_->likelihood = ColorLikelihood(settings_.bins);
-  impl_->fused.stop();
+  impl_->stopFused();
   impl_->aspect = 1.0;
   impl_->rebuildModel(settings_);
   reset();
@@ -638,9 +666,6 @@ TrackOutput Tracker::process(const ImageSource &frame, double dt) {
     }
   } else {
     out.searchRegion = cv::Rect(cv::Point(), frameSize);
-    // The object may have changed size while it was away: each searching frame tries the next scale of a
-    // short list (the last one first), which keeps the cost of a frame to one full-frame search.
-    static constexpr double kSearchScales[] = {1.0, 1.0 / 1.4, 1.4, 0.5, 2.0};
     const double factor = kSearchScales[m.searchFrames++ % std::size(kSearchScales)];
     detection = m.detectEverywhere(frame, std::clamp(m.lastScale * factor, 0.1, 10.0), s);
     if (detection) {

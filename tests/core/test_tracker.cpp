@@ -257,3 +257,31 @@ TEST(FusedTracker, ConfidenceFallsBehindAnOccluderAndTheTargetIsReacquired) {
   ASSERT_GE(reacquiredAt, kTo);
   EXPECT_LT(reacquiredAt, kTo + 10);
 }
+
+// Settings that change while the fused method tracks: another colour model (the filters learnt with the old
+// one) and a round trip through another method (the filters went stale meanwhile). The track carries on.
+TEST(FusedTracker, KeepsTrackingThroughSettingChanges) {
+  const Scene scene(hardConfig());
+  Tracker tracker;
+  tracker.setTemplateFromBox(MatImageSource(scene.render(0).bgr), scene.initBox());
+  auto follow = [&](int from, int to) {
+    int good = 0;
+    for (int i = from; i < to; ++i) {
+      const SceneFrame f = scene.render(i);
+      const TrackOutput out = tracker.process(MatImageSource(f.bgr));
+      good += out.hasBox && scene::iou(out.box, f.box) > 0.5;
+    }
+    return good;
+  };
+  EXPECT_GE(follow(1, 20), 18);
+  TrackerSettings s = tracker.settings();
+  s.bins.bins = {8, 8, 4};
+  tracker.setSettings(s);
+  EXPECT_GE(follow(20, 50), 27) << "after the colour model changed";
+  s.method = Method::Discriminative;
+  tracker.setSettings(s);
+  EXPECT_GE(follow(50, 80), 27) << "after switching to discriminative";
+  s.method = Method::Fused;
+  tracker.setSettings(s);
+  EXPECT_GE(follow(80, 110), 27) << "after switching back to fused";
+}

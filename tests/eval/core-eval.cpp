@@ -2,7 +2,7 @@
 // GStreamer. Meant for quick tuning loops: it runs the core tracker directly on the decoded JPEGs, several
 // sequences at once.
 //
-//   colortrack-core-eval [--set key=value ...] [--param name=value ...] [--split tune|confirm|all]
+//   colortrack-core-eval [--set key=value ...] [--split tune|confirm|all]
 //                        [--threads N] [--frames-out DIR] SEQ_DIR_OR_PARENT...
 //
 // A SEQ_DIR holds img/<n>.jpg and groundtruth.txt (or OTB's groundtruth_rect.txt); a folder of such folders
@@ -13,8 +13,6 @@
 // --set key=value   a TrackerSettings field: method=indexing|discriminative|fused, match-threshold,
 //                   likelihood-threshold, model-update-rate, search-margin, max-coast-frames, process-noise,
 //                   measurement-noise, adapt-aspect=0|1, verify=none|edge-density|edge-energy|both.
-// --param name=value  exported as COLORTRACK_TUNE_<NAME> (upper case, '-' -> '_') before tracking starts,
-//                   for experimental knobs the tracker reads from the environment.
 // --split           which half of the shared sequences to run (kTuneSplit / kConfirmSplit below); sequences
 //                   in neither list run with `all` (the default) only.
 // --threads N       sequences processed in parallel, one Tracker per sequence (default 2). OpenCV runs
@@ -81,7 +79,7 @@ const std::vector<std::string> kConfirmSplit = {"Tiger1",       "Couple",  "boat
 constexpr double kGtOrigin = 1.0;
 
 constexpr const char *kUsage =
-    "usage: colortrack-core-eval [--set key=value ...] [--param name=value ...] [--split tune|confirm|all]\n"
+    "usage: colortrack-core-eval [--set key=value ...] [--split tune|confirm|all]\n"
     "                            [--threads N] [--frames-out DIR] SEQ_DIR_OR_PARENT...\n"
     "\n"
     "  SEQ_DIR_OR_PARENT   OTB layout (img/*.jpg + groundtruth.txt), or a folder of such folders\n"
@@ -89,7 +87,6 @@ constexpr const char *kUsage =
     "                      likelihood-threshold, model-update-rate, search-margin, max-coast-frames,\n"
     "                      process-noise, measurement-noise, adapt-aspect=0|1,\n"
     "                      verify=none|edge-density|edge-energy|both (repeatable)\n"
-    "  --param name=value  exported as COLORTRACK_TUNE_<NAME> before tracking (repeatable)\n"
     "  --split S           tune, confirm or all (default all)\n"
     "  --threads N         sequences run in parallel (default 2)\n"
     "  --frames-out DIR    per-frame boxes and states in DIR/<sequence>.csv\n";
@@ -104,7 +101,6 @@ enum class Split { Tune, Confirm, All };
 
 struct Options {
   TrackerSettings settings;
-  std::vector<std::pair<std::string, std::string>> environment;  // --param, as variable name and value
   Split split = Split::All;
   int threads = 2;
   std::string framesOut;
@@ -233,20 +229,6 @@ void applySetting(TrackerSettings &s, const std::string &key, const std::string 
   }
 }
 
-// "search-margin" -> "COLORTRACK_TUNE_SEARCH_MARGIN".
-std::string tuneVariable(const std::string &name) {
-  std::string variable = "COLORTRACK_TUNE_";
-  for (char c : name) {
-    if (c == '-')
-      variable += '_';
-    else if (std::isalnum(static_cast<unsigned char>(c)) || c == '_')
-      variable += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-    else
-      throw UsageError("--param: '" + name + "' is not a valid name (letters, digits, '-', '_')");
-  }
-  return variable;
-}
-
 Options parseOptions(int argc, char **argv) {
   Options options;
   for (int i = 1; i < argc; ++i) {
@@ -261,9 +243,6 @@ Options parseOptions(int argc, char **argv) {
     } else if (arg == "--set") {
       const auto [key, value] = splitAssignment(arg, next());
       applySetting(options.settings, key, value);
-    } else if (arg == "--param") {
-      const auto [name, value] = splitAssignment(arg, next());
-      options.environment.emplace_back(tuneVariable(name), value);
     } else if (arg == "--split") {
       const std::string value = next();
       if (value == "tune")
@@ -481,8 +460,6 @@ double meanAuc(const std::vector<Sequence> &sequences, const std::vector<Result>
 int run(int argc, char **argv) {
   const Options options = parseOptions(argc, argv);
   cv::setNumThreads(1);
-  // Before any Tracker exists, and before the worker threads start (setenv is not thread-safe).
-  for (const auto &[variable, value] : options.environment) setenv(variable.c_str(), value.c_str(), 1);
 
   std::vector<Sequence> sequences;
   for (Sequence &sequence : findSequences(options.inputs))

@@ -2,7 +2,7 @@
 //
 // Written here rather than taken from dlib's FHOG: dlib is a large header library whose fhog works on its own
 // image types (a copy per call), and the filter needs only a few small patches per frame; this is ~100 lines
-// and tested (tests/core/test_cell_features.cpp).
+// and tested (tests/core/test_correlation_filter.cpp).
 #pragma once
 
 #include <vector>

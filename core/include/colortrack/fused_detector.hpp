@@ -21,7 +21,6 @@ class FusedDetector {
     cv::Point2d centre;     // frame coordinates
     cv::Size2d size;        // the target's size after the scale filter
     double confidence = 0;  // peak-to-sidelobe ratio of the fused response
-    double shapePeak = 0;   // the correlation filter's response at the peak (about 1 for a perfect match)
     double colourPeak = 0;  // the mean colour likelihood of the target window at the peak
   };
 
@@ -35,6 +34,9 @@ class FusedDetector {
   Estimate locate(const ImageSource &frame, cv::Point2d centre, cv::Size2d size, const BinMapper &colors,
                   const ColorLikelihood &likelihood, bool withScale = true);
 
+  // The search window around a target of `size`, frame px (what locate() reads).
+  cv::Size2d windowFor(cv::Size2d size) const;
+
   // Adapts both filters to the target at `centre`, `size`.
   void learn(const ImageSource &frame, cv::Point2d centre, cv::Size2d size);
 
@@ -46,9 +48,6 @@ class FusedDetector {
                                             int count);
 
  private:
-  cv::Size2d windowFor(cv::Size2d size) const;
-  cv::Size2d refineAspect(cv::Point2d centre,
-                          cv::Size2d size) const;  // the search window around a target of `size`, frame px
   void windowFeatures(const ImageSource &frame, cv::Point2d centre, cv::Size2d size);
   void scaleSamples(const ImageSource &frame, cv::Point2d centre, cv::Size2d size);
   void colourResponse(const BinMapper &colors, const ColorLikelihood &likelihood, cv::Size2d targetNormalised,
