@@ -61,7 +61,7 @@ void FusedDetector::windowFeatures(const ImageSource &frame, cv::Point2d centre,
   const cv::Size2d window = windowFor(size);
   const cv::Rect2d rect(centre.x - window.width / 2, centre.y - window.height / 2, window.width,
                         window.height);
-  sampler_.load(frame, rect, PatchSampler::stepForShrinking(window, window_));
+  sampler_.load(frame, rect, PatchSampler::stepFor(window, window_));
   windowRect_ = sampler_.extract(rect, window_, patch_);
   cv::cvtColor(patch_, gray_, cv::COLOR_BGR2GRAY);
   gray_.convertTo(gray_, CV_32F, 1.0 / 255);

@@ -53,16 +53,12 @@ class PatchSampler {
   const cv::Mat &pixels() const { return pixels_; }
   cv::Rect2d toSampled(const cv::Rect2d &rect) const;
 
-  // A sampling step that leaves extract() at least two read pixels per output pixel to average, where the
-  // rectangle is that large.
-  static int stepForShrinking(const cv::Size2d &rect, cv::Size size);
   // The sampling step that keeps at least one read pixel per output pixel for a patch of `rect` at `size`.
   static int stepFor(const cv::Size2d &rect, cv::Size size);
 
  private:
   cv::Mat pixels_;
-  mutable cv::Mat shrunk_;  // scratch of extract()
-  cv::Point origin_;        // frame coordinates of pixels_(0, 0)
+  cv::Point origin_;  // frame coordinates of pixels_(0, 0)
   int step_ = 1;
 };
 
