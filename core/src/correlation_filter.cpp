@@ -20,6 +20,15 @@ double parabolicOffset(double l, double c, double r, bool logarithmic) {
   return d < 0 ? std::clamp(0.5 * (l - r) / d, -0.5, 0.5) : 0.0;
 }
 
+// Divides a complex spectrum (two channels) element by element by a real one.
+void divideByReal(cv::Mat &spectrum, const cv::Mat &denominator) {
+  std::vector<cv::Mat> parts;
+  cv::split(spectrum, parts);
+  cv::divide(parts[0], denominator, parts[0]);
+  cv::divide(parts[1], denominator, parts[1]);
+  cv::merge(parts, spectrum);
+}
+
 // Circular Gaussian label peaked at index 0 (zero shift), so no shift of the response is needed in training.
 cv::Mat circularGaussian(cv::Size size, double sigma) {
   cv::Mat label(size, CV_32F);
@@ -99,12 +108,7 @@ void CorrelationFilter::respond(const std::vector<cv::Mat> &channels, cv::Mat &r
     cv::mulSpectrums(spectra_[c], numerator_[c], product, 0, false);
     sum += product;
   }
-  std::vector<cv::Mat> parts;
-  cv::split(sum, parts);
-  cv::Mat denominator = denominator_ + lambda_;
-  cv::divide(parts[0], denominator, parts[0]);
-  cv::divide(parts[1], denominator, parts[1]);
-  cv::merge(parts, sum);
+  divideByReal(sum, denominator_ + lambda_);
   cv::Mat circular;
   cv::dft(sum, circular, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);
   centre(circular, response);
@@ -171,12 +175,7 @@ double ScaleFilter::estimate(const cv::Mat &samples) {
   cv::Mat product, sum;
   cv::mulSpectrums(lastSpectrum_, numerator_, product, cv::DFT_ROWS, false);
   cv::reduce(product, sum, 0, cv::REDUCE_SUM);
-  std::vector<cv::Mat> parts;
-  cv::split(sum, parts);
-  cv::Mat denominator = denominator_ + lambda_;
-  cv::divide(parts[0], denominator, parts[0]);
-  cv::divide(parts[1], denominator, parts[1]);
-  cv::merge(parts, sum);
+  divideByReal(sum, denominator_ + lambda_);
   cv::Mat circular;
   cv::dft(sum, circular, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT | cv::DFT_ROWS);
   const int n = circular.cols;

@@ -66,6 +66,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "metrics.hpp"
+#include "sequences.hpp"
 #include "scene.hpp"
 
 namespace fs = std::filesystem;
@@ -109,15 +110,6 @@ struct Options {
   std::string commandLine;
 };
 
-struct Sequence {
-  std::string name;
-  fs::path dir;
-  FramePattern pattern;
-  std::vector<GroundTruthBox> groundTruth;
-  cv::Size frameSize;
-  cv::Rect initBox;
-};
-
 // What one pipeline run produced.
 struct RunResult {
   std::string error;                             // empty when the run reached EOS
@@ -155,14 +147,6 @@ std::string fpsText(double fps) {
   return fps >= 100 ? format("%.0f", fps) : format("%.1f", fps);
 }
 
-std::string readFile(const fs::path &path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read " + path.string());
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // A file-name-safe form of a tracker fragment.
 std::string slug(const std::string &text) {
   std::string out;
@@ -196,64 +180,6 @@ class Progress {
  private:
   bool live_;
 };
-
-// ---------------------------------------------------------------------------------------------------------
-// Sequences
-
-Sequence loadSequence(const fs::path &dir, double gtOrigin) {
-  Sequence sequence;
-  sequence.dir = dir;
-  sequence.name = dir.filename().empty() ? dir.parent_path().filename().string() : dir.filename().string();
-
-  std::vector<std::string> names;
-  for (const auto &entry : fs::directory_iterator(dir / "img"))
-    if (entry.is_regular_file()) names.push_back(entry.path().filename().string());
-  std::string error;
-  if (!detectFramePattern(names, sequence.pattern, &error))
-    throw std::runtime_error(dir.string() + "/img: " + error);
-
-  fs::path gtPath = dir / "groundtruth.txt";
-  if (!fs::exists(gtPath)) gtPath = dir / "groundtruth_rect.txt";  // the name in OTB's own downloads
-  if (!parseGroundTruth(readFile(gtPath), gtOrigin, sequence.groundTruth, &error))
-    throw std::runtime_error(gtPath.string() + ": " + error);
-  if (sequence.groundTruth.empty()) throw std::runtime_error(gtPath.string() + ": no boxes");
-  if (!sequence.groundTruth[0])
-    throw std::runtime_error(gtPath.string() + ": frame 1 has no box to start from");
-
-  const fs::path first =
-      dir / "img" / format(sequence.pattern.printfPattern().c_str(), sequence.pattern.startIndex);
-  const cv::Mat image = cv::imread(first.string(), cv::IMREAD_COLOR);
-  if (image.empty()) throw std::runtime_error("cannot decode " + first.string());
-  sequence.frameSize = image.size();
-
-  const cv::Rect2d &box = *sequence.groundTruth[0];
-  const cv::Rect rounded(cvRound(box.x), cvRound(box.y), cvRound(box.width), cvRound(box.height));
-  sequence.initBox = rounded & cv::Rect(cv::Point(0, 0), sequence.frameSize);
-  if (sequence.initBox.empty())
-    throw std::runtime_error(gtPath.string() + ": frame 1's box is outside the frame");
-  return sequence;
-}
-
-// Sequence folders, or folders of sequence folders (sorted by name).
-std::vector<Sequence> findSequences(const std::vector<std::string> &inputs, double gtOrigin) {
-  std::vector<Sequence> sequences;
-  for (const std::string &input : inputs) {
-    const fs::path path(input);
-    if (fs::is_directory(path / "img")) {
-      sequences.push_back(loadSequence(path, gtOrigin));
-      continue;
-    }
-    if (!fs::is_directory(path)) throw std::runtime_error(input + ": not a directory");
-    std::vector<fs::path> children;
-    for (const auto &entry : fs::directory_iterator(path))
-      if (entry.is_directory() && fs::is_directory(entry.path() / "img")) children.push_back(entry.path());
-    if (children.empty())
-      throw std::runtime_error(input + ": neither a sequence (img/) nor a folder of sequences");
-    std::sort(children.begin(), children.end());
-    for (const fs::path &child : children) sequences.push_back(loadSequence(child, gtOrigin));
-  }
-  return sequences;
-}
 
 // ---------------------------------------------------------------------------------------------------------
 // Pipelines

@@ -61,6 +61,7 @@
 #include "colortrack/image_source.hpp"
 #include "colortrack/tracker.hpp"
 #include "metrics.hpp"
+#include "sequences.hpp"
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
@@ -107,14 +108,6 @@ struct Options {
   std::vector<std::string> inputs;
 };
 
-struct Sequence {
-  std::string name;
-  fs::path dir;
-  FramePattern pattern;
-  std::vector<GroundTruthBox> groundTruth;
-  const char *half = "-";  // "tune", "confirm" or "-"
-};
-
 // What one sequence produced.
 struct Result {
   bool ok = false;
@@ -137,14 +130,6 @@ std::string format(const char *fmt, ...) {
   std::vsnprintf(buffer, sizeof buffer, fmt, args);
   va_end(args);
   return buffer;
-}
-
-std::string readFile(const fs::path &path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read " + path.string());
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 bool contains(const std::vector<std::string> &list, const std::string &name) {
@@ -268,54 +253,9 @@ Options parseOptions(int argc, char **argv) {
   return options;
 }
 
-// ---------------------------------------------------------------------------------------------------------
-// Sequences (the layout and the checks of colortrack-eval's loader; frames are decoded later, by the workers)
-
-Sequence loadSequence(const fs::path &dir) {
-  Sequence sequence;
-  sequence.dir = dir;
-  sequence.name = dir.filename().empty() ? dir.parent_path().filename().string() : dir.filename().string();
-  if (contains(kTuneSplit, sequence.name))
-    sequence.half = "tune";
-  else if (contains(kConfirmSplit, sequence.name))
-    sequence.half = "confirm";
-
-  std::vector<std::string> names;
-  for (const auto &entry : fs::directory_iterator(dir / "img"))
-    if (entry.is_regular_file()) names.push_back(entry.path().filename().string());
-  std::string error;
-  if (!detectFramePattern(names, sequence.pattern, &error))
-    throw std::runtime_error(dir.string() + "/img: " + error);
-
-  fs::path gtPath = dir / "groundtruth.txt";
-  if (!fs::exists(gtPath)) gtPath = dir / "groundtruth_rect.txt";  // the name in OTB's own downloads
-  if (!parseGroundTruth(readFile(gtPath), kGtOrigin, sequence.groundTruth, &error))
-    throw std::runtime_error(gtPath.string() + ": " + error);
-  if (sequence.groundTruth.empty()) throw std::runtime_error(gtPath.string() + ": no boxes");
-  if (!sequence.groundTruth[0])
-    throw std::runtime_error(gtPath.string() + ": frame 1 has no box to start from");
-  return sequence;
-}
-
-// Sequence folders, or folders of sequence folders (sorted by name).
-std::vector<Sequence> findSequences(const std::vector<std::string> &inputs) {
-  std::vector<Sequence> sequences;
-  for (const std::string &input : inputs) {
-    const fs::path path(input);
-    if (fs::is_directory(path / "img")) {
-      sequences.push_back(loadSequence(path));
-      continue;
-    }
-    if (!fs::is_directory(path)) throw std::runtime_error(input + ": not a directory");
-    std::vector<fs::path> children;
-    for (const auto &entry : fs::directory_iterator(path))
-      if (entry.is_directory() && fs::is_directory(entry.path() / "img")) children.push_back(entry.path());
-    if (children.empty())
-      throw std::runtime_error(input + ": neither a sequence (img/) nor a folder of sequences");
-    std::sort(children.begin(), children.end());
-    for (const fs::path &child : children) sequences.push_back(loadSequence(child));
-  }
-  return sequences;
+// "tune", "confirm" or "-": which half of the shared sequences a sequence belongs to.
+const char *halfOf(const std::string &name) {
+  return contains(kTuneSplit, name) ? "tune" : contains(kConfirmSplit, name) ? "confirm" : "-";
 }
 
 bool selected(const Sequence &sequence, Split split) {
@@ -334,8 +274,7 @@ bool selected(const Sequence &sequence, Split split) {
 // Tracking
 
 cv::Mat readFrame(const Sequence &sequence, int index) {
-  const fs::path path = sequence.dir / "img" /
-                        format(sequence.pattern.printfPattern().c_str(), sequence.pattern.startIndex + index);
+  const fs::path path = framePath(sequence, index);
   cv::Mat image = cv::imread(path.string(), cv::IMREAD_COLOR);
   if (image.empty()) throw std::runtime_error("cannot decode " + path.string());
   return image;
@@ -388,12 +327,8 @@ Result runSequence(const Sequence &sequence, const Options &options) {
       const cv::Mat image = readFrame(sequence, i);
       const MatImageSource source(image);
       if (i == 0) {
-        const cv::Rect2d &box = *sequence.groundTruth[0];
-        const cv::Rect rounded(cvRound(box.x), cvRound(box.y), cvRound(box.width), cvRound(box.height));
-        const cv::Rect initBox = rounded & cv::Rect(cv::Point(0, 0), image.size());
-        if (initBox.empty()) throw std::runtime_error("frame 1's box is outside the frame");
-        tracker.setTemplateFromBox(source, initBox);
-        boxes.emplace_back(cv::Rect2d(initBox));  // frame 1's result is the init box (OTB)
+        tracker.setTemplateFromBox(source, sequence.initBox);
+        boxes.emplace_back(cv::Rect2d(sequence.initBox));  // frame 1's result is the init box (OTB)
         states.emplace_back("init,0");
         continue;
       }
@@ -451,7 +386,7 @@ double meanAuc(const std::vector<Sequence> &sequences, const std::vector<Result>
                int *count) {
   std::vector<SequenceScore> scores;
   for (std::size_t i = 0; i < sequences.size(); ++i)
-    if (results[i].ok && (!half || std::string(sequences[i].half) == half))
+    if (results[i].ok && (!half || std::string(halfOf(sequences[i].name)) == half))
       scores.push_back(results[i].score);
   *count = static_cast<int>(scores.size());
   return scores.empty() ? std::numeric_limits<double>::quiet_NaN() : averageScores(scores).auc;
@@ -462,7 +397,7 @@ int run(int argc, char **argv) {
   cv::setNumThreads(1);
 
   std::vector<Sequence> sequences;
-  for (Sequence &sequence : findSequences(options.inputs))
+  for (Sequence &sequence : findSequences(options.inputs, kGtOrigin))
     if (selected(sequence, options.split)) sequences.push_back(std::move(sequence));
   if (sequences.empty()) throw std::runtime_error("no sequence of the chosen split among the inputs");
   if (!options.framesOut.empty()) fs::create_directories(options.framesOut);
@@ -479,10 +414,10 @@ int run(int argc, char **argv) {
     const Result &r = results[i];
     if (!r.ok) {
       failed = true;
-      std::printf("%-14s %-7s FAILED: %s\n", s.name.c_str(), s.half, r.error.c_str());
+      std::printf("%-14s %-7s FAILED: %s\n", s.name.c_str(), halfOf(s.name), r.error.c_str());
       continue;
     }
-    std::printf("%-14s %-7s %6d %6.3f %6.3f %8.2f %8.2f %5d%s\n", s.name.c_str(), s.half, r.frames,
+    std::printf("%-14s %-7s %6d %6.3f %6.3f %8.2f %8.2f %5d%s\n", s.name.c_str(), halfOf(s.name), r.frames,
                 r.score.auc, r.score.precisionAt20, r.medianMs, r.maxMs, r.lostFrames,
                 r.warning.empty() ? "" : ("  (" + r.warning + ")").c_str());
   }

@@ -1,0 +1,33 @@
+// OTB-layout sequence folders (img/<n>.jpg + groundtruth.txt), as both evaluation tools read them.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "metrics.hpp"
+
+namespace colortrack::eval {
+
+struct Sequence {
+  std::string name;
+  std::filesystem::path dir;
+  FramePattern pattern;
+  std::vector<GroundTruthBox> groundTruth;
+  cv::Size frameSize;  // of the first frame
+  cv::Rect initBox;    // frame 1's box rounded to whole pixels and clipped to the frame (the OTB start)
+};
+
+// Reads one sequence folder; `gtOrigin` is subtracted from ground-truth x and y (1: OTB's 1-based boxes).
+// Throws std::runtime_error naming the file and the problem.
+Sequence loadSequence(const std::filesystem::path &dir, double gtOrigin);
+
+// Sequence folders, or folders of sequence folders (sorted by name).
+std::vector<Sequence> findSequences(const std::vector<std::string> &inputs, double gtOrigin);
+
+// The path of frame `index` (0 = the first) of a sequence.
+std::filesystem::path framePath(const Sequence &sequence, int index);
+
+}  // namespace colortrack::eval
