@@ -24,7 +24,8 @@
  * READY, a last one when the port is closed (READY to NULL), when no confirmed target was seen for
  * #GstRobotCtl:lost-timeout ms, when upstream delivers no buffer for that long, and when the element is
  * disposed. A port that fails while running (a USB adapter unplugged) posts a warning and is reopened with
- * back-off; the first command after reconnecting is stop.
+ * back-off; the first command after reconnecting is stop. A reopen never creates a file: it waits, with a
+ * warning, for the same kind of file (device, FIFO or regular file) to be back at #GstRobotCtl:location.
  *
  * With #GstRobotCtl:post-messages, every command sent is also posted as an element message "robotctl" with
  * command (string), left and right (int, as sent), linear and angular (double), target-visible (boolean),
@@ -177,8 +178,24 @@ class FilePort : public Port {
     struct stat st;
     const bool exists = stat(path_.c_str(), &st) == 0;
     int flags = O_WRONLY | O_NOCTTY | O_NONBLOCK | O_CLOEXEC;
-    // A new or regular file starts empty the first time; reopened after an error, it is appended to.
-    if (!exists || S_ISREG(st.st_mode)) flags |= O_CREAT | (openedBefore_ ? O_APPEND : O_TRUNC);
+    if (!openedBefore_) {
+      // Only the first open creates, and only a regular file (the user named a file to write to); it starts
+      // empty.
+      if (!exists || S_ISREG(st.st_mode)) flags |= O_CREAT | O_TRUNC;
+    } else {
+      // A reopen waits for the kind of file it lost. An unplugged adapter's path (a udev symlink) or a FIFO
+      // its reader removed must never become a regular file that swallows the robot's commands.
+      if (!exists) {
+        why = "it is gone; waiting for the " + kindName(kind_) + " to come back";
+        return false;
+      }
+      if ((st.st_mode & S_IFMT) != kind_) {
+        why = "it is now " + kindName(st.st_mode & S_IFMT) + ", not the " + kindName(kind_) +
+              " it was; waiting for that to come back";
+        return false;
+      }
+      if (S_ISREG(st.st_mode)) flags |= O_APPEND;  // a regular file reopened is appended to
+    }
     fd_ = ::open(path_.c_str(), flags, 0644);
     if (fd_ < 0) {
       if (errno == ENXIO) {
@@ -187,6 +204,19 @@ class FilePort : public Port {
       }
       return fail(why);
     }
+    struct stat opened;
+    if (fstat(fd_, &opened) != 0) {
+      fail(why);
+      close();
+      return false;
+    }
+    // Checked again on the descriptor: the path may have changed between stat() and open().
+    if (openedBefore_ && (opened.st_mode & S_IFMT) != kind_) {
+      why = "it is now " + kindName(opened.st_mode & S_IFMT) + ", not the " + kindName(kind_) + " it was";
+      close();
+      return false;
+    }
+    kind_ = opened.st_mode & S_IFMT;
     openedBefore_ = true;
     // A terminal (a pty) would turn "\n" into "\r\n" and echo: send the bytes as they are.
     struct termios tio;
@@ -249,6 +279,26 @@ class FilePort : public Port {
   std::string path_;
   int fd_ = -1;
   bool openedBefore_ = false;
+  mode_t kind_ = 0;  // S_IFMT bits of what the first open found (a reopen needs the same kind)
+
+  static std::string kindName(mode_t kind) {
+    switch (kind) {
+      case S_IFREG:
+        return "regular file";
+      case S_IFCHR:
+        return "character device";
+      case S_IFIFO:
+        return "FIFO";
+      case S_IFSOCK:
+        return "socket";
+      case S_IFBLK:
+        return "block device";
+      case S_IFDIR:
+        return "directory";
+      default:
+        return "file";
+    }
+  }
 };
 
 struct SerialConfig {
@@ -495,6 +545,12 @@ class CommandWriter {
       if (!port_->open(why)) {
         retryDelay_ = std::min(retryDelay_ * 2, std::chrono::duration_cast<Clock::duration>(kLongestRetry));
         retryAt_ = Clock::now() + retryDelay_;
+        // Said once per outage (and again if the reason changes), not at every attempt.
+        if (why != waitingFor_)
+          GST_ELEMENT_WARNING(element_, RESOURCE, OPEN_WRITE,
+                              ("Cannot reopen %s: %s. Retrying.", port_->describe().c_str(), why.c_str()),
+                              (nullptr));
+        waitingFor_ = why;
         GST_DEBUG_OBJECT(element_, "could not reopen %s: %s (next try in %lld ms)", port_->describe().c_str(),
                          why.c_str(),
                          static_cast<long long>(
@@ -503,6 +559,7 @@ class CommandWriter {
       }
       GST_ELEMENT_INFO(element_, RESOURCE, WRITE, ("Reconnected to %s.", port_->describe().c_str()),
                        (nullptr));
+      waitingFor_.clear();
       // Whatever the robot did while it was cut off, it hears stop first.
       Command stop;
       stop.reason = "reconnected";
@@ -594,6 +651,7 @@ class CommandWriter {
   Command unsentCommand_;                // the command that frame carries
   Clock::duration retryDelay_ = kFirstRetry;
   Clock::time_point retryAt_;
+  std::string waitingFor_;  // why the last reopen failed ("" while connected)
   std::thread thread_;
 
   std::mutex mutex_;  // guards what follows; never held during I/O

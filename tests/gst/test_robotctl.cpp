@@ -3,6 +3,7 @@
 // cvtracker), bus messages and errors for bad settings.
 // C++ headers first: gstcheck.h defines macros (fail, ...) that clash with names in the standard library.
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <poll.h>
 #include <unistd.h>
 
@@ -390,6 +391,108 @@ GST_START_TEST(test_unplugged_port_warns_reconnects_and_stops_first) {
 }
 GST_END_TEST;
 
+// Issue 10's safety bug: udev removes /dev/serial/by-id/... links when the adapter is unplugged, and a FIFO's
+// reader may remove it. A reopen must never create a regular file there (the commands would go into it and
+// the robot would never hear from robotctl again); it waits, warns, and the robot hears stop first when the
+// device or FIFO comes back.
+GST_START_TEST(test_reopen_never_creates_a_file_where_a_device_or_fifo_was) {
+  gchar *dir = g_dir_make_tmp("robotctl-XXXXXX", nullptr);
+  const std::string link = std::string(dir) + "/robot";
+  auto waitForWarning = [](GstBus *bus, const char *text) {
+    const auto end = Clock::now() + std::chrono::seconds(4);
+    while (Clock::now() < end) {
+      GstMessage *m = gst_bus_timed_pop_filtered(bus, 100 * GST_MSECOND, GST_MESSAGE_WARNING);
+      if (!m) continue;
+      GError *error = nullptr;
+      gst_message_parse_warning(m, &error, nullptr);
+      const bool found = std::string(error->message).find(text) != std::string::npos;
+      if (found) std::printf("warning: \"%s\"\n", error->message);
+      g_error_free(error);
+      gst_message_unref(m);
+      if (found) return true;
+    }
+    return false;
+  };
+  auto isNothingThere = [&] {
+    struct stat st;
+    return lstat(link.c_str(), &st) != 0;
+  };
+
+  // A pty behind a symlink: unplugging removes both, as udev does.
+  {
+    auto first = std::make_unique<Pty>();
+    fail_unless(symlink(first->slave.c_str(), link.c_str()) == 0);
+    Ctl ctl("rate=50 lost-timeout=10000", link);
+    ctl.push({roi(kRight)});
+    waitForCommandOf(ctl.bus, ptsOf(0));
+    fail_unless(!first->drain().empty());
+    first.reset();
+    fail_unless(g_unlink(link.c_str()) == 0);
+    fail_unless(waitForWarning(ctl.bus, "Cannot reopen"), "no warning while waiting for the device");
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));  // several reopen attempts
+    fail_unless(isNothingThere(), "a reopen created a file where the device link was");
+
+    Pty second;
+    fail_unless(symlink(second.slave.c_str(), link.c_str()) == 0);
+    Bytes got;
+    const auto plugged = Clock::now();
+    while (got.empty() && Clock::now() - plugged < std::chrono::seconds(4)) got = second.readFor(10);
+    fail_if(got.empty(), "no reconnection to the replugged device");
+    fail_unless_equals_int(got[0], 'S');
+    ctl.push({roi(kLeft)});
+    waitForCommandOf(ctl.bus, ptsOf(1));
+    const Bytes after = second.drain();
+    fail_unless(!after.empty() && after.back() == 'L', "commands did not resume");
+  }
+  g_unlink(link.c_str());
+
+  // A FIFO whose reader closes it and removes it, then makes a new one.
+  {
+    fail_unless(mkfifo(link.c_str(), 0600) == 0);
+    int reader = open(link.c_str(), O_RDONLY | O_NONBLOCK);
+    fail_unless(reader >= 0);
+    auto readAll = [](int fd) {
+      Bytes bytes;
+      std::uint8_t chunk[4096];
+      ssize_t n;
+      while ((n = read(fd, chunk, sizeof chunk)) > 0) bytes.insert(bytes.end(), chunk, chunk + n);
+      return bytes;
+    };
+    Ctl ctl("rate=50 lost-timeout=10000", link);
+    ctl.push({roi(kRight)});
+    waitForCommandOf(ctl.bus, ptsOf(0));
+    fail_unless(!readAll(reader).empty());
+    close(reader);
+    fail_unless(g_unlink(link.c_str()) == 0);
+    ctl.push({roi(kRight)});  // the next write finds no reader
+    fail_unless(waitForWarning(ctl.bus, "Cannot reopen"), "no warning while waiting for the FIFO");
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    fail_unless(isNothingThere(), "a reopen created a file where the FIFO was");
+
+    fail_unless(mkfifo(link.c_str(), 0600) == 0);
+    reader = open(link.c_str(), O_RDONLY | O_NONBLOCK);
+    fail_unless(reader >= 0);
+    Bytes got;
+    const auto back = Clock::now();
+    while (got.empty() && Clock::now() - back < std::chrono::seconds(4)) {
+      got = readAll(reader);
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    fail_if(got.empty(), "no reconnection to the new FIFO");
+    fail_unless_equals_int(got[0], 'S');
+    ctl.push({roi(kLeft)});
+    waitForCommandOf(ctl.bus, ptsOf(2));
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    const Bytes after = readAll(reader);
+    fail_unless(!after.empty() && after.back() == 'L', "commands did not resume on the FIFO");
+    close(reader);
+  }
+  g_unlink(link.c_str());
+  g_rmdir(dir);
+  g_free(dir);
+}
+GST_END_TEST;
+
 GST_START_TEST(test_slow_reader_never_blocks_streaming) {
   Ctl ctl("rate=1000 protocol=binary lost-timeout=10000");
   ctl.push({roi(kRight)});
@@ -643,6 +746,7 @@ Suite *robotctl_suite(void) {
   tcase_add_test(tc, test_lost_timeout_change_reaches_the_stall_watchdog);
   tcase_add_test(tc, test_stop_after_lost_timeout_of_stream_time);
   tcase_add_test(tc, test_unplugged_port_warns_reconnects_and_stops_first);
+  tcase_add_test(tc, test_reopen_never_creates_a_file_where_a_device_or_fifo_was);
   tcase_add_test(tc, test_slow_reader_never_blocks_streaming);
   tcase_add_test(tc, test_cut_frames_are_completed_before_the_next);
   tcase_add_test(tc, test_start_settings_warn_when_changed);
