@@ -82,7 +82,7 @@ constexpr guint kDefaultTrailLength = 30;
 constexpr gboolean kDefaultPostMessages = FALSE;
 constexpr gboolean kDefaultClickToTrack = TRUE;
 constexpr int kDefaultClickBoxSize = 64;
-constexpr int kMinClickBoxSize = 8;  // smaller boxes hold too few pixels for a histogram
+constexpr int kMinClickBoxSize = colortrack::kMinTemplateSide;
 constexpr int kLeftButton = 1, kRightButton = 3;
 // The state reported in messages after a right click, until a new target is given.
 constexpr const char *kIdleState = "idle";
@@ -561,7 +561,14 @@ static void gst_color_track_set_property(GObject *object, guint prop_id, const G
       }
       setTextProperty<cv::Rect>(
           self, "init-box", &Settings::initBox, value,
-          [](const std::string &t, std::string *e) { return colortrack::parseBox(t, e); },
+          [](const std::string &t, std::string *e) -> std::optional<cv::Rect> {
+            const std::optional<cv::Rect> box = colortrack::parseBox(t, e);
+            if (!box) return box;
+            const std::string problem = colortrack::templateSizeProblem(box->size());
+            if (problem.empty()) return box;
+            if (e) *e = problem;
+            return std::nullopt;
+          },
           [streaming](Settings &s, const cv::Rect &box) {
             s.pendingInitBox = box;
             s.initBoxSetWhileStreaming = streaming;
@@ -847,6 +854,14 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
         state = State{};
         return FALSE;
       }
+      if (const std::string problem = colortrack::templateSizeProblem(bgr.size()); !problem.empty()) {
+        GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
+                          ("Cannot use the template image '%s' (property 'template-location'): %s.",
+                           snapshot.templateLocation.c_str(), problem.c_str()),
+                          (nullptr));
+        state = State{};
+        return FALSE;
+      }
       state.tracker->setTemplate(bgr, mask);
       state.templateOrigin = "template-location '" + snapshot.templateLocation + "'";
     }
@@ -876,6 +891,16 @@ static gboolean gst_color_track_set_info(GstVideoFilter *filter, GstCaps *, GstV
                                          GstVideoInfo *) {
   GstColorTrack *self = GST_COLOR_TRACK(filter);
   if (!colortrack::isSupportedFormat(GST_VIDEO_INFO_FORMAT(in_info))) return FALSE;
+  // Two fields woven into one frame move apart with the object: the tracker would see combed edges and a
+  // doubled object. Said plainly instead of tracking badly.
+  if (GST_VIDEO_INFO_IS_INTERLACED(in_info)) {
+    GST_ELEMENT_ERROR(
+        self, STREAM, FORMAT,
+        ("Interlaced video is not supported: put a deinterlacer before colortrack, e.g. "
+         "'deinterlace ! colortrack'."),
+        ("interlace-mode %s", gst_video_interlace_mode_to_string(GST_VIDEO_INFO_INTERLACE_MODE(in_info))));
+    return FALSE;
+  }
   GST_DEBUG_OBJECT(self, "caps %dx%d %s", GST_VIDEO_INFO_WIDTH(in_info), GST_VIDEO_INFO_HEIGHT(in_info),
                    GST_VIDEO_INFO_NAME(in_info));
   // New geometry: positions and velocities no longer mean anything; the template stays.
@@ -1489,8 +1514,8 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
       gobject_class, PROP_INIT_BOX,
       g_param_spec_string(
           "init-box", "Initial box",
-          "\"x,y,w,h\" in pixels: the template is taken from this box of the next frame, where "
-          "tracking starts (mode=threshold: hsv-lower/hsv-upper are learnt from the object in it); "
+          "\"x,y,w,h\" in pixels, at least 8x8: the template is taken from this box of the next frame, "
+          "where tracking starts (mode=threshold: hsv-lower/hsv-upper are learnt from the object in it); "
           "cleared once used",
           nullptr, live));
   g_object_class_install_property(
@@ -1532,8 +1557,8 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
       gobject_class, PROP_CHANNEL_WEIGHTS,
       g_param_spec_string(
           "channel-weights", "Channel weights",
-          "Weight of each channel in the match, \"w1,w2,w3\", each 0-1 (V is weighted down for "
-          "robustness to lighting)",
+          "Weight of each channel in the match, \"w1,w2,w3\", each 0-1 and not all 0 (V is weighted "
+          "down for robustness to lighting)",
           colortrack::formatWeights(defaults.weights).c_str(), live));
   g_object_class_install_property(gobject_class, PROP_MATCH_THRESHOLD,
                                   g_param_spec_double("match-threshold", "Match threshold",

@@ -142,6 +142,7 @@ struct Settings {
   gint targetId = kDefaultTargetId;
   bool postMessages = false;
   std::string turnGainError, driveGainError;  // a negative gain that was refused (reported at start)
+  std::string roiTypeError;                   // an empty roi-type that was refused (reported at start)
   bool running = false;                       // between start() and stop()
 };
 
@@ -895,9 +896,27 @@ static void gst_robot_ctl_set_property(GObject *object, guint prop_id, const GVa
       s.failsafe.searchTurn = g_value_get_boolean(value);
       ++s.controllerGeneration;
       break;
-    case PROP_ROI_TYPE:
-      s.roiType = g_value_get_string(value) ? g_value_get_string(value) : "";
+    case PROP_ROI_TYPE: {
+      // An empty type matches no region: the robot would never see a target. Refused like a bad gain.
+      const std::string type = text();
+      if (type.empty()) {
+        const std::string why =
+            "Invalid value '' for property 'roi-type': it names the type of the regions "
+            "to follow (e.g. colortrack, object)";
+        if (!s.running) {
+          s.roiTypeError = why;
+          break;
+        }
+        const std::string kept = s.roiType;
+        GST_OBJECT_UNLOCK(self);
+        GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS, ("%s. Keeping '%s'.", why.c_str(), kept.c_str()),
+                            (nullptr));
+        return;
+      }
+      s.roiTypeError.clear();
+      s.roiType = type;
       break;
+    }
     case PROP_TARGET_ID:
       s.targetId = g_value_get_int(value);
       break;
@@ -1044,7 +1063,7 @@ static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
                       (nullptr));
     return FALSE;
   }
-  for (const std::string *error : {&s.turnGainError, &s.driveGainError}) {
+  for (const std::string *error : {&s.turnGainError, &s.driveGainError, &s.roiTypeError}) {
     if (!error->empty()) {
       GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("%s.", error->c_str()), (nullptr));
       return FALSE;
@@ -1421,8 +1440,8 @@ static void gst_robot_ctl_class_init(GstRobotCtlClass *klass) {
                               "Angular speed of the search turn (fraction of full wheel speed)", 0.0, 1.0,
                               f.searchSpeed, live));
   install(PROP_ROI_TYPE, g_param_spec_string("roi-type", "ROI type",
-                                             "Type of the region-of-interest meta to follow (\"object\" for "
-                                             "cvtracker)",
+                                             "Type of the region-of-interest meta to follow, not empty "
+                                             "(\"object\" for cvtracker)",
                                              kDefaultRoiType, live));
   install(PROP_TARGET_ID, g_param_spec_int("target-id", "Target id",
                                            "Id of the region of interest to follow; -1 = the lowest id", -1,

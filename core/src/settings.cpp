@@ -83,6 +83,11 @@ std::optional<ChannelWeights> parseWeights(const std::string &text, std::string 
   for (double w : *values)
     if (!(w >= 0.0 && w <= 1.0))  // also rejects NaN
       return fail(error, "channel weights must be in [0, 1], got " + quoted(text));
+  if ((*values)[0] == 0 && (*values)[1] == 0 && (*values)[2] == 0)
+    return fail(error,
+                "at least one channel weight must be above 0 (all zero would make every window a "
+                "perfect match), got " +
+                    quoted(text));
   ChannelWeights weights;
   weights.w = *values;
   return weights;

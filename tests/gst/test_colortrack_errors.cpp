@@ -165,6 +165,28 @@ GST_START_TEST(test_unreadable_template_file) {
 }
 GST_END_TEST;
 
+// A template image under the minimum side (8 px) is refused at start, naming the file.
+GST_START_TEST(test_tiny_template_file) {
+  const Scene scene(smallScene());
+  TempFile file("tiny.png");
+  fail_unless(cv::imwrite(file.path(), cv::Mat(1, 1, CV_8UC3, cv::Scalar(0, 0, 255))));
+  const Outcome o = run("colortrack name=ct template-location=" + file.path(), scene);
+  assertErrorNames(o, "template-location", file.path());
+  fail_unless(contains(o.errorText, "at least 8x8"), "%s", o.errorText.c_str());
+}
+GST_END_TEST;
+
+// Interlaced video is refused with a message that says what to do.
+GST_START_TEST(test_interlaced_caps_are_refused) {
+  GstHarness *h = gst_harness_new_parse("colortrack init-box=10,10,20,20");
+  gst_harness_set_src_caps_str(
+      h, "video/x-raw,format=BGR,width=160,height=120,framerate=30/1,interlace-mode=interleaved");
+  GstBuffer *buffer = gst_buffer_new_allocate(nullptr, 160 * 120 * 3, nullptr);
+  fail_if(gst_harness_push(h, buffer) == GST_FLOW_OK, "interlaced frames were processed");
+  gst_harness_teardown(h);
+}
+GST_END_TEST;
+
 GST_START_TEST(test_template_larger_than_frame) {
   const Scene scene(smallScene());  // 160x120 frames
   TempFile file("big.png");
@@ -192,10 +214,21 @@ GST_START_TEST(test_malformed_strings) {
     const char *property, *value;
   };
   const Case cases[] = {
-      {"bins", "16,16"},          {"bins", "a,b,c"},          {"bins", "0,16,8"},
-      {"bins", "16,16,300"},      {"channel-weights", "1,1"}, {"channel-weights", "2,1,1"},
-      {"channel-weights", "x"},   {"init-box", "1,2,3"},      {"init-box", "10,10,0,20"},
+      {"bins", "16,16"},
+      {"bins", "a,b,c"},
+      {"bins", "0,16,8"},
+      {"bins", "16,16,300"},
+      {"channel-weights", "1,1"},
+      {"channel-weights", "2,1,1"},
+      {"channel-weights", "x"},
+      {"init-box", "1,2,3"},
+      {"init-box", "10,10,0,20"},
       {"init-box", "-5,0,10,10"},
+      // Accepted silently before (issue 10): all weights zero makes every window a perfect match; a box under
+      // the minimum template side never tracks.
+      {"channel-weights", "0,0,0"},
+      {"init-box", "10,10,1,1"},
+      {"init-box", "0,0,7,20"},
   };
   for (const Case &c : cases) {
     // Quoted: some values hold characters the launch syntax would otherwise split on.
@@ -322,6 +355,8 @@ static Suite *colortrack_errors_suite(void) {
   tcase_add_test(tc, test_missing_template_file);
   tcase_add_test(tc, test_unreadable_template_file);
   tcase_add_test(tc, test_template_larger_than_frame);
+  tcase_add_test(tc, test_tiny_template_file);
+  tcase_add_test(tc, test_interlaced_caps_are_refused);
   tcase_add_test(tc, test_init_box_outside_or_larger_than_frame);
   tcase_add_test(tc, test_malformed_strings);
   tcase_add_test(tc, test_bad_value_while_playing_keeps_old);

@@ -171,6 +171,13 @@ std::string lastLine(const Bytes &b) {
                   end - (start == std::string::npos ? 0 : start + 1) + 1);
 }
 
+// The macro keeps a pointer past the statement that made it: the text must outlive it (a temporary's
+// c_str() would dangle, as ASan reports).
+void expectLastLine(const Bytes &b, const char *expected) {
+  const std::string line = lastLine(b);
+  fail_unless_equals_string(line.c_str(), expected);
+}
+
 std::uint8_t crc8(const std::uint8_t *data, std::size_t size) {
   std::uint8_t crc = 0;
   for (std::size_t i = 0; i < size; ++i) {
@@ -202,9 +209,9 @@ GST_START_TEST(test_text_exact_line) {
   // Proportional, no slew limit: angular -0.3 (limited), linear 1.5 * (1/3 - 0.1) = 0.35;
   // left 0.65 * 255 = 165.75, right 0.05 * 255 = 12.75.
   Ctl ctl("rate=100 protocol=text controller=proportional max-linear-accel=0 max-angular-accel=0");
-  fail_unless_equals_string(lastLine(ctl.decide({})).c_str(), "L=0 R=0\n");
-  fail_unless_equals_string(lastLine(ctl.decide({roi(kRight)})).c_str(), "L=166 R=13\n");
-  fail_unless_equals_string(lastLine(ctl.decide({roi(kCentreRight)})).c_str(), "L=0 R=0\n");
+  expectLastLine(ctl.decide({}), "L=0 R=0\n");
+  expectLastLine(ctl.decide({roi(kRight)}), "L=166 R=13\n");
+  expectLastLine(ctl.decide({roi(kCentreRight)}), "L=0 R=0\n");
 }
 GST_END_TEST;
 
@@ -727,6 +734,8 @@ GST_START_TEST(test_bad_settings_give_clear_errors) {
   fail_unless(startError(src + "robotctl location=/dev/null zone-chars=FBL").find("zone-chars") !=
               std::string::npos);
   fail_unless(startError(src + "robotctl").find("'location'") != std::string::npos);
+  fail_unless(startError(src + "robotctl location=/dev/null roi-type=\"\"").find("roi-type") !=
+              std::string::npos);
   fail_unless(startError(src + "robotctl location=/nonexistent-dir/x").find("/nonexistent-dir/x") !=
               std::string::npos);
 }

@@ -14,7 +14,7 @@ namespace colortrack {
 
 // "16,16,8": three integers in 1..256.
 std::optional<BinLayout> parseBins(const std::string &text, std::string *error = nullptr);
-// "1,1,0.3": three numbers in [0,1].
+// "1,1,0.3": three numbers in [0,1], not all zero.
 std::optional<ChannelWeights> parseWeights(const std::string &text, std::string *error = nullptr);
 // "x,y,w,h": integers, x,y >= 0, w,h > 0.
 std::optional<cv::Rect> parseBox(const std::string &text, std::string *error = nullptr);

@@ -69,6 +69,11 @@ struct TrackOutput {
   cv::Rect searchRegion;  // where this frame was searched (empty if nothing was searched)
 };
 
+// The smallest template side: smaller boxes hold too few pixels for a histogram or a shape filter.
+constexpr int kMinTemplateSide = 8;
+// Why a template (or init box) of `size` cannot be used, or "" when it can.
+std::string templateSizeProblem(cv::Size size);
+
 // Thrown for unusable input (a template larger than the frame, an empty box ...). The text names the problem.
 class TrackerError : public std::runtime_error {
  public:
