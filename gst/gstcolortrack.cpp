@@ -260,7 +260,7 @@ GType gst_color_track_method_get_type(void) {
       {GST_COLOR_TRACK_METHOD_INDEXING, "Modified colour indexing: template histograms by intersection",
        "indexing"},
       {GST_COLOR_TRACK_METHOD_DISCRIMINATIVE,
-       "Object-versus-surroundings colour likelihood with motion prior (more accurate on real video)",
+       "Colour only: object-versus-surroundings colour likelihood with a motion prior (fastest)",
        "discriminative"},
       {GST_COLOR_TRACK_METHOD_FUSED,
        "Shape (correlation filter) and colour fused, with confidence and re-detection (most accurate)",
