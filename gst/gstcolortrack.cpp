@@ -401,6 +401,11 @@ void setTextProperty(GstColorTrack *self, const char *property, TextSetting Sett
 // Reads a template file; on failure fills `why` and reports whether the file exists at all.
 bool loadTemplateFile(const std::string &path, cv::Mat &bgr, cv::Mat &mask, std::string &why, bool &missing) {
   missing = !g_file_test(path.c_str(), G_FILE_TEST_EXISTS);
+  // Said here, before OpenCV is asked: it would log its own "can't open/read file" warning first.
+  if (missing) {
+    why = "no such file";
+    return false;
+  }
   try {
     colortrack::loadTemplate(path, bgr, mask);
     return true;
