@@ -84,11 +84,34 @@ void CorrelationFilter::transform(const std::vector<cv::Mat> &channels, std::vec
 
 void CorrelationFilter::train(const std::vector<cv::Mat> &channels, double rate) {
   transform(channels, spectra_);
+  trainOnSpectra(labelSpectrum_, rate);
+}
+
+void CorrelationFilter::trainOnLastResponse(cv::Point2d offset, double rate) {
+  CV_Assert(!spectra_.empty());
+  // Moving the label by `offset` multiplies its spectrum by exp(-2 pi i (u dx / W + v dy / H)), with signed
+  // frequencies so that a fraction of a cell moves it smoothly.
+  const int w = labelSpectrum_.cols, h = labelSpectrum_.rows;
+  shiftedLabel_.create(labelSpectrum_.size(), CV_32FC2);
+  for (int v = 0; v < h; ++v) {
+    const double fy = (v <= h / 2 ? v : v - h) * offset.y / h;
+    const cv::Vec2f *in = labelSpectrum_.ptr<cv::Vec2f>(v);
+    cv::Vec2f *out = shiftedLabel_.ptr<cv::Vec2f>(v);
+    for (int u = 0; u < w; ++u) {
+      const double phase = -2 * CV_PI * ((u <= w / 2 ? u : u - w) * offset.x / w + fy);
+      const float c = static_cast<float>(std::cos(phase)), s = static_cast<float>(std::sin(phase));
+      out[u] = cv::Vec2f(in[u][0] * c - in[u][1] * s, in[u][0] * s + in[u][1] * c);
+    }
+  }
+  trainOnSpectra(shiftedLabel_, rate);
+}
+
+void CorrelationFilter::trainOnSpectra(const cv::Mat &label, double rate) {
   if (numerator_.size() != spectra_.size()) rate = 1;
   numerator_.resize(spectra_.size());
   cv::Mat energy = cv::Mat::zeros(window_.size(), CV_32FC2), product;
   for (size_t c = 0; c < spectra_.size(); ++c) {
-    cv::mulSpectrums(labelSpectrum_, spectra_[c], product, 0, true);
+    cv::mulSpectrums(label, spectra_[c], product, 0, true);
     blend(numerator_[c], product, rate);
     cv::mulSpectrums(spectra_[c], spectra_[c], product, 0, true);
     energy += product;
@@ -134,11 +157,17 @@ void ScaleFilter::init(int scales, double step, double sigma, double lambda) {
   denominator_.release();
 }
 
-// Features x scales complex spectrum of samples (scales x features), windowed over the scales.
+// Features x scales complex spectrum of samples (scales x features), windowed over the scales. The loops
+// below over complex values replace per-row mulSpectrums calls and temporaries: on 33 scales x ~450 features
+// they halved the scale filter's time.
 void ScaleFilter::transform(const cv::Mat &samples, cv::Mat &spectrum) {
-  CV_Assert(samples.rows == static_cast<int>(factors_.size()));
-  cv::multiply(samples, cv::repeat(window_, 1, samples.cols), windowed_);
-  cv::transpose(windowed_, transposed_);
+  CV_Assert(samples.rows == static_cast<int>(factors_.size()) && samples.type() == CV_32FC1);
+  transposed_.create(samples.cols, samples.rows, CV_32F);
+  for (int i = 0; i < samples.rows; ++i) {
+    const float w = window_.at<float>(i, 0);
+    const float *in = samples.ptr<float>(i);
+    for (int f = 0; f < samples.cols; ++f) transposed_.at<float>(f, i) = in[f] * w;
+  }
   cv::dft(transposed_, spectrum, cv::DFT_ROWS | cv::DFT_COMPLEX_OUTPUT);
 }
 
@@ -154,31 +183,48 @@ void ScaleFilter::trainOnLastEstimate(double rate) {
 }
 
 void ScaleFilter::trainOnSpectrum(const cv::Mat &spectrum, double rate) {
-  cv::Mat numerator(spectrum.size(), CV_32FC2), energy;
-  for (int r = 0; r < spectrum.rows; ++r) {
-    cv::Mat row = numerator.row(r);
-    cv::mulSpectrums(labelSpectrum_, spectrum.row(r), row, cv::DFT_ROWS, true);
+  if (numerator_.empty() || numerator_.size() != spectrum.size()) {
+    rate = 1;
+    numerator_ = cv::Mat::zeros(spectrum.size(), CV_32FC2);  // zero, so that "keep" times it stays zero
   }
-  cv::Mat power;
-  cv::mulSpectrums(spectrum, spectrum, power, cv::DFT_ROWS, true);
-  cv::reduce(power, energy, 0, cv::REDUCE_SUM);
-  std::vector<cv::Mat> parts;
-  cv::split(energy, parts);
-  if (numerator_.empty() || numerator_.size() != numerator.size()) rate = 1;
-  blend(numerator_, numerator, rate);
-  blend(denominator_, parts[0], rate);
+  const int n = spectrum.cols;
+  const float keep = static_cast<float>(1 - rate), take = static_cast<float>(rate);
+  std::vector<float> energy(n, 0.0f);
+  const cv::Vec2f *label = labelSpectrum_.ptr<cv::Vec2f>(0);
+  for (int r = 0; r < spectrum.rows; ++r) {
+    const cv::Vec2f *x = spectrum.ptr<cv::Vec2f>(r);
+    cv::Vec2f *num = numerator_.ptr<cv::Vec2f>(r);
+    for (int k = 0; k < n; ++k) {
+      // label * conj(x)
+      const float re = label[k][0] * x[k][0] + label[k][1] * x[k][1];
+      const float im = label[k][1] * x[k][0] - label[k][0] * x[k][1];
+      num[k] = cv::Vec2f(keep * num[k][0] + take * re, keep * num[k][1] + take * im);
+      energy[k] += x[k][0] * x[k][0] + x[k][1] * x[k][1];
+    }
+  }
+  if (rate >= 1) denominator_ = cv::Mat::zeros(1, n, CV_32F);
+  float *den = denominator_.ptr<float>(0);
+  for (int k = 0; k < n; ++k) den[k] = keep * den[k] + take * energy[k];
 }
 
 double ScaleFilter::estimate(const cv::Mat &samples) {
   CV_Assert(!empty());
   transform(samples, lastSpectrum_);
-  cv::Mat product, sum;
-  cv::mulSpectrums(lastSpectrum_, numerator_, product, cv::DFT_ROWS, false);
-  cv::reduce(product, sum, 0, cv::REDUCE_SUM);
-  divideByReal(sum, denominator_ + lambda_);
+  const int n = lastSpectrum_.cols;
+  cv::Mat sum = cv::Mat::zeros(1, n, CV_32FC2);
+  cv::Vec2f *total = sum.ptr<cv::Vec2f>(0);
+  for (int r = 0; r < lastSpectrum_.rows; ++r) {
+    const cv::Vec2f *z = lastSpectrum_.ptr<cv::Vec2f>(r);
+    const cv::Vec2f *num = numerator_.ptr<cv::Vec2f>(r);
+    for (int k = 0; k < n; ++k) {
+      total[k][0] += z[k][0] * num[k][0] - z[k][1] * num[k][1];
+      total[k][1] += z[k][0] * num[k][1] + z[k][1] * num[k][0];
+    }
+  }
+  const float *den = denominator_.ptr<float>(0);
+  for (int k = 0; k < n; ++k) total[k] *= 1.0f / static_cast<float>(den[k] + lambda_);
   cv::Mat circular;
   cv::dft(sum, circular, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT | cv::DFT_ROWS);
-  const int n = circular.cols;
   cv::Point peak;
   cv::minMaxLoc(circular, nullptr, nullptr, nullptr, &peak);
   double offset = 0;

@@ -134,6 +134,7 @@ FusedDetector::Estimate FusedDetector::locate(const ImageSource &frame, cv::Poin
   cv::minMaxLoc(response, nullptr, nullptr, nullptr, &peak);
   const cv::Point2d at = subCellPeak(response, peak);
   Estimate e;
+  e.window = ++locates_;
   e.centre = cv::Point2d(windowCentre.x + (at.x - response.cols / 2) * kCell / zx,
                          windowCentre.y + (at.y - response.rows / 2) * kCell / zy);
   e.size = size;
@@ -148,10 +149,20 @@ FusedDetector::Estimate FusedDetector::locate(const ImageSource &frame, cv::Poin
   return e;
 }
 
-void FusedDetector::learn(const ImageSource &frame, cv::Point2d centre, cv::Size2d size) {
-  windowFeatures(frame, centre, size);
-  translation_.train(channels_, kTranslationRate);
-  if (!scaleMeasured_) return;
+void FusedDetector::learn(const ImageSource &frame, const Estimate &e) {
+  if (e.window == locates_) {
+    // The target lies off the window's centre by what locate() found; the filter learns that offset rather
+    // than reading and transforming a second window (core harness: tune 0.608 -> 0.632, confirm 0.484 ->
+    // 0.480; about a quarter less time per frame).
+    const double zx = window_.width / windowRect_.width, zy = window_.height / windowRect_.height;
+    const cv::Point2d offset((e.centre.x - (windowRect_.x + windowRect_.width / 2)) * zx / kCell,
+                             (e.centre.y - (windowRect_.y + windowRect_.height / 2)) * zy / kCell);
+    translation_.trainOnLastResponse(offset, kTranslationRate);
+  } else {
+    windowFeatures(frame, e.centre, e.size);
+    translation_.train(channels_, kTranslationRate);
+  }
+  if (!scaleMeasured_ || e.window != locates_) return;
   scale_.trainOnLastEstimate(kScaleRate);
   scaleMeasured_ = false;
 }

@@ -506,7 +506,7 @@ struct Tracker::Impl {
         fusedCentre = e.centre;
         fusedSize = e.size;
         noteConfidence(e);
-        fused.learn(frame, e.centre, e.size);
+        fused.learn(frame, e);
         learn(frame, d.box, s);
       } else {
         kalman.holdForCoasting();

@@ -133,6 +133,44 @@ TEST(CorrelationFilter, PeaksAtTheShiftOfTheTrainingPatch) {
   EXPECT_EQ(peak, cv::Point(12 - 3, 12 + 2));
 }
 
+// Learning from the search patch with the label moved to where the target was found is the same as learning
+// from a patch centred on it: afterwards the centred patch peaks in the middle, a shifted one at its shift.
+TEST(CorrelationFilter, LearnsFromTheSearchPatchWithTheLabelMoved) {
+  const cv::Mat image = texture(cv::Size(160, 160), 7);
+  cv::Mat gray;
+  cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
+  gray.convertTo(gray, CV_32F, 1.0 / 255);
+  std::vector<cv::Mat> centred, searched, other;
+  cellFeatures(gray(cv::Rect(32, 32, 96, 96)), 4, centred);
+  cellFeatures(gray(cv::Rect(32 - 8, 32 + 4, 96, 96)), 4, searched);  // the target at (+2, -1) cells
+  cellFeatures(gray(cv::Rect(32 + 8, 32 + 12, 96, 96)), 4, other);    // the target at (-2, -3) cells
+  CorrelationFilter filter;
+  filter.init(cv::Size(24, 24), 1.0, 1e-3);
+  filter.train(centred, 1.0);
+  cv::Mat response;
+  filter.respond(searched, response);
+  cv::Point peak;
+  cv::minMaxLoc(response, nullptr, nullptr, nullptr, &peak);
+  ASSERT_EQ(peak, cv::Point(12 + 2, 12 - 1));
+  // Replace the model by what the search patch shows (rate 1), the label at the target's offset.
+  filter.trainOnLastResponse(cv::Point2d(2, -1), 1.0);
+  filter.respond(centred, response);
+  cv::minMaxLoc(response, nullptr, nullptr, nullptr, &peak);
+  EXPECT_EQ(peak, cv::Point(12, 12));
+  filter.respond(other, response);
+  cv::minMaxLoc(response, nullptr, nullptr, nullptr, &peak);
+  const cv::Point2d at = subCellPeak(response, peak);
+  EXPECT_NEAR(at.x, 12 - 2, 0.25);
+  EXPECT_NEAR(at.y, 12 - 3, 0.25);
+  // A label half a cell beyond the target teaches the filter to answer half a cell further: the fraction
+  // carries through.
+  filter.respond(searched, response);
+  filter.trainOnLastResponse(cv::Point2d(2.5, -1), 1.0);
+  filter.respond(centred, response);
+  cv::minMaxLoc(response, nullptr, nullptr, nullptr, &peak);
+  EXPECT_NEAR(subCellPeak(response, peak).x, 12 + 0.5, 0.2);
+}
+
 TEST(CorrelationFilter, SubCellPeakOfAGaussianIsExact) {
   cv::Mat response(21, 21, CV_32F);
   const cv::Point2d truth(9.3, 11.8);

@@ -24,15 +24,20 @@ class CorrelationFilter {
   // (cols/2 + dx, rows/2 + dy) is the response to the target shifted by (dx, dy) cells. About 1 at a perfect
   // match.
   void respond(const std::vector<cv::Mat> &channels, cv::Mat &response) const;
+  // Learns from the patch last given to respond(), in which the target lies `offset` cells from the centre
+  // (the desired response is moved there), so that a frame needs one feature extraction, not two.
+  void trainOnLastResponse(cv::Point2d offset, double rate);
 
  private:
   void transform(const std::vector<cv::Mat> &channels, std::vector<cv::Mat> &spectra) const;
+  void trainOnSpectra(const cv::Mat &label, double rate);
   cv::Mat window_;                  // Hann window, against the patch's wrap-around edges
   cv::Mat labelSpectrum_;           // DFT of the desired response (a Gaussian peaked at zero shift)
   std::vector<cv::Mat> numerator_;  // per channel: label * conj(feature spectrum), averaged over time
   cv::Mat denominator_;             // sum over channels of |feature spectrum|^2, averaged over time
   double lambda_ = 1e-3;
-  mutable std::vector<cv::Mat> spectra_;  // scratch
+  mutable std::vector<cv::Mat> spectra_;  // of the patch last trained on or responded to
+  cv::Mat shiftedLabel_;                  // scratch
 };
 
 // Scale filter (DSST): one feature column per candidate scale, correlated along the scale axis.
@@ -65,8 +70,8 @@ class ScaleFilter {
   cv::Mat denominator_;    // 1 x scales, real
   double lambda_ = 1e-2;
   double step_ = 1.02;
-  cv::Mat lastSpectrum_;           // of the samples last given to estimate()
-  cv::Mat windowed_, transposed_;  // scratch
+  cv::Mat lastSpectrum_;  // of the samples last given to estimate()
+  cv::Mat transposed_;    // scratch
 };
 
 // Sub-cell position of the maximum of `response` at `peak`: a parabola through the logarithms of the peak and

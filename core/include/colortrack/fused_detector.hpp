@@ -18,10 +18,11 @@ namespace colortrack {
 class FusedDetector {
  public:
   struct Estimate {
-    cv::Point2d centre;     // frame coordinates
-    cv::Size2d size;        // the target's size after the scale filter
-    double confidence = 0;  // peak-to-sidelobe ratio of the fused response
-    double colourPeak = 0;  // the mean colour likelihood of the target window at the peak
+    cv::Point2d centre;        // frame coordinates
+    cv::Size2d size;           // the target's size after the scale filter
+    double confidence = 0;     // peak-to-sidelobe ratio of the fused response
+    double colourPeak = 0;     // the mean colour likelihood of the target window at the peak
+    unsigned long window = 0;  // which locate() call measured it
   };
 
   // Learns both filters from scratch on `box`.
@@ -37,8 +38,9 @@ class FusedDetector {
   // The search window around a target of `size`, frame px (what locate() reads).
   cv::Size2d windowFor(cv::Size2d size) const;
 
-  // Adapts both filters to the target at `centre`, `size`.
-  void learn(const ImageSource &frame, cv::Point2d centre, cv::Size2d size);
+  // Adapts both filters to the target found by `e`. When `e` comes from the latest locate(), the filters
+  // learn from the window and scale samples it measured; otherwise the window is read again from `frame`.
+  void learn(const ImageSource &frame, const Estimate &e);
 
   // Candidate target centres over the whole frame for re-detection: the `count` strongest, well-separated
   // maxima of the colour likelihood averaged over a target-sized window, on a frame reduced so the target's
@@ -60,6 +62,7 @@ class FusedDetector {
   cv::Rect2d windowRect_;       // the frame rectangle the last window's features came from
   cv::Size scaleModel_;         // the normalised patch of each scale sample, px (whole cells)
   bool scaleMeasured_ = false;  // locate() ran the scale filter: learn() trains it on the same samples
+  unsigned long locates_ = 0;   // locate() calls so far
 
   // Scratch reused across frames.
   PatchSampler sampler_;
