@@ -17,11 +17,9 @@ constexpr float kBinsPerDegree = kOrientations / 180.0f;
 const float kTextureScale = 1.0f / std::sqrt(2.0f * kOrientations);
 
 // One pixel's gradient vote: contrast-insensitive orientation (a and a + 180 degrees share a bin), the
-// magnitude shared linearly between the two nearest bins.
-inline void vote(float dx, float dy, float *bins) {
-  const float magnitude = std::sqrt(dx * dx + dy * dy);
+// magnitude shared linearly between the two nearest bins. `angle` in degrees, [0, 360).
+inline void vote(float magnitude, float angle, float *bins) {
   if (magnitude <= 0) return;
-  float angle = cv::fastAtan2(dy, dx);  // degrees in [0, 360), error ~0.3 degrees
   if (angle >= 180) angle -= 180;
   const float position = angle * kBinsPerDegree - 0.5f;
   const int lower = position < 0 ? -1 : static_cast<int>(position);
@@ -30,11 +28,14 @@ inline void vote(float dx, float dy, float *bins) {
   bins[lower + 1 >= kOrientations ? 0 : lower + 1] += magnitude * upperShare;
 }
 
-// [-1 0 1] gradients at (x, y), the border repeated.
-inline void gradient(const cv::Mat &gray, int x, int y, float &dx, float &dy) {
-  const float *row = gray.ptr<float>(y);
-  dx = row[std::min(gray.cols - 1, x + 1)] - row[std::max(0, x - 1)];
-  dy = gray.ptr<float>(std::min(gray.rows - 1, y + 1))[x] - gray.ptr<float>(std::max(0, y - 1))[x];
+// [-1 0 1] gradients (the border repeated) as magnitude and angle in degrees, the whole patch at once:
+// cartToPolar is vectorised (angle error ~0.3 degrees), where a per-pixel fastAtan2 call cost a fifth of the
+// feature time.
+void orientedGradients(const cv::Mat &gray, cv::Mat &magnitude, cv::Mat &angle) {
+  thread_local cv::Mat dx, dy;
+  cv::Sobel(gray, dx, CV_32F, 1, 0, 1, 1, 0, cv::BORDER_REPLICATE);
+  cv::Sobel(gray, dy, CV_32F, 0, 1, 1, 1, 0, cv::BORDER_REPLICATE);
+  cv::cartToPolar(dx, dy, magnitude, angle, true);
 }
 
 // From raw orientation histograms (one row of kOrientations per cell, cells in row order) and mean
@@ -85,16 +86,14 @@ void normaliseCells(const cv::Mat &hist, const cv::Mat &intensity, std::vector<c
 void cellFeatures(const cv::Mat &gray, int cell, std::vector<cv::Mat> &channels) {
   CV_Assert(gray.type() == CV_32FC1 && cell >= 1);
   const int cw = gray.cols / cell, ch = gray.rows / cell;
-  thread_local cv::Mat hist, intensity;
+  thread_local cv::Mat hist, intensity, magnitude, angle;
+  orientedGradients(gray, magnitude, angle);
   hist.create(ch * cw, kOrientations, CV_32F);
   hist.setTo(0);
   for (int y = 0; y < ch * cell; ++y) {
     float *cellRow = hist.ptr<float>((y / cell) * cw);
-    for (int x = 0; x < cw * cell; ++x) {
-      float dx, dy;
-      gradient(gray, x, y, dx, dy);
-      vote(dx, dy, cellRow + (x / cell) * kOrientations);
-    }
+    const float *m = magnitude.ptr<float>(y), *a = angle.ptr<float>(y);
+    for (int x = 0; x < cw * cell; ++x) vote(m[x], a[x], cellRow + (x / cell) * kOrientations);
   }
   cv::resize(gray(cv::Rect(0, 0, cw * cell, ch * cell)), intensity, cv::Size(cw, ch), 0, 0, cv::INTER_AREA);
   normaliseCells(hist, intensity, channels);
@@ -105,17 +104,18 @@ void CellFeatureIntegral::build(const cv::Mat &gray) {
   const int stride = kPlanes;
   sums_.assign(static_cast<size_t>(gray.rows + 1) * (gray.cols + 1) * stride, 0.0);
   size_ = gray.size();
+  thread_local cv::Mat magnitude, angle;
+  orientedGradients(gray, magnitude, angle);
   float votes[kPlanes];
   for (int y = 0; y < gray.rows; ++y) {
     const double *above = &sums_[static_cast<size_t>(y) * (gray.cols + 1) * stride];
     double *here = &sums_[static_cast<size_t>(y + 1) * (gray.cols + 1) * stride];
+    const float *m = magnitude.ptr<float>(y), *a = angle.ptr<float>(y), *g = gray.ptr<float>(y);
     double rowSum[kPlanes] = {};
     for (int x = 0; x < gray.cols; ++x) {
       std::fill(votes, votes + kPlanes, 0.0f);
-      float dx, dy;
-      gradient(gray, x, y, dx, dy);
-      vote(dx, dy, votes);
-      votes[kOrientations] = gray.ptr<float>(y)[x];
+      vote(m[x], a[x], votes);
+      votes[kOrientations] = g[x];
       for (int c = 0; c < kPlanes; ++c) {
         rowSum[c] += votes[c];
         here[(x + 1) * stride + c] = above[(x + 1) * stride + c] + rowSum[c];

@@ -35,9 +35,11 @@ class CorrelationFilter {
   cv::Mat labelSpectrum_;           // DFT of the desired response (a Gaussian peaked at zero shift)
   std::vector<cv::Mat> numerator_;  // per channel: label * conj(feature spectrum), averaged over time
   cv::Mat denominator_;             // sum over channels of |feature spectrum|^2, averaged over time
+  cv::Mat inverseDenominator_;      // 1 / (denominator + lambda), what respond() multiplies by
   double lambda_ = 1e-3;
   mutable std::vector<cv::Mat> spectra_;  // of the patch last trained on or responded to
   cv::Mat shiftedLabel_;                  // scratch
+  mutable cv::Mat sum_, circular_;        // scratch
 };
 
 // Scale filter (DSST): one feature column per candidate scale, correlated along the scale axis.
