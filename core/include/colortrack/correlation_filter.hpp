@@ -66,10 +66,10 @@ class ScaleFilter {
   void transform(const cv::Mat &samples, cv::Mat &spectrum);
   void trainOnSpectrum(const cv::Mat &spectrum, double rate);
   std::vector<double> factors_;
-  cv::Mat window_;         // Hann window over the scales, as a column
-  cv::Mat labelSpectrum_;  // 1 x scales, complex
-  cv::Mat numerator_;      // features x scales, complex
-  cv::Mat denominator_;    // 1 x scales, real
+  cv::Mat window_;                  // Hann window over the scales, as a column
+  cv::Mat labelSpectrum_;           // 1 x scales, packed (CCS)
+  cv::Mat numerator_;               // features x scales, packed (CCS)
+  std::vector<float> denominator_;  // per frequency 0 .. scales / 2
   double lambda_ = 1e-2;
   double step_ = 1.02;
   cv::Mat lastSpectrum_;  // of the samples last given to estimate()
