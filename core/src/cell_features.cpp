@@ -43,7 +43,7 @@ void orientedGradients(const cv::Mat &gray, cv::Mat &magnitude, cv::Mat &angle) 
 // blocks around its cell (cells outside repeat the border) and clipped, as in Dalal-Triggs / Felzenszwalb.
 void normaliseCells(const cv::Mat &hist, const cv::Mat &intensity, std::vector<cv::Mat> &channels) {
   const int ch = intensity.rows, cw = intensity.cols;
-  thread_local cv::Mat energy;
+  thread_local cv::Mat energy, inverseBlockNorm;
   energy.create(ch, cw, CV_32F);
   for (int i = 0; i < ch * cw; ++i) {
     const float *bins = hist.ptr<float>(i);
@@ -54,17 +54,19 @@ void normaliseCells(const cv::Mat &hist, const cv::Mat &intensity, std::vector<c
   auto energyAt = [&](int y, int x) {
     return energy.at<float>(std::clamp(y, 0, ch - 1), std::clamp(x, 0, cw - 1));
   };
+  // Block (by, bx) covers cells (by - 1 .. by, bx - 1 .. bx); each block's norm is shared by its four cells.
+  inverseBlockNorm.create(ch + 1, cw + 1, CV_32F);
+  for (int by = 0; by <= ch; ++by)
+    for (int bx = 0; bx <= cw; ++bx)
+      inverseBlockNorm.at<float>(by, bx) = 1.0f / std::sqrt(energyAt(by - 1, bx - 1) + energyAt(by - 1, bx) +
+                                                            energyAt(by, bx - 1) + energyAt(by, bx) + kEps);
   channels.resize(kCellChannels);
   for (auto &c : channels) c.create(ch, cw, CV_32F);
   for (int y = 0; y < ch; ++y)
     for (int x = 0; x < cw; ++x) {
-      float inverseNorm[4];
-      int k = 0;
-      for (int by = -1; by <= 0; ++by)
-        for (int bx = -1; bx <= 0; ++bx)
-          inverseNorm[k++] =
-              1.0f / std::sqrt(energyAt(y + by, x + bx) + energyAt(y + by, x + bx + 1) +
-                               energyAt(y + by + 1, x + bx) + energyAt(y + by + 1, x + bx + 1) + kEps);
+      const float inverseNorm[4] = {inverseBlockNorm.at<float>(y, x), inverseBlockNorm.at<float>(y, x + 1),
+                                    inverseBlockNorm.at<float>(y + 1, x),
+                                    inverseBlockNorm.at<float>(y + 1, x + 1)};
       const float *bins = hist.ptr<float>(y * cw + x);
       float texture[4] = {0, 0, 0, 0};
       for (int o = 0; o < kOrientations; ++o) {
