@@ -209,7 +209,7 @@ GstElement *makeElement(const char *factory) {
   if (std::string(factory) == kElementName)
     throw DemoError(
         "the colortrack plugin was not found. Set GST_PLUGIN_PATH to the build's gst/ directory "
-        "(e.g. GST_PLUGIN_PATH=$PWD/build/gst) or run the demo through `meson devenv -C build`.");
+        "(e.g. GST_PLUGIN_PATH=$PWD/build/gst) or run the demo through `meson devenv -C build -w .`.");
   throw DemoError(std::string("GStreamer element '") + factory +
                   "' not found: install the plugin package that provides it (gst-inspect-1.0 " + factory +
                   ")");
