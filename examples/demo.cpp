@@ -4,15 +4,25 @@
 //   colortrack-demo [--output FILE] [--frames N]                        synthetic scene
 //   colortrack-demo /dev/video0 --init-box 200,150,80,80 [--frames N]   camera
 //   colortrack-demo clip.mp4 --template object.png                      file, URI or rtsp:// stream
+//
+// The video, the robot commands and their timestamped log are written to temporary files next to their
+// targets and renamed over them only when the run succeeds, so a failed run leaves the previous ones intact.
 
 #include <glib-unix.h>
+#include <glib/gstdio.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <gst/app/gstappsrc.h>
 #include <gst/gst.h>
 #include <gst/video/video.h>
 
 #include <atomic>
+#include <cerrno>
 #include <csignal>
+#include <cstdio>
+#include <fstream>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -42,6 +52,48 @@ struct Options {
   std::string templatePath;
   std::string robotDevice;                                // serial port of a real robot (robotctl device=)
   std::string robotOutput = "colortrack-demo-robot.txt";  // else the commands go here (robotctl location=)
+  std::string robotLog;  // when each command was sent, and why (default: next to robotOutput)
+};
+
+// The log's default: the robot file's name with ".log" for its extension; colortrack-demo-robot.log when the
+// commands go to a device or to stdout.
+std::string defaultRobotLog(const Options &options) {
+  if (!options.robotDevice.empty() || options.robotOutput == "-") return "colortrack-demo-robot.log";
+  const std::string &out = options.robotOutput;
+  const std::size_t slash = out.rfind('/'), dot = out.rfind('.');
+  const bool hasExtension =
+      dot != std::string::npos && dot > 0 && (slash == std::string::npos || dot > slash + 1);
+  return (hasExtension ? out.substr(0, dot) : out) + ".log";
+}
+
+// An output file written under a temporary name next to its target and renamed over it on success only, so
+// a failed run keeps the previous file. Targets that are not regular files (a FIFO, a pty, stdout) are
+// written directly.
+class StagedFile {
+ public:
+  explicit StagedFile(const std::string &target) : target_(target), path_(target) {
+    GStatBuf st;
+    const bool exists = g_stat(target.c_str(), &st) == 0;
+    if (target != "-" && (!exists || S_ISREG(st.st_mode)))
+      path_ = target + ".partial-" + std::to_string(static_cast<long>(getpid()));
+  }
+  StagedFile(const StagedFile &) = delete;
+  StagedFile &operator=(const StagedFile &) = delete;
+  ~StagedFile() {
+    if (staged() && !committed_) g_unlink(path_.c_str());
+  }
+  const std::string &path() const { return path_; }      // where to write now
+  const std::string &target() const { return target_; }  // where it ends up
+  bool staged() const { return path_ != target_; }
+  void commit() {
+    if (staged() && g_rename(path_.c_str(), target_.c_str()) != 0)
+      throw DemoError("cannot rename " + path_ + " to " + target_ + ": " + g_strerror(errno));
+    committed_ = true;
+  }
+
+ private:
+  std::string target_, path_;
+  bool committed_ = false;
 };
 
 enum class InputKind { Scene, Device, Uri };
@@ -70,7 +122,7 @@ std::string toUri(const std::string &input) {
 
 Options parseOptions(int &argc, char **&argv) {
   gchar *output = nullptr, *initBox = nullptr, *templatePath = nullptr, *robotDevice = nullptr,
-        *robotOutput = nullptr;
+        *robotOutput = nullptr, *robotLog = nullptr;
   gchar **positional = nullptr;
   gint frames = -1;
   const GOptionEntry entries[] = {
@@ -85,6 +137,10 @@ Options parseOptions(int &argc, char **&argv) {
        "Serial port of a robot to drive (robotctl device=), e.g. /dev/ttyUSB0", "DEVICE"},
       {"robot-output", 0, 0, G_OPTION_ARG_FILENAME, &robotOutput,
        "Without --robot, write the robot commands here, '-' for stdout (default colortrack-demo-robot.txt)",
+       "FILE"},
+      {"robot-log", 0, 0, G_OPTION_ARG_FILENAME, &robotLog,
+       "Write one timestamped line per robot command here (default: the robot file's name with .log, "
+       "colortrack-demo-robot.log)",
        "FILE"},
       {G_OPTION_REMAINING, 0, 0, G_OPTION_ARG_FILENAME_ARRAY, &positional, nullptr, nullptr},
       {nullptr, 0, 0, G_OPTION_ARG_NONE, nullptr, nullptr, nullptr}};
@@ -110,6 +166,7 @@ Options parseOptions(int &argc, char **&argv) {
   if (templatePath) options.templatePath = templatePath;
   if (robotDevice) options.robotDevice = robotDevice;
   if (robotOutput) options.robotOutput = robotOutput;
+  options.robotLog = robotLog ? robotLog : defaultRobotLog(options);
   options.frames = frames;
   if (positional && positional[0]) {
     options.input = positional[0];
@@ -120,11 +177,16 @@ Options parseOptions(int &argc, char **&argv) {
   g_free(templatePath);
   g_free(robotDevice);
   g_free(robotOutput);
+  g_free(robotLog);
   g_strfreev(positional);
 
   if (!problem.empty()) throw DemoError(problem + " (see --help)");
   if (options.frames == 0 || options.frames < -1) throw DemoError("--frames must be a positive number");
   if (options.output.empty()) throw DemoError("--output must name a file");
+  if (options.robotLog.empty()) throw DemoError("--robot-log must name a file");
+  if (options.robotLog == options.output ||
+      (options.robotDevice.empty() && options.robotLog == options.robotOutput))
+    throw DemoError("--robot-log must differ from --output and --robot-output");
   if (inputKind(options.input) == InputKind::Uri && !gst_uri_is_valid(options.input.c_str())) {
     // filesink truncates its file at start: writing over the input would destroy it.
     gchar *in = g_canonicalize_filename(options.input.c_str(), nullptr);
@@ -147,7 +209,7 @@ GstElement *makeElement(const char *factory) {
   if (std::string(factory) == kElementName)
     throw DemoError(
         "the colortrack plugin was not found. Set GST_PLUGIN_PATH to the build's gst/ directory "
-        "(e.g. GST_PLUGIN_PATH=$PWD/build/gst) or run the demo through `meson devenv -C build`.");
+        "(e.g. GST_PLUGIN_PATH=$PWD/build/gst) or run the demo through `meson devenv -C build -w .`.");
   throw DemoError(std::string("GStreamer element '") + factory +
                   "' not found: install the plugin package that provides it (gst-inspect-1.0 " + factory +
                   ")");
@@ -200,7 +262,15 @@ struct RunState {
   int framesTrackedOnBus = 0;  // "colortrack" messages with state "tracking"
   int messagesOnBus = 0;
   GstElement *robot = nullptr;
-  std::map<std::string, int> robotCommands;  // "robotctl" messages by command
+
+  // The robot log, written from the bus's sync handler in the thread that posts (robotctl's writer, just
+  // after the command's bytes went out), so each line is stamped when the command was sent.
+  std::mutex robotMutex;  // guards the members below
+  FILE *robotLog = nullptr;
+  gint64 startTime = 0;                      // g_get_monotonic_time() when the pipeline was started
+  int robotLines = 0;                        // "robotctl" messages (one per command sent)
+  std::map<std::string, int> robotCommands;  // by command
+  int robotFinalStops = 0;                   // stops sent at end of stream, pause or shutdown
 
   // Scene input.
   const scene::Scene *scene = nullptr;
@@ -389,9 +459,6 @@ gboolean onBusMessage(GstBus * /*bus*/, GstMessage *message, gpointer userData) 
           break;
         ++run.messagesOnBus;
         if (stateOf(s) == "tracking") ++run.framesTrackedOnBus;
-      } else if (GST_MESSAGE_SRC(message) == GST_OBJECT(run.robot) && gst_structure_has_name(s, "robotctl")) {
-        const char *command = gst_structure_get_string(s, "command");
-        ++run.robotCommands[command ? command : "?"];
       }
       break;
     }
@@ -399,6 +466,53 @@ gboolean onBusMessage(GstBus * /*bus*/, GstMessage *message, gpointer userData) 
       break;
   }
   return TRUE;
+}
+
+// Bus sync handler: one line in the robot log per command robotctl sent (see RunState::robotLog).
+GstBusSyncReply onBusSync(GstBus * /*bus*/, GstMessage *message, gpointer userData) {
+  auto &run = *static_cast<RunState *>(userData);
+  if (GST_MESSAGE_TYPE(message) != GST_MESSAGE_ELEMENT || GST_MESSAGE_SRC(message) != GST_OBJECT(run.robot))
+    return GST_BUS_PASS;
+  const GstStructure *s = gst_message_get_structure(message);
+  if (!gst_structure_has_name(s, "robotctl")) return GST_BUS_PASS;
+  const gint64 now = g_get_monotonic_time();
+  const char *command = gst_structure_get_string(s, "command");
+  const char *reason = gst_structure_get_string(s, "reason");
+  int left = 0, right = 0;
+  guint64 timestamp = GST_CLOCK_TIME_NONE;
+  gst_structure_get_int(s, "left", &left);
+  gst_structure_get_int(s, "right", &right);
+  gst_structure_get_uint64(s, "timestamp", &timestamp);
+  command = command ? command : "?";
+  reason = reason ? reason : "?";
+
+  std::lock_guard<std::mutex> lock(run.robotMutex);
+  ++run.robotLines;
+  ++run.robotCommands[command];
+  const std::string why(reason);
+  if (why == "eos" || why == "paused" || why == "ready" || why == "shutdown") ++run.robotFinalStops;
+  if (run.robotLog) {
+    char frameTime[32] = "-";
+    if (GST_CLOCK_TIME_IS_VALID(timestamp))
+      std::snprintf(frameTime, sizeof frameTime, "%.3f", static_cast<double>(timestamp) / GST_SECOND);
+    std::fprintf(run.robotLog, "%d %.3f %s %s %d %d %s\n", run.robotLines,
+                 static_cast<double>(now - run.startTime) / G_USEC_PER_SEC, frameTime, command, left, right,
+                 reason);
+  }
+  return GST_BUS_PASS;
+}
+
+// Lines of a text file (the text protocol's commands); -1 when it cannot be read.
+int countLines(const std::string &path, int *stops) {
+  std::ifstream in(path);
+  if (!in) return -1;
+  int lines = 0;
+  *stops = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++lines;
+    if (line == "L=0 R=0") ++*stops;
+  }
+  return lines;
 }
 
 // First Ctrl-C: EOS, so avimux writes its index and the file stays playable. Second: stop at once.
@@ -431,6 +545,25 @@ std::string boxText(const cv::Rect &box) {
          std::to_string(box.height);
 }
 
+// What the annotated video shows (the README's "What the overlay shows" has a picture).
+void printLegend(InputKind kind) {
+  g_print(
+      "overlay: box = the track: green = colour and edge check agree (verified), red = colour only (a "
+      "same-colour\n"
+      "         look-alike or a changed object), orange = coasting on the prediction; label \"1 0.91 "
+      "tracking\" =\n"
+      "         track id, score, state (tracking / coasting); red line = the trail of the box centre; thin "
+      "blue box =\n"
+      "         the search window (the demo turns it on with draw=...+search-window; it is off by "
+      "default)\n");
+  if (kind == InputKind::Scene)
+    g_print(
+        "scene  : a textured object turns, scales and moves under changing light; the plain disc of its "
+        "colours\n"
+        "         in the bottom-right corner is a decoy that colour alone would match, the tracker must "
+        "ignore it\n");
+}
+
 int run(const Options &options) {
   RunState run;
   run.kind = inputKind(options.input);
@@ -452,6 +585,12 @@ int run(const Options &options) {
     run.sceneFrames = options.frames > 0 ? options.frames : kSceneFrames;
   }
 
+  // Written under temporary names, renamed over the targets only if the run succeeds.
+  StagedFile video(options.output);
+  std::unique_ptr<StagedFile> robotFile;
+  if (options.robotDevice.empty()) robotFile = std::make_unique<StagedFile>(options.robotOutput);
+  StagedFile robotLog(options.robotLog);
+
   run.pipeline = gst_pipeline_new("colortrack-demo");
   GstElement *pipeline = run.pipeline;
   // Everything below throws on a problem; the pipeline owns what was added to it.
@@ -472,7 +611,7 @@ int run(const Options &options) {
         throw DemoError("template file not found: " + options.templatePath);
       setProperty(run.tracker, "template-location", options.templatePath);
     }
-    g_object_set(sink, "location", options.output.c_str(), nullptr);
+    g_object_set(sink, "location", video.path().c_str(), nullptr);
     // The robot branch: what a robot would be told, next to the annotated video.
     GstElement *tee = makeElement("tee");
     GstElement *videoQueue = makeElement("queue");
@@ -486,7 +625,7 @@ int run(const Options &options) {
       setProperty(run.robot, "device", options.robotDevice);
     } else {
       setProperty(run.robot, "protocol", "text");
-      setProperty(run.robot, "location", options.robotOutput);
+      setProperty(run.robot, "location", robotFile->path());
     }
 
     std::vector<GstElement *> chain;
@@ -540,16 +679,35 @@ int run(const Options &options) {
   gst_pad_add_probe(trackerSrc, GST_PAD_PROBE_TYPE_BUFFER, onTrackedBuffer, &run, nullptr);
   gst_object_unref(trackerSrc);
 
+  run.robotLog = g_fopen(robotLog.path().c_str(), "w");
+  if (!run.robotLog) {
+    const std::string why = g_strerror(errno);
+    gst_object_unref(pipeline);
+    throw DemoError("cannot write " + robotLog.path() + ": " + why);
+  }
+  std::fprintf(
+      run.robotLog,
+      "# colortrack-demo: one line per command robotctl sent to %s, in the order sent (line N here is "
+      "command N there)\n"
+      "# sent_s: seconds since the pipeline started, when the command's bytes had been written\n"
+      "# frame_s: timestamp of the video frame the command was decided on (- for a stop not decided "
+      "on a frame)\n"
+      "# reason: target, no-target, start, stalled, eos, paused, ready, shutdown, reconnected\n"
+      "# n sent_s frame_s command left right reason\n",
+      options.robotDevice.empty() ? options.robotOutput.c_str() : options.robotDevice.c_str());
+
   run.loop = g_main_loop_new(nullptr, FALSE);
   GstBus *bus = gst_element_get_bus(pipeline);
   const guint busWatch = gst_bus_add_watch(bus, onBusMessage, &run);
-  gst_object_unref(bus);
+  gst_bus_set_sync_handler(bus, onBusSync, &run, nullptr);
   const guint sigintWatch = g_unix_signal_add(SIGINT, onInterrupt, &run);
 
   g_print("input : %s\n", run.kind == InputKind::Scene
                               ? "synthetic scene (640x480, turning, scaling, lighting "
                                 "+-40%, decoy)"
                               : options.input.c_str());
+  printLegend(run.kind);
+  run.startTime = g_get_monotonic_time();
   if (gst_element_set_state(pipeline, GST_STATE_PLAYING) == GST_STATE_CHANGE_FAILURE) {
     // The reason is on the bus as an error message; let the watch collect it.
     run.failed = true;
@@ -563,13 +721,21 @@ int run(const Options &options) {
     g_main_loop_run(run.loop);
   }
 
+  // READY first: robotctl sends its last stops on the way (end of stream, shutdown), while the bus still
+  // carries their messages to the log; going to NULL flushes the bus.
+  gst_element_set_state(pipeline, GST_STATE_READY);
   gst_element_set_state(pipeline, GST_STATE_NULL);
+  gst_bus_set_sync_handler(bus, nullptr, nullptr, nullptr);
+  gst_object_unref(bus);
   g_source_remove(sigintWatch);
   g_source_remove(busWatch);
   g_main_loop_unref(run.loop);
   gst_object_unref(pipeline);
+  const bool logWritten = std::fclose(run.robotLog) == 0;
+  run.robotLog = nullptr;
 
   if (run.failed) throw DemoError(run.errorText);
+  if (!logWritten) throw DemoError("cannot write " + robotLog.path());
 
   std::lock_guard<std::mutex> lock(run.mutex);
   g_print("frames processed : %d\n", run.framesProcessed);
@@ -595,13 +761,39 @@ int run(const Options &options) {
   } else {
     g_print("mean IoU         : n/a (no ground truth for a real input)\n");
   }
-  g_print("output           : %s\n", options.output.c_str());
+  if (run.framesProcessed == 0) throw DemoError("no frame reached the tracker");
+
   std::string commands;
   for (const auto &[command, count] : run.robotCommands)
     commands += (commands.empty() ? "" : ", ") + command + " " + std::to_string(count);
-  g_print("robot commands   : %s (to %s)\n", commands.empty() ? "none" : commands.c_str(),
-          options.robotDevice.empty() ? options.robotOutput.c_str() : options.robotDevice.c_str());
-  if (run.framesProcessed == 0) throw DemoError("no frame reached the tracker");
+  const std::string byCommand = commands.empty() ? "none" : commands;
+  const std::string finalStops = std::to_string(run.robotFinalStops);
+  int fileStops = 0;
+  const int fileLines = robotFile && robotFile->staged() ? countLines(robotFile->path(), &fileStops) : -1;
+  video.commit();
+  if (robotFile) robotFile->commit();
+  robotLog.commit();
+
+  g_print("output           : %s\n", options.output.c_str());
+  if (fileLines >= 0) {
+    // What the robot would have received: the file's lines (text protocol, one command per line).
+    g_print(
+        "robot commands   : %d lines in %s, %d of them stop (L=0 R=0); %d stop%s sent at end of stream "
+        "and shutdown\n",
+        fileLines, options.robotOutput.c_str(), fileStops, run.robotFinalStops,
+        run.robotFinalStops == 1 ? " was" : "s were");
+    g_print("                   by command: %s\n", byCommand.c_str());
+    if (fileLines != run.robotLines)
+      g_printerr("warning: %s has %d lines but robotctl reported %d commands sent\n",
+                 options.robotOutput.c_str(), fileLines, run.robotLines);
+  } else {
+    g_print("robot commands   : %d sent to %s (%s), %s of them stops at end of stream and shutdown\n",
+            run.robotLines,
+            options.robotDevice.empty() ? options.robotOutput.c_str() : options.robotDevice.c_str(),
+            byCommand.c_str(), finalStops.c_str());
+  }
+  g_print("robot log        : %s (when each command was sent, the frame it was decided on, why)\n",
+          options.robotLog.c_str());
   return 0;
 }
 

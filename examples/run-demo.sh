@@ -1,8 +1,13 @@
 #!/usr/bin/env bash
-# One command for the demo: installs what is missing, builds, then runs colortrack on the built-in
-# synthetic scene (or on the device / URL / file given as argument) and writes an annotated video.
+# One command for the demo: installs what the demo needs (only what is missing), builds the plugin and the
+# demo, then runs colortrack on the built-in synthetic scene (or on the device / URL / file given as
+# argument) and writes an annotated video.
+#
+# The demo runs in the directory this script was started from, so relative paths given to it (an input
+# file, --output, --template, --robot-output, --robot-log) and its default outputs (colortrack-demo.avi,
+# colortrack-demo-robot.txt, colortrack-demo-robot.log) are the caller's, not the project's.
 set -euo pipefail
-cd "$(dirname "$0")/.."
-bash tests/bootstrap.sh
-export GST_PLUGIN_PATH="$PWD/build/gst${GST_PLUGIN_PATH:+:$GST_PLUGIN_PATH}"
-exec ./build/examples/colortrack-demo "$@"
+root="$(cd "$(dirname "$0")/.." && pwd)"
+bash "$root/tests/bootstrap.sh" demo
+export GST_PLUGIN_PATH="$root/build/gst${GST_PLUGIN_PATH:+:$GST_PLUGIN_PATH}"
+exec "$root/build/examples/colortrack-demo" "$@"

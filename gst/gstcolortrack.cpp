@@ -1565,10 +1565,13 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
           "Weight of each channel in the match, \"w1,w2,w3\", each 0-1 and not all 0 (V is weighted "
           "down for robustness to lighting)",
           colortrack::formatWeights(defaults.weights).c_str(), live));
-  g_object_class_install_property(gobject_class, PROP_MATCH_THRESHOLD,
-                                  g_param_spec_double("match-threshold", "Match threshold",
-                                                      "Minimum histogram match value (0-1) of a detection",
-                                                      0.0, 1.0, defaults.matchThreshold, live));
+  g_object_class_install_property(
+      gobject_class, PROP_MATCH_THRESHOLD,
+      g_param_spec_double(
+          "match-threshold", "Match threshold",
+          "method=indexing only: minimum histogram match value (0-1) of a detection (fused uses "
+          "its confidence, discriminative likelihood-threshold)",
+          0.0, 1.0, defaults.matchThreshold, live));
   g_object_class_install_property(
       gobject_class, PROP_SCALE_MIN,
       g_param_spec_double("scale-min", "Minimum scale step",

@@ -1395,14 +1395,17 @@ static void gst_robot_ctl_class_init(GstRobotCtlClass *klass) {
   install(PROP_TURN_GAIN,
           g_param_spec_double(
               "turn-gain", "Turn gain",
-              "Proportional controller: angular speed per unit horizontal offset, 0-100 (a negative "
-              "value is refused)",
+              "Proportional controller: angular speed per unit horizontal offset, 0-100. The range "
+              "admits negatives only so that robotctl can refuse them with a clear error (at start; a "
+              "warning while playing, the old gain stays)",
               -100.0, 100.0, c.turnGain, live));
-  install(PROP_DRIVE_GAIN,
-          g_param_spec_double("drive-gain", "Drive gain",
-                              "Proportional controller: linear speed per unit relative distance "
-                              "error, 0-100 (a negative value is refused)",
-                              -100.0, 100.0, c.driveGain, live));
+  install(
+      PROP_DRIVE_GAIN,
+      g_param_spec_double("drive-gain", "Drive gain",
+                          "Proportional controller: linear speed per unit relative distance "
+                          "error, 0-100. The range admits negatives only so that robotctl can refuse "
+                          "them with a clear error (at start; a warning while playing, the old gain stays)",
+                          -100.0, 100.0, c.driveGain, live));
   install(PROP_MAX_LINEAR,
           g_param_spec_double("max-linear", "Maximum linear speed",
                               "Largest forward/backward speed (fraction of full speed); the zone "
@@ -1435,10 +1438,12 @@ static void gst_robot_ctl_class_init(GstRobotCtlClass *klass) {
                                "After lost-timeout turn slowly towards where the target was last "
                                "seen instead of standing still",
                                f.searchTurn, live));
-  install(PROP_SEARCH_SPEED,
-          g_param_spec_double("search-speed", "Search speed",
-                              "Angular speed of the search turn (fraction of full wheel speed)", 0.0, 1.0,
-                              f.searchSpeed, live));
+  install(
+      PROP_SEARCH_SPEED,
+      g_param_spec_double(
+          "search-speed", "Search speed",
+          "Angular speed of the search turn (fraction of full wheel speed); only used with search-turn=true",
+          0.0, 1.0, f.searchSpeed, live));
   install(PROP_ROI_TYPE, g_param_spec_string("roi-type", "ROI type",
                                              "Type of the region-of-interest meta to follow, not empty "
                                              "(\"object\" for cvtracker)",

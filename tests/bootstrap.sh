@@ -1,16 +1,39 @@
 #!/usr/bin/env bash
 # Installs the Debian packages the project needs (only those missing) and builds it into build/.
-# Used by the README's two commands: examples/run-demo.sh and tests/run-tests.sh.
+# Used by the README's two commands:
+#   tests/bootstrap.sh demo   (examples/run-demo.sh) the demo's packages; builds the plugin and the demo only
+#   tests/bootstrap.sh [all]  (tests/run-tests.sh)   every package; builds everything (tests, benchmarks,
+#                             examples, the evaluation tool)
+# The demo's list is the smaller one, so a first demo run installs and builds less; the test command then
+# adds the rest (and turns tests and benchmarks on in a build/ the demo configured without them).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages=(
+mode="${1:-all}"
+case "$mode" in
+  demo | all) ;;
+  *)
+    echo "usage: $0 [demo|all]" >&2
+    exit 2
+    ;;
+esac
+
+# Building the plugin and the demo, and running the demo on the built-in scene (videoconvert and appsrc from
+# -base; jpegenc, avimux and v4l2src from -good).
+demo_packages=(
   g++ meson ninja-build pkg-config
-  libgstreamer1.0-dev libgstreamer-plugins-base1.0-dev gstreamer1.0-tools
-  gstreamer1.0-plugins-base gstreamer1.0-plugins-good gstreamer1.0-plugins-bad gstreamer1.0-opencv
-  libopencv-dev libeigen3-dev libserialport-dev libgtest-dev
-  libgstrtspserver-1.0-dev python3-gi gir1.2-gstreamer-1.0 gir1.2-gst-plugins-base-1.0
+  libgstreamer1.0-dev libgstreamer-plugins-base1.0-dev gstreamer1.0-plugins-base gstreamer1.0-plugins-good
+  libopencv-dev libeigen3-dev libserialport-dev
 )
+# The tests, benchmarks and examples on top: gst-inspect-1.0, cvtracker (-bad and -opencv) for the
+# evaluation, GoogleTest, gst-rtsp-server for the RTSP test, PyGObject for the Python example.
+test_packages=(
+  gstreamer1.0-tools gstreamer1.0-plugins-bad gstreamer1.0-opencv libgtest-dev libgstrtspserver-1.0-dev
+  python3-gi gir1.2-gstreamer-1.0 gir1.2-gst-plugins-base-1.0
+)
+packages=("${demo_packages[@]}")
+[ "$mode" = demo ] || packages+=("${test_packages[@]}")
+
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -23,7 +46,29 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-if [ ! -f build/build.ninja ]; then
-  meson setup build
+# The value of a boolean build option of build/ ("true" or "false").
+option_value() {
+  meson introspect build --buildoptions |
+    python3 -c 'import json, sys; print(str(next(o["value"] for o in json.load(sys.stdin) if o["name"] == sys.argv[1])).lower())' "$1"
+}
+
+if [ "$mode" = demo ]; then
+  if [ ! -f build/build.ninja ]; then
+    meson setup build -Dtests=false -Dbenchmarks=false
+  fi
+  meson compile -C build gstcolortrack colortrack-demo
+else
+  if [ ! -f build/build.ninja ]; then
+    meson setup build
+  else
+    off=()
+    for option in tests benchmarks examples; do
+      [ "$(option_value "$option")" = true ] || off+=("-D$option=true")
+    done
+    if [ ${#off[@]} -gt 0 ]; then
+      echo "== build/ has ${off[*]/%=true/=false}: turning it on"
+      meson configure build "${off[@]}"
+    fi
+  fi
+  ninja -C build
 fi
-ninja -C build

@@ -50,10 +50,11 @@ static void print_frame(guint64 frame, GstBuffer *buffer) {
       gst_structure_get_double(params, COLORTRACK_PARAM_SCALE, &scale);
       gst_structure_get_boolean(params, COLORTRACK_PARAM_VERIFIED, &verified);
     }
-    printf("frame=%" G_GUINT64_FORMAT " time=%.6f id=%d state=%s x=%u y=%u w=%u h=%u score=%.3f verified=%d "
+    printf("frame=%" G_GUINT64_FORMAT
+           " time=%.6f id=%d state=%s x=%u y=%u w=%u h=%u score=%.3f verified=%d "
            "scale=%.3f\n",
-           frame, seconds, roi->id, track_state ? track_state : "unknown", roi->x, roi->y, roi->w, roi->h, score,
-           verified ? 1 : 0, scale);
+           frame, seconds, roi->id, track_state ? track_state : "unknown", roi->x, roi->y, roi->w, roi->h,
+           score, verified ? 1 : 0, scale);
     printed = TRUE;
   }
   /* No meta: colortrack is searching (or has no template yet). */
@@ -95,24 +96,33 @@ int main(int argc, char **argv) {
     source = g_strdup_printf("uridecodebin uri=\"%s\"", uri);
     g_free(uri);
   } else {
-    source = g_strdup_printf("videotestsrc pattern=ball foreground-color=0xff20c020 num-buffers=%d ! "
-                             "video/x-raw,width=320,height=240,framerate=30/1",
-                             frames);
+    source = g_strdup_printf(
+        "videotestsrc pattern=ball foreground-color=0xff20c020 num-buffers=%d ! "
+        "video/x-raw,width=320,height=240,framerate=30/1",
+        frames);
     if (!init_box) init_box = BALL_INIT_BOX;
   }
   /* BGR keeps videoconvert's work small; colortrack also takes YUV (I420, NV12, YUY2) directly. */
-  gchar *description =
-      g_strdup_printf("%s ! videoconvert ! video/x-raw,format=BGR ! colortrack name=tracker ! "
-                      "appsink name=sink sync=false max-buffers=4",
-                      source);
+  gchar *description = g_strdup_printf(
+      "%s ! videoconvert ! video/x-raw,format=BGR ! colortrack name=tracker ! "
+      "appsink name=sink sync=false max-buffers=4",
+      source);
   g_free(source);
 
+  /* Without GST_PARSE_FLAG_FATAL_ERRORS, gst_parse_launch returns a pipeline *and* an error when an element
+   * is missing (the pipeline lacks it, so nothing would link): any error is fatal here. */
   GError *error = NULL;
-  GstElement *pipeline = gst_parse_launch(description, &error);
+  GstElement *pipeline = gst_parse_launch_full(description, NULL, GST_PARSE_FLAG_FATAL_ERRORS, &error);
   g_free(description);
-  if (!pipeline) {
-    fprintf(stderr, "pipeline: %s (is the colortrack plugin on GST_PLUGIN_PATH?)\n", error->message);
+  if (!pipeline || error) {
+    const gboolean missing =
+        error && g_error_matches(error, GST_PARSE_ERROR, GST_PARSE_ERROR_NO_SUCH_ELEMENT);
+    fprintf(stderr, "pipeline: %s%s\n", error ? error->message : "could not be built",
+            missing
+                ? " (is the colortrack plugin on GST_PLUGIN_PATH? See the README, \"From your own program\")"
+                : "");
     g_clear_error(&error);
+    if (pipeline) gst_object_unref(pipeline);
     return 1;
   }
   GstElement *tracker = gst_bin_get_by_name(GST_BIN(pipeline), "tracker");

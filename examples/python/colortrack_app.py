@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """colortrack from Python (PyGObject): one JSON object per frame on stdout.
 
     {"time": 0.4, "frame": 12, "id": 1, "box": [201, 143, 40, 40], "state": "tracking", "score": 0.91,
@@ -15,7 +15,9 @@ the meta was found; when it is not (no track), state and score come from the mes
 
 Usage: colortrack_app.py [--frames N] [--init-box X,Y,W,H] [FILE-OR-URI]
 Without FILE-OR-URI: videotestsrc's green ball on black, 320x240 at 30 fps, init-box on the ball at frame 0.
-Needs Debian's python3-gi, gir1.2-gstreamer-1.0 and gir1.2-gst-plugins-base-1.0.
+Needs Debian's python3-gi, gir1.2-gstreamer-1.0 and gir1.2-gst-plugins-base-1.0, hence /usr/bin/python3 above
+(a pyenv or venv python3 first in PATH usually has no gi); another Python with PyGObject runs it as
+`that-python colortrack_app.py`.
 """
 import argparse
 import json
