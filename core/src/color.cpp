@@ -210,17 +210,23 @@ void BinMapper::map(const cv::Mat &bgr, cv::Mat &out) const {
   const HsvBinner hsv{layout_.bins[0], layout_.bins[1], layout_.bins[2]};
   const RgbBinner rgb{lut_, layout_.bins};
   const bool isHsv = space_ == ColorSpace::Hsv;
-  // Rows are independent: split them over OpenCV's thread pool (a no-op with one thread).
-  cv::parallel_for_(cv::Range(0, input.rows), [&](const cv::Range &rows) {
-    for (int y = rows.start; y < rows.end; ++y) {
-      const std::uint8_t *in = input.ptr<std::uint8_t>(y);
-      std::uint8_t *binsRow = out.ptr<std::uint8_t>(y);
-      if (isHsv)
-        hsv.row(in, binsRow, input.cols);
-      else
-        rgb.row(in, binsRow, input.cols);
-    }
-  });
+  // Rows are independent: split them over OpenCV's thread pool (a no-op with one thread), one stripe per
+  // 64 K pixels. A search window of ~100 x 100 px stays on the calling thread: waking the pool would cost
+  // more than mapping it.
+  const double stripes = std::max(1.0, static_cast<double>(input.total()) / (1 << 16));
+  cv::parallel_for_(
+      cv::Range(0, input.rows),
+      [&](const cv::Range &rows) {
+        for (int y = rows.start; y < rows.end; ++y) {
+          const std::uint8_t *in = input.ptr<std::uint8_t>(y);
+          std::uint8_t *binsRow = out.ptr<std::uint8_t>(y);
+          if (isHsv)
+            hsv.row(in, binsRow, input.cols);
+          else
+            rgb.row(in, binsRow, input.cols);
+        }
+      },
+      stripes);
 }
 
 std::array<int, 3> BinMapper::binOf(std::uint8_t r, std::uint8_t g, std::uint8_t b) const {
