@@ -66,7 +66,7 @@ class FusedDetector {
 
   // Scratch reused across frames.
   PatchSampler sampler_;
-  cv::Mat patch_, gray_, grayWindow_, scaleSamples_, bins_, probability_, integral_, reduced_;
+  cv::Mat patch_, gray_, scaleSamples_, bins_, probability_, integral_, reduced_;
   std::vector<cv::Mat> channels_, scaleChannels_;
   CellFeatureIntegral scaleIntegral_;
 };
