@@ -276,7 +276,7 @@ GType gst_color_track_draw_get_type(void) {
   static gsize type = 0;
   static const GFlagsValue values[] = {
       {GST_COLOR_TRACK_DRAW_BOX, "Box (red: colour match, green: verified, orange: coasting)", "box"},
-      {GST_COLOR_TRACK_DRAW_TRAIL, "Trail of the box centre (red)", "trail"},
+      {GST_COLOR_TRACK_DRAW_TRAIL, "Trail of the box centre (yellow)", "trail"},
       {GST_COLOR_TRACK_DRAW_SEARCH_WINDOW, "Region searched this frame (blue)", "search-window"},
       {GST_COLOR_TRACK_DRAW_LABEL, "Label \"id score state\" (threshold: \"id area state\")", "label"},
       {GST_COLOR_TRACK_DRAW_MASK, "mode=threshold: pixels inside the HSV range, tinted magenta", "mask"},
@@ -1049,7 +1049,7 @@ static void draw_overlay(GstVideoFrame *frame, const Settings &settings, const S
     std::vector<cv::Point> points;
     points.reserve(state.trail.size());
     for (const cv::Point2d &p : state.trail) points.emplace_back(cvRound(p.x), cvRound(p.y));
-    canvas.polyline(points, colortrack::colors::kRed, kTrailThickness);
+    canvas.polyline(points, colortrack::colors::kYellow, kTrailThickness);
   }
   if (!out.hasBox || box.empty()) return;
   if (settings.draw & GST_COLOR_TRACK_DRAW_BOX) {

@@ -73,7 +73,7 @@ typedef enum {
 /**
  * GstColorTrackDraw:
  * @GST_COLOR_TRACK_DRAW_BOX: the tracked box (red: colour match, green: verified, orange: coasting)
- * @GST_COLOR_TRACK_DRAW_TRAIL: the path of the box centre (red)
+ * @GST_COLOR_TRACK_DRAW_TRAIL: the path of the box centre (yellow)
  * @GST_COLOR_TRACK_DRAW_SEARCH_WINDOW: the region searched in this frame (blue)
  * @GST_COLOR_TRACK_DRAW_LABEL: "id score state" above the box
  * @GST_COLOR_TRACK_DRAW_MASK: mode=threshold: the pixels inside the HSV range, tinted magenta (for tuning)

@@ -15,11 +15,12 @@ struct Rgb {
 };
 
 namespace colors {
-constexpr Rgb kRed{255, 0, 0};        // colour-only match; the trail
+constexpr Rgb kRed{255, 0, 0};        // colour-only match
 constexpr Rgb kGreen{0, 255, 0};      // match confirmed by the edge check
 constexpr Rgb kOrange{255, 160, 0};   // coasting on the prediction
 constexpr Rgb kBlue{0, 96, 255};      // search window
 constexpr Rgb kMagenta{255, 0, 255};  // threshold mask
+constexpr Rgb kYellow{255, 230, 0};   // the trail (not red: a red line read as an unverified box)
 }  // namespace colors
 
 // A bright colour per track id, neighbouring ids far apart in hue (golden-angle steps).
