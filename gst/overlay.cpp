@@ -9,15 +9,6 @@
 
 namespace colortrack {
 
-Yuv rgbToYuv601(const Rgb &rgb) {
-  const double r = rgb.r / 255.0, g = rgb.g / 255.0, b = rgb.b / 255.0;
-  Yuv yuv;
-  yuv.y = cv::saturate_cast<std::uint8_t>(16.0 + 65.481 * r + 128.553 * g + 24.966 * b);
-  yuv.u = cv::saturate_cast<std::uint8_t>(128.0 - 37.797 * r - 74.203 * g + 112.0 * b);
-  yuv.v = cv::saturate_cast<std::uint8_t>(128.0 + 112.0 * r - 93.786 * g - 18.214 * b);
-  return yuv;
-}
-
 Rgb idColour(int id) {
   const double hue = std::fmod(id * 137.508, 360.0) / 60.0;  // golden angle: successive ids spread out
   const double x = 1 - std::abs(std::fmod(hue, 2.0) - 1);
@@ -95,7 +86,7 @@ FrameCanvas::FrameCanvas(GstVideoFrame *frame)
 }
 
 cv::Scalar FrameCanvas::colourFor(const Plane &plane, const Rgb &colour) const {
-  const Yuv yuv = rgbToYuv601(colour);
+  const Yuv yuv = rgbToYuv601(colour.r, colour.g, colour.b);
   switch (plane.kind) {
     case PlaneKind::Packed: {
       cv::Scalar s;

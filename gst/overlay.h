@@ -8,6 +8,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "colortrack/color.hpp"
+
 namespace colortrack {
 
 struct Rgb {
@@ -25,12 +27,6 @@ constexpr Rgb kYellow{255, 230, 0};   // the trail (not red: a red line read as 
 
 // A bright colour per track id, neighbouring ids far apart in hue (golden-angle steps).
 Rgb idColour(int id);
-
-// BT.601 limited range ("studio swing"), the matrix of SD video and of OpenCV's YUV conversions.
-struct Yuv {
-  std::uint8_t y = 16, u = 128, v = 128;
-};
-Yuv rgbToYuv601(const Rgb &rgb);
 
 // Draws on every plane of a frame with the colour translated to each plane's layout. Coordinates are luma
 // (frame) pixels; subsampled planes get them divided by their subsampling.

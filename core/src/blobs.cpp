@@ -36,7 +36,9 @@ std::string formatNumber(double value) {
   return std::string(buffer.data(), result.ptr);
 }
 
-// HSV of a colour given as doubles in [0, 255] (LUT cell centres fall between 8-bit values).
+// HSV of a colour given as doubles in [0, 255] (LUT cell centres fall between 8-bit values). Not rgbToHsv():
+// the hue is rounded differently ((60 * x) / d against 60 * (x / d)), and merging the two would move hues on
+// integer range limits by one ulp and change which LUT cells a saved range selects.
 Hsv hsvOf(double r, double g, double b) {
   const double mx = std::max({r, g, b}), mn = std::min({r, g, b}), delta = mx - mn;
   Hsv hsv;
@@ -54,13 +56,6 @@ Hsv hsvOf(double r, double g, double b) {
     hsv.h = h >= 360.0 ? h - 360.0 : h;
   }
   return hsv;
-}
-
-// BT.601 limited range to RGB, the matrix of OpenCV's YUV2BGR conversions.
-std::array<double, 3> rgbOfYuv601(double y, double u, double v) {
-  const double c = 1.164 * (y - 16.0), d = u - 128.0, e = v - 128.0;
-  const auto clamp = [](double x) { return std::clamp(x, 0.0, 255.0); };
-  return {clamp(c + 1.596 * e), clamp(c - 0.391 * d - 0.813 * e), clamp(c + 2.018 * d)};
 }
 
 double percentile(std::vector<double> &values, double p) {
@@ -124,7 +119,7 @@ RangeLut::RangeLut(const HsvRange &range, PixelEncoding encoding)
     for (int b = 0; b < cells; ++b)
       for (int c = 0; c < cells; ++c) {
         std::array<double, 3> rgb{centre(a), centre(b), centre(c)};
-        if (encoding == PixelEncoding::Yuv601) rgb = rgbOfYuv601(rgb[0], rgb[1], rgb[2]);
+        if (encoding == PixelEncoding::Yuv601) rgb = yuv601ToRgb(rgb[0], rgb[1], rgb[2]);
         const bool inside = range.contains(hsvOf(rgb[0], rgb[1], rgb[2]));
         table_[(a << (2 * kBits)) | (b << kBits) | c] = inside ? 255 : 0;
       }

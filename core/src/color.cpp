@@ -195,6 +195,21 @@ Hsv rgbToHsv(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
   return out;
 }
 
+Yuv rgbToYuv601(std::uint8_t r8, std::uint8_t g8, std::uint8_t b8) {
+  const double r = r8 / 255.0, g = g8 / 255.0, b = b8 / 255.0;
+  Yuv yuv;
+  yuv.y = cv::saturate_cast<std::uint8_t>(16.0 + 65.481 * r + 128.553 * g + 24.966 * b);
+  yuv.u = cv::saturate_cast<std::uint8_t>(128.0 - 37.797 * r - 74.203 * g + 112.0 * b);
+  yuv.v = cv::saturate_cast<std::uint8_t>(128.0 + 112.0 * r - 93.786 * g - 18.214 * b);
+  return yuv;
+}
+
+std::array<double, 3> yuv601ToRgb(double y, double u, double v) {
+  const double c = 1.164 * (y - 16.0), d = u - 128.0, e = v - 128.0;
+  const auto clamp = [](double x) { return std::clamp(x, 0.0, 255.0); };
+  return {clamp(c + 1.596 * e), clamp(c - 0.391 * d - 0.813 * e), clamp(c + 2.018 * d)};
+}
+
 BinMapper::BinMapper(ColorSpace space, const BinLayout &layout) : space_(space), layout_(layout) {
   checkLayout(layout);
   // The tables serve the RGB path (channel value k stands for k/255). HSV bins are computed per pixel.

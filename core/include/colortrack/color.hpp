@@ -18,6 +18,15 @@ struct Hsv {
 };
 Hsv rgbToHsv(std::uint8_t r, std::uint8_t g, std::uint8_t b);
 
+// BT.601 limited range ("studio swing"), the matrix of SD video and of OpenCV's YUV <-> BGR conversions: both
+// directions here, so that everything drawn or segmented on YUV frames uses the same one.
+struct Yuv {
+  std::uint8_t y = 16, u = 128, v = 128;
+};
+Yuv rgbToYuv601(std::uint8_t r, std::uint8_t g, std::uint8_t b);
+// r, g, b in [0, 255] (clamped), for y, u, v anywhere in [0, 255].
+std::array<double, 3> yuv601ToRgb(double y, double u, double v);
+
 // Number of bins of each of the three channels, in channel order (H,S,V) or (R,G,B). 1..256 each.
 struct BinLayout {
   std::array<int, 3> bins{16, 16, 8};
