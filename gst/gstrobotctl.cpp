@@ -357,44 +357,19 @@ double *doubleSetting(Settings &s, guint prop_id) {
 
 }  // namespace
 
-static void gst_robot_ctl_set_property(GObject *object, guint prop_id, const GValue *value,
-                                       GParamSpec *pspec) {
-  GstRobotCtl *self = GST_ROBOT_CTL(object);
-  GST_OBJECT_LOCK(self);
-  Settings &s = settingsOf(self);
-  if (prop_id == PROP_TURN_GAIN || prop_id == PROP_DRIVE_GAIN) {
-    // A negative gain drives away from the target: refused, with a reason (an error at start; while
-    // running a warning, and the previous gain stays).
-    const double gain = g_value_get_double(value);
-    std::string &error = prop_id == PROP_TURN_GAIN ? s.turnGainError : s.driveGainError;
-    if (gain < 0) {
-      const char *name = prop_id == PROP_TURN_GAIN ? "turn-gain" : "drive-gain";
-      const std::string why = std::string("Invalid value ") + std::to_string(gain) + " for property '" +
-                              name + "': a gain must not be negative (it would steer away from the target)";
-      const bool running = s.running;
-      const double kept = *doubleSetting(s, prop_id);
-      if (!running) error = why;
-      GST_OBJECT_UNLOCK(self);
-      if (running)
-        GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS, ("%s. Keeping %g.", why.c_str(), kept), (nullptr));
-      return;
-    }
-    error.clear();
-  }
-  if (double *setting = doubleSetting(s, prop_id)) {
-    *setting = g_value_get_double(value);
-    ++s.controllerGeneration;
-    GST_OBJECT_UNLOCK(self);
-    return;
-  }
-  // A setting read only at start that changes while started: said at once, or the user would think it
-  // applied.
-  bool startSettingChanged = false;
-  auto assign = [&startSettingChanged](auto &setting, auto value) {
-    startSettingChanged = !(setting == value);
+namespace {
+
+std::string textOf(const GValue *value) {
+  return std::string(g_value_get_string(value) ? g_value_get_string(value) : "");
+}
+
+// A setting read only at start; false for another property. `changed`: the value is not the one it had.
+bool setStartSetting(Settings &s, guint prop_id, const GValue *value, bool &changed) {
+  auto assign = [&changed](auto &setting, auto value) {
+    changed = !(setting == value);
     setting = value;
   };
-  auto text = [value] { return std::string(g_value_get_string(value) ? g_value_get_string(value) : ""); };
+  auto text = [value] { return textOf(value); };
   switch (prop_id) {
     case PROP_DEVICE:
       assign(s.device, text());
@@ -431,6 +406,18 @@ static void gst_robot_ctl_set_property(GObject *object, guint prop_id, const GVa
     case PROP_RATE:
       assign(s.rate, g_value_get_double(value));
       break;
+    case PROP_POST_MESSAGES:
+      assign(s.postMessages, static_cast<bool>(g_value_get_boolean(value)));
+      break;
+    default:
+      return false;
+  }
+  return true;
+}
+
+// A setting applied from the next buffer, other than a double or roi-type; false for another property.
+bool setLiveSetting(Settings &s, guint prop_id, const GValue *value) {
+  switch (prop_id) {
     case PROP_CONTROLLER:
       s.controller.kind = g_value_get_enum(value) == GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL
                               ? colortrack::ControllerKind::Proportional
@@ -451,36 +438,71 @@ static void gst_robot_ctl_set_property(GObject *object, guint prop_id, const GVa
       s.failsafe.searchTurn = g_value_get_boolean(value);
       ++s.controllerGeneration;
       break;
-    case PROP_ROI_TYPE: {
-      // An empty type matches no region: the robot would never see a target. Refused like a bad gain.
-      const std::string type = text();
-      if (type.empty()) {
-        const std::string why =
-            "Invalid value '' for property 'roi-type': it names the type of the regions "
-            "to follow (e.g. colortrack, object)";
-        if (!s.running) {
-          s.roiTypeError = why;
-          break;
-        }
+    case PROP_TARGET_ID:
+      s.targetId = g_value_get_int(value);
+      break;
+    default:
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+static void gst_robot_ctl_set_property(GObject *object, guint prop_id, const GValue *value,
+                                       GParamSpec *pspec) {
+  GstRobotCtl *self = GST_ROBOT_CTL(object);
+  GST_OBJECT_LOCK(self);
+  Settings &s = settingsOf(self);
+  if (prop_id == PROP_TURN_GAIN || prop_id == PROP_DRIVE_GAIN) {
+    // A negative gain drives away from the target: refused, with a reason (an error at start; while
+    // running a warning, and the previous gain stays).
+    const double gain = g_value_get_double(value);
+    std::string &error = prop_id == PROP_TURN_GAIN ? s.turnGainError : s.driveGainError;
+    if (gain < 0) {
+      const char *name = prop_id == PROP_TURN_GAIN ? "turn-gain" : "drive-gain";
+      const std::string why = std::string("Invalid value ") + std::to_string(gain) + " for property '" +
+                              name + "': a gain must not be negative (it would steer away from the target)";
+      const bool running = s.running;
+      const double kept = *doubleSetting(s, prop_id);
+      if (!running) error = why;
+      GST_OBJECT_UNLOCK(self);
+      if (running)
+        GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS, ("%s. Keeping %g.", why.c_str(), kept), (nullptr));
+      return;
+    }
+    error.clear();
+  }
+  if (double *setting = doubleSetting(s, prop_id)) {
+    *setting = g_value_get_double(value);
+    ++s.controllerGeneration;
+    GST_OBJECT_UNLOCK(self);
+    return;
+  }
+  // A setting read only at start that changes while started: said at once, or the user would think it
+  // applied.
+  bool startSettingChanged = false;
+  if (prop_id == PROP_ROI_TYPE) {
+    // An empty type matches no region: the robot would never see a target. Refused like a bad gain.
+    const std::string type = textOf(value);
+    if (type.empty()) {
+      const std::string why =
+          "Invalid value '' for property 'roi-type': it names the type of the regions "
+          "to follow (e.g. colortrack, object)";
+      if (s.running) {
         const std::string kept = s.roiType;
         GST_OBJECT_UNLOCK(self);
         GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS, ("%s. Keeping '%s'.", why.c_str(), kept.c_str()),
                             (nullptr));
         return;
       }
+      s.roiTypeError = why;
+    } else {
       s.roiTypeError.clear();
       s.roiType = type;
-      break;
     }
-    case PROP_TARGET_ID:
-      s.targetId = g_value_get_int(value);
-      break;
-    case PROP_POST_MESSAGES:
-      assign(s.postMessages, static_cast<bool>(g_value_get_boolean(value)));
-      break;
-    default:
-      G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
-      break;
+  } else if (!setLiveSetting(s, prop_id, value) && !setStartSetting(s, prop_id, value, startSettingChanged)) {
+    G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
   }
   const bool warn = startSettingChanged && s.running;
   GST_OBJECT_UNLOCK(self);
@@ -589,6 +611,35 @@ static void gst_robot_ctl_finalize(GObject *object) {
 // ---------------------------------------------------------------------------------------------------------
 // Streaming
 
+namespace {
+
+// The port the settings name, opened; null (with an error posted) when it cannot be opened.
+std::unique_ptr<robotctl::Port> openPort(GstRobotCtl *self, const Settings &s) {
+  std::unique_ptr<robotctl::Port> port;
+  if (!s.device.empty())
+    port = std::make_unique<robotctl::SerialPort>(robotctl::SerialConfig{
+        s.device, s.baudRate, s.dataBits, s.stopBits, toParity(s.parity), toFlowControl(s.flowControl)});
+  else
+    port = std::make_unique<robotctl::FilePort>(s.location);
+  std::string why;
+  if (!port->open(why)) {
+    if (!s.device.empty())
+      GST_ELEMENT_ERROR(
+          self, RESOURCE, OPEN_WRITE,
+          ("Could not open serial port '%s' (property 'device'): %s", s.device.c_str(), why.c_str()),
+          (nullptr));
+    else
+      GST_ELEMENT_ERROR(
+          self, RESOURCE, OPEN_WRITE,
+          ("Could not open '%s' (property 'location') for writing: %s", s.location.c_str(), why.c_str()),
+          (nullptr));
+    return nullptr;
+  }
+  return port;
+}
+
+}  // namespace
+
 static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
   GstRobotCtl *self = GST_ROBOT_CTL(sink);
   GST_OBJECT_LOCK(self);
@@ -633,26 +684,8 @@ static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
     return FALSE;
   }
 
-  std::unique_ptr<robotctl::Port> port;
-  if (!s.device.empty())
-    port = std::make_unique<robotctl::SerialPort>(robotctl::SerialConfig{
-        s.device, s.baudRate, s.dataBits, s.stopBits, toParity(s.parity), toFlowControl(s.flowControl)});
-  else
-    port = std::make_unique<robotctl::FilePort>(s.location);
-  std::string why;
-  if (!port->open(why)) {
-    if (!s.device.empty())
-      GST_ELEMENT_ERROR(
-          self, RESOURCE, OPEN_WRITE,
-          ("Could not open serial port '%s' (property 'device'): %s", s.device.c_str(), why.c_str()),
-          (nullptr));
-    else
-      GST_ELEMENT_ERROR(
-          self, RESOURCE, OPEN_WRITE,
-          ("Could not open '%s' (property 'location') for writing: %s", s.location.c_str(), why.c_str()),
-          (nullptr));
-    return FALSE;
-  }
+  std::unique_ptr<robotctl::Port> port = openPort(self, s);
+  if (!port) return FALSE;
   GST_INFO_OBJECT(self, "writing to %s", port->describe().c_str());
 
   robotctl::WriterConfig config;
@@ -858,25 +891,16 @@ static GstStateChangeReturn gst_robot_ctl_change_state(GstElement *element, GstS
 // ---------------------------------------------------------------------------------------------------------
 // Class
 
-static void gst_robot_ctl_class_init(GstRobotCtlClass *klass) {
-  GObjectClass *gobject_class = G_OBJECT_CLASS(klass);
-  GstElementClass *element_class = GST_ELEMENT_CLASS(klass);
-  GstBaseSinkClass *sink_class = GST_BASE_SINK_CLASS(klass);
+namespace {
 
-  GST_DEBUG_CATEGORY_INIT(gst_robot_ctl_debug, "robotctl", 0, "Robot control from track metadata");
+constexpr auto rw = static_cast<GParamFlags>(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS);
+// Read by start() (NULL to READY): a change while started applies from the next start, with a warning.
+constexpr auto readAtStart = rw;
+// Applied from the next buffer.
+constexpr auto live = static_cast<GParamFlags>(rw | GST_PARAM_MUTABLE_PLAYING);
 
-  gobject_class->set_property = gst_robot_ctl_set_property;
-  gobject_class->get_property = gst_robot_ctl_get_property;
-  gobject_class->dispose = gst_robot_ctl_dispose;
-  gobject_class->finalize = gst_robot_ctl_finalize;
-
-  const colortrack::ControllerSettings c;
-  const colortrack::FailsafeSettings f;
-  constexpr auto rw = static_cast<GParamFlags>(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS);
-  // Read by start() (NULL to READY): a change while started applies from the next start, with a warning.
-  constexpr auto readAtStart = rw;
-  // Applied from the next buffer.
-  constexpr auto live = static_cast<GParamFlags>(rw | GST_PARAM_MUTABLE_PLAYING);
+// Where the commands go and how they are encoded.
+void installOutputProperties(GObjectClass *gobject_class) {
   auto install = [gobject_class](guint id, GParamSpec *spec) {
     g_object_class_install_property(gobject_class, id, spec);
   };
@@ -922,6 +946,14 @@ static void gst_robot_ctl_class_init(GstRobotCtlClass *klass) {
                          "rate", "Rate",
                          "Commands per second; the current command is repeated at this rate; read at start",
                          0.5, 1000.0, kDefaultRate, readAtStart));
+}
+
+// How commands are decided.
+void installControllerProperties(GObjectClass *gobject_class) {
+  const colortrack::ControllerSettings c;
+  auto install = [gobject_class](guint id, GParamSpec *spec) {
+    g_object_class_install_property(gobject_class, id, spec);
+  };
   install(PROP_CONTROLLER,
           g_param_spec_enum("controller", "Controller", "How commands are decided",
                             GST_TYPE_ROBOT_CTL_CONTROLLER, GST_ROBOT_CTL_CONTROLLER_ZONE, live));
@@ -981,6 +1013,14 @@ static void gst_robot_ctl_class_init(GstRobotCtlClass *klass) {
                               "Proportional controller: largest change of the angular "
                               "speed per second (0 = unlimited)",
                               0.0, 1000.0, c.maxAngularAccel, live));
+}
+
+// The failsafe, which target to follow and the messages.
+void installTargetProperties(GObjectClass *gobject_class) {
+  const colortrack::FailsafeSettings f;
+  auto install = [gobject_class](guint id, GParamSpec *spec) {
+    g_object_class_install_property(gobject_class, id, spec);
+  };
   install(PROP_LOST_TIMEOUT,
           g_param_spec_uint("lost-timeout", "Lost timeout",
                             "Milliseconds without a confirmed target, or without any buffer, "
@@ -1011,6 +1051,26 @@ static void gst_robot_ctl_class_init(GstRobotCtlClass *klass) {
           g_param_spec_boolean("post-messages", "Post messages",
                                "Post a \"robotctl\" element message for every command sent; read at start",
                                FALSE, readAtStart));
+}
+
+}  // namespace
+
+static void gst_robot_ctl_class_init(GstRobotCtlClass *klass) {
+  GObjectClass *gobject_class = G_OBJECT_CLASS(klass);
+  GstElementClass *element_class = GST_ELEMENT_CLASS(klass);
+  GstBaseSinkClass *sink_class = GST_BASE_SINK_CLASS(klass);
+
+  GST_DEBUG_CATEGORY_INIT(gst_robot_ctl_debug, "robotctl", 0, "Robot control from track metadata");
+
+  gobject_class->set_property = gst_robot_ctl_set_property;
+  gobject_class->get_property = gst_robot_ctl_get_property;
+  gobject_class->dispose = gst_robot_ctl_dispose;
+  gobject_class->finalize = gst_robot_ctl_finalize;
+
+  // In this order: it is the order gst-inspect-1.0 lists them in.
+  installOutputProperties(gobject_class);
+  installControllerProperties(gobject_class);
+  installTargetProperties(gobject_class);
 
   gst_element_class_set_static_metadata(element_class, "Robot controller", "Sink/Video/Analyzer",
                                         "Drives a robot towards the tracked target: serial commands from "
