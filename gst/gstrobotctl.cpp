@@ -76,6 +76,8 @@ namespace {
 
 using robotctl::Command;
 using robotctl::CommandWriter;
+// The writer knows no GStreamer; its "no timestamp" must read as GST_CLOCK_TIME_NONE in the messages.
+static_assert(robotctl::kNoTimestamp == GST_CLOCK_TIME_NONE);
 
 constexpr const char *kDefaultRoiType = "colortrack";
 constexpr const char *kDefaultZoneChars = "FBLRS";
