@@ -52,29 +52,19 @@
  */
 
 #include "gstrobotctl.h"
+#include "command-writer.h"
+#include "robot-port.h"
 #include "track-params.h"
-
-#include <fcntl.h>
-#include <poll.h>
-#include <signal.h>
-#include <sys/stat.h>
-#include <termios.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
-#include <cerrno>
 #include <chrono>
-#include <condition_variable>
+#include <cmath>
 #include <cstring>
 #include <memory>
-#include <mutex>
 #include <string>
-#include <thread>
-#include <vector>
 
 #include <gst/video/video.h>
-#include <libserialport.h>
 
 #include "colortrack/controller.hpp"
 #include "colortrack/protocol.hpp"
@@ -84,7 +74,10 @@ GST_DEBUG_CATEGORY_STATIC(gst_robot_ctl_debug);
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using robotctl::Command;
+using robotctl::CommandWriter;
+// The writer knows no GStreamer; its "no timestamp" must read as GST_CLOCK_TIME_NONE in the messages.
+static_assert(robotctl::kNoTimestamp == GST_CLOCK_TIME_NONE);
 
 constexpr const char *kDefaultRoiType = "colortrack";
 constexpr const char *kDefaultZoneChars = "FBLRS";
@@ -95,11 +88,6 @@ constexpr gint kDefaultOutputScale = 255;
 constexpr gdouble kDefaultRate = 10.0;
 constexpr guint kDefaultLostTimeoutMs = 500;
 constexpr gint kDefaultTargetId = -1;
-// Reconnection back-off: from the first to the longest wait between attempts to reopen a lost port.
-constexpr auto kFirstRetry = std::chrono::milliseconds(100);
-constexpr auto kLongestRetry = std::chrono::milliseconds(2000);
-// The final stop may wait this long for a slow port before the element gives up on it.
-constexpr int kFinalStopTimeoutMs = 250;
 
 // The rates a serial port can be set to portably (termios' Bxxx constants).
 constexpr guint kStandardBaudRates[] = {50,      75,      110,     134,     150,     200,    300,     600,
@@ -110,6 +98,36 @@ constexpr guint kStandardBaudRates[] = {50,      75,      110,     134,     150,
 bool isStandardBaudRate(guint rate) {
   return std::find(std::begin(kStandardBaudRates), std::end(kStandardBaudRates), rate) !=
          std::end(kStandardBaudRates);
+}
+
+robotctl::Parity toParity(GstRobotCtlParity parity) {
+  switch (parity) {
+    case GST_ROBOT_CTL_PARITY_ODD:
+      return robotctl::Parity::Odd;
+    case GST_ROBOT_CTL_PARITY_EVEN:
+      return robotctl::Parity::Even;
+    case GST_ROBOT_CTL_PARITY_MARK:
+      return robotctl::Parity::Mark;
+    case GST_ROBOT_CTL_PARITY_SPACE:
+      return robotctl::Parity::Space;
+    case GST_ROBOT_CTL_PARITY_NONE:
+      break;
+  }
+  return robotctl::Parity::None;
+}
+
+robotctl::FlowControl toFlowControl(GstRobotCtlFlowControl flow) {
+  switch (flow) {
+    case GST_ROBOT_CTL_FLOW_CONTROL_XONXOFF:
+      return robotctl::FlowControl::XonXoff;
+    case GST_ROBOT_CTL_FLOW_CONTROL_RTSCTS:
+      return robotctl::FlowControl::RtsCts;
+    case GST_ROBOT_CTL_FLOW_CONTROL_DTRDSR:
+      return robotctl::FlowControl::DtrDsr;
+    case GST_ROBOT_CTL_FLOW_CONTROL_NONE:
+      break;
+  }
+  return robotctl::FlowControl::None;
 }
 
 double monotonicSeconds() {
@@ -146,521 +164,59 @@ struct Settings {
   bool running = false;                       // between start() and stop()
 };
 
-// ---------------------------------------------------------------------------------------------------------
-// Ports: where the bytes go.
-
-enum class WriteResult { Written, Busy, Failed };
-
-class Port {
+// Reports the writer's events as the element's bus messages, warnings and debug log.
+class ElementListener : public robotctl::WriterListener {
  public:
-  virtual ~Port() = default;
-  virtual bool open(std::string &why) = 0;
-  virtual void close() = 0;
-  virtual bool isOpen() const = 0;
-  // Writes all of `bytes` within `timeoutMs` (> 0). Busy: the reader did not take them all in time; `written`
-  // says how many went out (a frame may be cut: the caller sends the rest before anything else).
-  virtual WriteResult write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::size_t &written,
-                            std::string &why) = 0;
-  virtual std::string describe() const = 0;
-};
+  ElementListener(GstElement *element, bool postMessages, int outputScale)
+      : element_(element), postMessages_(postMessages), outputScale_(outputScale) {}
 
-// A file, FIFO, pseudo-terminal or stdout ("-"), written without blocking.
-class FilePort : public Port {
- public:
-  explicit FilePort(std::string path) : path_(std::move(path)) {}
-  ~FilePort() override { close(); }
-
-  bool open(std::string &why) override {
-    if (path_ == "-") {
-      fd_ = dup(STDOUT_FILENO);  // our own descriptor, so closing it leaves stdout alone
-      if (fd_ < 0) return fail(why);
-      return true;
-    }
-    struct stat st;
-    const bool exists = stat(path_.c_str(), &st) == 0;
-    int flags = O_WRONLY | O_NOCTTY | O_NONBLOCK | O_CLOEXEC;
-    if (!openedBefore_) {
-      // Only the first open creates, and only a regular file (the user named a file to write to); it starts
-      // empty.
-      if (!exists || S_ISREG(st.st_mode)) flags |= O_CREAT | O_TRUNC;
-    } else {
-      // A reopen waits for the kind of file it lost. An unplugged adapter's path (a udev symlink) or a FIFO
-      // its reader removed must never become a regular file that swallows the robot's commands.
-      if (!exists) {
-        why = "it is gone; waiting for the " + kindName(kind_) + " to come back";
-        return false;
-      }
-      if ((st.st_mode & S_IFMT) != kind_) {
-        why = "it is now " + kindName(st.st_mode & S_IFMT) + ", not the " + kindName(kind_) +
-              " it was; waiting for that to come back";
-        return false;
-      }
-      if (S_ISREG(st.st_mode)) flags |= O_APPEND;  // a regular file reopened is appended to
-    }
-    fd_ = ::open(path_.c_str(), flags, 0644);
-    if (fd_ < 0) {
-      if (errno == ENXIO) {
-        why = "no process has the FIFO open for reading";
-        return false;
-      }
-      return fail(why);
-    }
-    struct stat opened;
-    if (fstat(fd_, &opened) != 0) {
-      fail(why);
-      close();
-      return false;
-    }
-    // Checked again on the descriptor: the path may have changed between stat() and open().
-    if (openedBefore_ && (opened.st_mode & S_IFMT) != kind_) {
-      why = "it is now " + kindName(opened.st_mode & S_IFMT) + ", not the " + kindName(kind_) + " it was";
-      close();
-      return false;
-    }
-    kind_ = opened.st_mode & S_IFMT;
-    openedBefore_ = true;
-    // A terminal (a pty) would turn "\n" into "\r\n" and echo: send the bytes as they are.
-    struct termios tio;
-    if (isatty(fd_) && tcgetattr(fd_, &tio) == 0) {
-      cfmakeraw(&tio);
-      tcsetattr(fd_, TCSANOW, &tio);
-    }
-    return true;
+  void sent(const Command &command) override {
+    if (postMessages_) post(command);
   }
-
-  void close() override {
-    if (fd_ >= 0) ::close(fd_);
-    fd_ = -1;
+  void stalled(double timeout) override {
+    GST_INFO_OBJECT(element_, "no buffer for %.0f ms: stopping", timeout * 1000);
   }
-  bool isOpen() const override { return fd_ >= 0; }
-
-  WriteResult write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::size_t &done,
-                    std::string &why) override {
-    const auto deadline = Clock::now() + std::chrono::milliseconds(timeoutMs);
-    done = 0;
-    while (done < bytes.size()) {
-      const ssize_t n = ::write(fd_, bytes.data() + done, bytes.size() - done);
-      if (n > 0) {
-        done += static_cast<std::size_t>(n);
-        continue;
-      }
-      if (n < 0 && errno == EINTR) continue;
-      if (n < 0 && errno != EAGAIN && errno != EWOULDBLOCK) {
-        if (errno == EPIPE) consumeSigpipe();
-        fail(why);
-        return WriteResult::Failed;
-      }
-      const auto left =
-          std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
-      if (left <= 0) return WriteResult::Busy;
-      struct pollfd pfd = {fd_, POLLOUT, 0};
-      const int ready = poll(&pfd, 1, static_cast<int>(left));
-      if (ready == 0) return WriteResult::Busy;
-      // POLLERR/POLLHUP: the next write reports the error.
-    }
-    return WriteResult::Written;
+  void busy(const std::string &port, bool tail, std::size_t left) override {
+    if (tail)
+      GST_LOG_OBJECT(element_, "%s is not taking data: %zu bytes of a command still to send", port.c_str(),
+                     left);
+    else
+      GST_LOG_OBJECT(element_, "%s is not taking data: %s", port.c_str(),
+                     left > 0 ? "the rest of the command goes first on the next tick" : "command dropped");
   }
-
-  std::string describe() const override { return path_ == "-" ? "stdout" : "'" + path_ + "'"; }
-
- private:
-  static bool fail(std::string &why) {
-    why = g_strerror(errno);
-    return false;
-  }
-  // The writer thread blocks SIGPIPE (a FIFO or pipe whose reader went away); take the pending one.
-  static void consumeSigpipe() {
-    sigset_t set;
-    sigemptyset(&set);
-    sigaddset(&set, SIGPIPE);
-    struct timespec zero = {0, 0};
-    sigtimedwait(&set, nullptr, &zero);
-  }
-
-  std::string path_;
-  int fd_ = -1;
-  bool openedBefore_ = false;
-  mode_t kind_ = 0;  // S_IFMT bits of what the first open found (a reopen needs the same kind)
-
-  static std::string kindName(mode_t kind) {
-    switch (kind) {
-      case S_IFREG:
-        return "regular file";
-      case S_IFCHR:
-        return "character device";
-      case S_IFIFO:
-        return "FIFO";
-      case S_IFSOCK:
-        return "socket";
-      case S_IFBLK:
-        return "block device";
-      case S_IFDIR:
-        return "directory";
-      default:
-        return "file";
-    }
-  }
-};
-
-struct SerialConfig {
-  std::string device;
-  guint baudRate;
-  gint dataBits, stopBits;
-  GstRobotCtlParity parity;
-  GstRobotCtlFlowControl flowControl;
-};
-
-// A serial port through libserialport.
-class SerialPort : public Port {
- public:
-  explicit SerialPort(SerialConfig config) : config_(std::move(config)) {}
-  ~SerialPort() override { close(); }
-
-  bool open(std::string &why) override {
-    if (sp_get_port_by_name(config_.device.c_str(), &port_) != SP_OK) {
-      port_ = nullptr;
-      why = "no such serial port";
-      return false;
-    }
-    if (!check(sp_open(port_, SP_MODE_WRITE), "open", why)) {
-      sp_free_port(port_);
-      port_ = nullptr;
-      return false;
-    }
-    const bool configured =
-        check(sp_set_baudrate(port_, static_cast<int>(config_.baudRate)), "set the baud rate", why) &&
-        check(sp_set_bits(port_, config_.dataBits), "set the data bits", why) &&
-        check(sp_set_parity(port_, toParity(config_.parity)), "set the parity", why) &&
-        check(sp_set_stopbits(port_, config_.stopBits), "set the stop bits", why) &&
-        check(sp_set_flowcontrol(port_, toFlowControl(config_.flowControl)), "set the flow control", why);
-    if (!configured) close();
-    return configured;
-  }
-
-  void close() override {
-    if (!port_) return;
-    sp_close(port_);
-    sp_free_port(port_);
-    port_ = nullptr;
-  }
-  bool isOpen() const override { return port_ != nullptr; }
-
-  WriteResult write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::size_t &written,
-                    std::string &why) override {
-    written = 0;
-    // A timeout of 0 would block for ever in libserialport.
-    const sp_return n =
-        sp_blocking_write(port_, bytes.data(), bytes.size(), static_cast<unsigned>(std::max(timeoutMs, 1)));
-    if (n < 0) {
-      check(n, "write", why);
-      return WriteResult::Failed;
-    }
-    written = static_cast<std::size_t>(n);
-    return written == bytes.size() ? WriteResult::Written : WriteResult::Busy;
-  }
-
-  std::string describe() const override { return "serial port '" + config_.device + "'"; }
-
- private:
-  static bool check(sp_return result, const char *what, std::string &why) {
-    if (result >= 0) return true;
-    char *message = result == SP_ERR_FAIL ? sp_last_error_message() : nullptr;
-    why = std::string("could not ") + what + ": " +
-          (message                 ? message
-           : result == SP_ERR_SUPP ? "not supported by this port"
-                                   : "invalid argument");
-    if (message) sp_free_error_message(message);
-    return false;
-  }
-  static sp_parity toParity(GstRobotCtlParity parity) {
-    switch (parity) {
-      case GST_ROBOT_CTL_PARITY_ODD:
-        return SP_PARITY_ODD;
-      case GST_ROBOT_CTL_PARITY_EVEN:
-        return SP_PARITY_EVEN;
-      case GST_ROBOT_CTL_PARITY_MARK:
-        return SP_PARITY_MARK;
-      case GST_ROBOT_CTL_PARITY_SPACE:
-        return SP_PARITY_SPACE;
-      case GST_ROBOT_CTL_PARITY_NONE:
-        break;
-    }
-    return SP_PARITY_NONE;
-  }
-  static sp_flowcontrol toFlowControl(GstRobotCtlFlowControl flow) {
-    switch (flow) {
-      case GST_ROBOT_CTL_FLOW_CONTROL_XONXOFF:
-        return SP_FLOWCONTROL_XONXOFF;
-      case GST_ROBOT_CTL_FLOW_CONTROL_RTSCTS:
-        return SP_FLOWCONTROL_RTSCTS;
-      case GST_ROBOT_CTL_FLOW_CONTROL_DTRDSR:
-        return SP_FLOWCONTROL_DTRDSR;
-      case GST_ROBOT_CTL_FLOW_CONTROL_NONE:
-        break;
-    }
-    return SP_FLOWCONTROL_NONE;
-  }
-
-  SerialConfig config_;
-  sp_port *port_ = nullptr;
-};
-
-// ---------------------------------------------------------------------------------------------------------
-// The writer: a thread that sends the newest command at a fixed rate.
-
-struct Command {
-  colortrack::DriveOutput output;                // default: stop
-  GstClockTime timestamp = GST_CLOCK_TIME_NONE;  // of the buffer it was decided on
-  const char *reason = "start";
-};
-
-struct WriterConfig {
-  colortrack::ProtocolSettings protocol;
-  double rate = kDefaultRate;
-  double stallTimeout = kDefaultLostTimeoutMs / 1000.0;  // seconds without a buffer while playing
-  bool postMessages = false;
-};
-
-class CommandWriter {
- public:
-  CommandWriter(GstElement *element, std::unique_ptr<Port> port, const WriterConfig &config)
-      : element_(element),
-        port_(std::move(port)),
-        config_(config),
-        encoder_(config.protocol),
-        stallTimeout_(config.stallTimeout),
-        bufferWatchdog_(config.stallTimeout) {}
-
-  ~CommandWriter() { shutdown(); }
-
-  void start() {
-    thread_ = std::thread([this] { run(); });
-  }
-
-  // The streaming thread's decision; replaces any command not sent yet (a queue of one: newest wins).
-  // Ignored unless playing and not flushing: a render() still running when a pause or a flush sent stop must
-  // not bring a moving command back (the stall watchdog, off while not playing, would not stop it).
-  void submit(const Command &command) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    bufferWatchdog_.feed(monotonicSeconds());
-    if (!playing_ || flushing_) return;
-    pending_ = command;
-  }
-
-  // Stop now, not at the next tick.
-  void stopNow(const char *reason) {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      pending_ = Command{};
-      pending_.reason = reason;
-      urgent_ = true;
-    }
-    wake_.notify_one();
-  }
-
-  // Only a playing pipeline is expected to deliver buffers, and only its decisions are sent.
-  void setPlaying(bool playing) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    playing_ = playing;
-    if (playing) bufferWatchdog_.feed(monotonicSeconds());
-  }
-
-  // Between flush-start and flush-stop decisions are dropped (see submit()).
-  void setFlushing(bool flushing) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    flushing_ = flushing;
-  }
-
-  // How long a playing pipeline may go without a buffer (lost-timeout, which may change while playing).
-  void setStallTimeout(double seconds) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    stallTimeout_ = seconds;
-    bufferWatchdog_.setTimeout(seconds);
-  }
-
-  // Sends a last stop, ends the thread and closes the port. Idempotent.
-  void shutdown() {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      quit_ = true;
-    }
-    wake_.notify_one();
-    if (thread_.joinable()) thread_.join();
-    port_->close();
-  }
-
- private:
-  void run() {
-    // A reader that goes away must come back as EPIPE, not as a signal that kills the process.
-    sigset_t set;
-    sigemptyset(&set);
-    sigaddset(&set, SIGPIPE);
-    pthread_sigmask(SIG_BLOCK, &set, nullptr);
-
-    const auto period =
-        std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / config_.rate));
-    auto nextTick = Clock::now();
-    std::unique_lock<std::mutex> lock(mutex_);
-    while (true) {
-      wake_.wait_until(lock, nextTick, [this] { return quit_ || urgent_; });
-      if (quit_) break;
-      const bool urgent = urgent_;
-      urgent_ = false;
-      if (playing_ && bufferWatchdog_.expired(monotonicSeconds()) &&
-          pending_.output.command != colortrack::DriveCommand::Stop) {
-        GST_INFO_OBJECT(element_, "no buffer for %.0f ms: stopping", stallTimeout_ * 1000);
-        pending_ = Command{};
-        pending_.reason = "stalled";
-      }
-      const Command command = pending_;
-      lock.unlock();
-      send(command, writeTimeoutMs(period));
-      lock.lock();
-      const auto now = Clock::now();
-      // An urgent stop restarts the rhythm; a tick that fell far behind (a slow port) does not burst to catch
-      // up.
-      nextTick = urgent || nextTick + period < now ? now + period : nextTick + period;
-    }
-    lock.unlock();
-    Command last;
-    last.reason = "shutdown";
-    send(last, kFinalStopTimeoutMs);
-  }
-
-  static int writeTimeoutMs(Clock::duration period) {
-    const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(period).count();
-    return static_cast<int>(std::clamp<long long>(ms, 5, 100));
-  }
-
-  // Time left until `deadline`, at least 1 ms (a port is always given a chance to take something).
-  static int msUntil(Clock::time_point deadline) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
-    return static_cast<int>(std::max<long long>(left, 1));
-  }
-
-  void send(const Command &command, int timeoutMs) {
-    const auto deadline = Clock::now() + std::chrono::milliseconds(timeoutMs);
-    std::string why;
-    if (!port_->isOpen()) {
-      if (Clock::now() < retryAt_) return;
-      if (!port_->open(why)) {
-        retryDelay_ = std::min(retryDelay_ * 2, std::chrono::duration_cast<Clock::duration>(kLongestRetry));
-        retryAt_ = Clock::now() + retryDelay_;
-        // Said once per outage (and again if the reason changes), not at every attempt.
-        if (why != waitingFor_)
-          GST_ELEMENT_WARNING(element_, RESOURCE, OPEN_WRITE,
-                              ("Cannot reopen %s: %s. Retrying.", port_->describe().c_str(), why.c_str()),
-                              (nullptr));
-        waitingFor_ = why;
-        GST_DEBUG_OBJECT(element_, "could not reopen %s: %s (next try in %lld ms)", port_->describe().c_str(),
-                         why.c_str(),
-                         static_cast<long long>(
-                             std::chrono::duration_cast<std::chrono::milliseconds>(retryDelay_).count()));
-        return;
-      }
-      GST_ELEMENT_INFO(element_, RESOURCE, WRITE, ("Reconnected to %s.", port_->describe().c_str()),
-                       (nullptr));
-      waitingFor_.clear();
-      // Whatever the robot did while it was cut off, it hears stop first.
-      Command stop;
-      stop.reason = "reconnected";
-      if (!write(stop, deadline)) return;
-      if (command.output.command == colortrack::DriveCommand::Stop) return;
-    }
-    // The rest of a cut frame goes first: the robot would misread a newer frame glued to a fragment.
-    if (!finishUnsent(deadline)) return;
-    write(command, deadline);
-  }
-
-  // Sends the tail of the frame cut by an earlier timeout; true when there is none left.
-  bool finishUnsent(Clock::time_point deadline) {
-    if (unsent_.empty()) return true;
-    std::size_t written = 0;
-    std::string why;
-    const WriteResult result = port_->write(unsent_, msUntil(deadline), written, why);
-    unsent_.erase(unsent_.begin(), unsent_.begin() + static_cast<std::ptrdiff_t>(written));
-    switch (result) {
-      case WriteResult::Written:
-        retryDelay_ = kFirstRetry;
-        if (config_.postMessages) post(unsentCommand_);
-        return true;
-      case WriteResult::Busy:
-        GST_LOG_OBJECT(element_, "%s is not taking data: %zu bytes of a command still to send",
-                       port_->describe().c_str(), unsent_.size());
-        return false;
-      case WriteResult::Failed:
-        break;
-    }
-    connectionLost(why);
-    return false;
-  }
-
-  bool write(const Command &command, Clock::time_point deadline) {
-    const std::vector<std::uint8_t> bytes = encoder_.encode(command.output);
-    std::size_t written = 0;
-    std::string why;
-    switch (port_->write(bytes, msUntil(deadline), written, why)) {
-      case WriteResult::Written:
-        retryDelay_ = kFirstRetry;
-        if (config_.postMessages) post(command);
-        return true;
-      case WriteResult::Busy:
-        if (written > 0) {
-          unsent_.assign(bytes.begin() + static_cast<std::ptrdiff_t>(written), bytes.end());
-          unsentCommand_ = command;  // posted once its last byte is out
-        }
-        GST_LOG_OBJECT(
-            element_, "%s is not taking data: %s", port_->describe().c_str(),
-            written > 0 ? "the rest of the command goes first on the next tick" : "command dropped");
-        return false;
-      case WriteResult::Failed:
-        break;
-    }
-    connectionLost(why);
-    return false;
-  }
-
-  void connectionLost(const std::string &why) {
+  void connectionLost(const std::string &port, const std::string &why) override {
     GST_ELEMENT_WARNING(element_, RESOURCE, WRITE,
-                        ("Lost the connection to %s: %s. Retrying.", port_->describe().c_str(), why.c_str()),
-                        (nullptr));
-    port_->close();
-    unsent_.clear();  // a new connection starts with a whole frame (stop)
-    retryDelay_ = kFirstRetry;
-    retryAt_ = Clock::now() + retryDelay_;
+                        ("Lost the connection to %s: %s. Retrying.", port.c_str(), why.c_str()), (nullptr));
+  }
+  void reopenFailed(const std::string &port, const std::string &why, bool newReason,
+                    std::chrono::milliseconds retryIn) override {
+    if (newReason)
+      GST_ELEMENT_WARNING(element_, RESOURCE, OPEN_WRITE,
+                          ("Cannot reopen %s: %s. Retrying.", port.c_str(), why.c_str()), (nullptr));
+    GST_DEBUG_OBJECT(element_, "could not reopen %s: %s (next try in %lld ms)", port.c_str(), why.c_str(),
+                     static_cast<long long>(retryIn.count()));
+  }
+  void reconnected(const std::string &port) override {
+    GST_ELEMENT_INFO(element_, RESOURCE, WRITE, ("Reconnected to %s.", port.c_str()), (nullptr));
   }
 
+ private:
   void post(const Command &command) {
     const colortrack::DriveOutput &out = command.output;
     const bool stop = out.command == colortrack::DriveCommand::Stop;
-    const int scale = config_.protocol.outputScale;
     GstStructure *s = gst_structure_new(
         "robotctl", "command", G_TYPE_STRING, colortrack::toString(out.command), "left", G_TYPE_INT,
-        stop ? 0 : colortrack::scaledSpeed(out.left, scale), "right", G_TYPE_INT,
-        stop ? 0 : colortrack::scaledSpeed(out.right, scale), "linear", G_TYPE_DOUBLE, out.linear, "angular",
-        G_TYPE_DOUBLE, out.angular, "target-visible", G_TYPE_BOOLEAN,
+        stop ? 0 : colortrack::scaledSpeed(out.left, outputScale_), "right", G_TYPE_INT,
+        stop ? 0 : colortrack::scaledSpeed(out.right, outputScale_), "linear", G_TYPE_DOUBLE, out.linear,
+        "angular", G_TYPE_DOUBLE, out.angular, "target-visible", G_TYPE_BOOLEAN,
         static_cast<gboolean>(out.targetVisible), "timestamp", G_TYPE_UINT64,
         static_cast<guint64>(command.timestamp), "reason", G_TYPE_STRING, command.reason, nullptr);
     gst_element_post_message(element_, gst_message_new_element(GST_OBJECT(element_), s));
   }
 
   GstElement *element_;
-  std::unique_ptr<Port> port_;
-  WriterConfig config_;
-  colortrack::ProtocolEncoder encoder_;  // writer thread only, like the next five
-  std::vector<std::uint8_t> unsent_;     // the tail of a frame a timed-out write cut
-  Command unsentCommand_;                // the command that frame carries
-  Clock::duration retryDelay_ = kFirstRetry;
-  Clock::time_point retryAt_;
-  std::string waitingFor_;  // why the last reopen failed ("" while connected)
-  std::thread thread_;
-
-  std::mutex mutex_;  // guards what follows; never held during I/O
-  std::condition_variable wake_;
-  Command pending_;
-  bool urgent_ = false, quit_ = false, playing_ = false, flushing_ = false;
-  double stallTimeout_;
-  colortrack::Watchdog bufferWatchdog_;
+  const bool postMessages_;
+  const int outputScale_;
 };
 
 // What the streaming thread owns (and start()/stop(), which never run concurrently with it).
@@ -677,7 +233,8 @@ struct State {
 struct _GstRobotCtlPrivate {
   Settings settings;
   State state;
-  std::unique_ptr<CommandWriter> writer;  // between start() and stop()
+  std::unique_ptr<ElementListener> listener;  // outlives the writer
+  std::unique_ptr<CommandWriter> writer;      // between start() and stop()
   std::atomic<bool> resetRequested{false};
 };
 
@@ -802,44 +359,19 @@ double *doubleSetting(Settings &s, guint prop_id) {
 
 }  // namespace
 
-static void gst_robot_ctl_set_property(GObject *object, guint prop_id, const GValue *value,
-                                       GParamSpec *pspec) {
-  GstRobotCtl *self = GST_ROBOT_CTL(object);
-  GST_OBJECT_LOCK(self);
-  Settings &s = settingsOf(self);
-  if (prop_id == PROP_TURN_GAIN || prop_id == PROP_DRIVE_GAIN) {
-    // A negative gain drives away from the target: refused, with a reason (an error at start; while
-    // running a warning, and the previous gain stays).
-    const double gain = g_value_get_double(value);
-    std::string &error = prop_id == PROP_TURN_GAIN ? s.turnGainError : s.driveGainError;
-    if (gain < 0) {
-      const char *name = prop_id == PROP_TURN_GAIN ? "turn-gain" : "drive-gain";
-      const std::string why = std::string("Invalid value ") + std::to_string(gain) + " for property '" +
-                              name + "': a gain must not be negative (it would steer away from the target)";
-      const bool running = s.running;
-      const double kept = *doubleSetting(s, prop_id);
-      if (!running) error = why;
-      GST_OBJECT_UNLOCK(self);
-      if (running)
-        GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS, ("%s. Keeping %g.", why.c_str(), kept), (nullptr));
-      return;
-    }
-    error.clear();
-  }
-  if (double *setting = doubleSetting(s, prop_id)) {
-    *setting = g_value_get_double(value);
-    ++s.controllerGeneration;
-    GST_OBJECT_UNLOCK(self);
-    return;
-  }
-  // A setting read only at start that changes while started: said at once, or the user would think it
-  // applied.
-  bool startSettingChanged = false;
-  auto assign = [&startSettingChanged](auto &setting, auto value) {
-    startSettingChanged = !(setting == value);
+namespace {
+
+std::string textOf(const GValue *value) {
+  return std::string(g_value_get_string(value) ? g_value_get_string(value) : "");
+}
+
+// A setting read only at start; false for another property. `changed`: the value is not the one it had.
+bool setStartSetting(Settings &s, guint prop_id, const GValue *value, bool &changed) {
+  auto assign = [&changed](auto &setting, auto value) {
+    changed = !(setting == value);
     setting = value;
   };
-  auto text = [value] { return std::string(g_value_get_string(value) ? g_value_get_string(value) : ""); };
+  auto text = [value] { return textOf(value); };
   switch (prop_id) {
     case PROP_DEVICE:
       assign(s.device, text());
@@ -876,6 +408,18 @@ static void gst_robot_ctl_set_property(GObject *object, guint prop_id, const GVa
     case PROP_RATE:
       assign(s.rate, g_value_get_double(value));
       break;
+    case PROP_POST_MESSAGES:
+      assign(s.postMessages, static_cast<bool>(g_value_get_boolean(value)));
+      break;
+    default:
+      return false;
+  }
+  return true;
+}
+
+// A setting applied from the next buffer, other than a double or roi-type; false for another property.
+bool setLiveSetting(Settings &s, guint prop_id, const GValue *value) {
+  switch (prop_id) {
     case PROP_CONTROLLER:
       s.controller.kind = g_value_get_enum(value) == GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL
                               ? colortrack::ControllerKind::Proportional
@@ -896,36 +440,71 @@ static void gst_robot_ctl_set_property(GObject *object, guint prop_id, const GVa
       s.failsafe.searchTurn = g_value_get_boolean(value);
       ++s.controllerGeneration;
       break;
-    case PROP_ROI_TYPE: {
-      // An empty type matches no region: the robot would never see a target. Refused like a bad gain.
-      const std::string type = text();
-      if (type.empty()) {
-        const std::string why =
-            "Invalid value '' for property 'roi-type': it names the type of the regions "
-            "to follow (e.g. colortrack, object)";
-        if (!s.running) {
-          s.roiTypeError = why;
-          break;
-        }
+    case PROP_TARGET_ID:
+      s.targetId = g_value_get_int(value);
+      break;
+    default:
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+static void gst_robot_ctl_set_property(GObject *object, guint prop_id, const GValue *value,
+                                       GParamSpec *pspec) {
+  GstRobotCtl *self = GST_ROBOT_CTL(object);
+  GST_OBJECT_LOCK(self);
+  Settings &s = settingsOf(self);
+  if (prop_id == PROP_TURN_GAIN || prop_id == PROP_DRIVE_GAIN) {
+    // A negative gain drives away from the target: refused, with a reason (an error at start; while
+    // running a warning, and the previous gain stays).
+    const double gain = g_value_get_double(value);
+    std::string &error = prop_id == PROP_TURN_GAIN ? s.turnGainError : s.driveGainError;
+    if (gain < 0) {
+      const char *name = prop_id == PROP_TURN_GAIN ? "turn-gain" : "drive-gain";
+      const std::string why = std::string("Invalid value ") + std::to_string(gain) + " for property '" +
+                              name + "': a gain must not be negative (it would steer away from the target)";
+      const bool running = s.running;
+      const double kept = *doubleSetting(s, prop_id);
+      if (!running) error = why;
+      GST_OBJECT_UNLOCK(self);
+      if (running)
+        GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS, ("%s. Keeping %g.", why.c_str(), kept), (nullptr));
+      return;
+    }
+    error.clear();
+  }
+  if (double *setting = doubleSetting(s, prop_id)) {
+    *setting = g_value_get_double(value);
+    ++s.controllerGeneration;
+    GST_OBJECT_UNLOCK(self);
+    return;
+  }
+  // A setting read only at start that changes while started: said at once, or the user would think it
+  // applied.
+  bool startSettingChanged = false;
+  if (prop_id == PROP_ROI_TYPE) {
+    // An empty type matches no region: the robot would never see a target. Refused like a bad gain.
+    const std::string type = textOf(value);
+    if (type.empty()) {
+      const std::string why =
+          "Invalid value '' for property 'roi-type': it names the type of the regions "
+          "to follow (e.g. colortrack, object)";
+      if (s.running) {
         const std::string kept = s.roiType;
         GST_OBJECT_UNLOCK(self);
         GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS, ("%s. Keeping '%s'.", why.c_str(), kept.c_str()),
                             (nullptr));
         return;
       }
+      s.roiTypeError = why;
+    } else {
       s.roiTypeError.clear();
       s.roiType = type;
-      break;
     }
-    case PROP_TARGET_ID:
-      s.targetId = g_value_get_int(value);
-      break;
-    case PROP_POST_MESSAGES:
-      assign(s.postMessages, static_cast<bool>(g_value_get_boolean(value)));
-      break;
-    default:
-      G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
-      break;
+  } else if (!setLiveSetting(s, prop_id, value) && !setStartSetting(s, prop_id, value, startSettingChanged)) {
+    G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
   }
   const bool warn = startSettingChanged && s.running;
   GST_OBJECT_UNLOCK(self);
@@ -1034,6 +613,35 @@ static void gst_robot_ctl_finalize(GObject *object) {
 // ---------------------------------------------------------------------------------------------------------
 // Streaming
 
+namespace {
+
+// The port the settings name, opened; null (with an error posted) when it cannot be opened.
+std::unique_ptr<robotctl::Port> openPort(GstRobotCtl *self, const Settings &s) {
+  std::unique_ptr<robotctl::Port> port;
+  if (!s.device.empty())
+    port = std::make_unique<robotctl::SerialPort>(robotctl::SerialConfig{
+        s.device, s.baudRate, s.dataBits, s.stopBits, toParity(s.parity), toFlowControl(s.flowControl)});
+  else
+    port = std::make_unique<robotctl::FilePort>(s.location);
+  std::string why;
+  if (!port->open(why)) {
+    if (!s.device.empty())
+      GST_ELEMENT_ERROR(
+          self, RESOURCE, OPEN_WRITE,
+          ("Could not open serial port '%s' (property 'device'): %s", s.device.c_str(), why.c_str()),
+          (nullptr));
+    else
+      GST_ELEMENT_ERROR(
+          self, RESOURCE, OPEN_WRITE,
+          ("Could not open '%s' (property 'location') for writing: %s", s.location.c_str(), why.c_str()),
+          (nullptr));
+    return nullptr;
+  }
+  return port;
+}
+
+}  // namespace
+
 static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
   GstRobotCtl *self = GST_ROBOT_CTL(sink);
   GST_OBJECT_LOCK(self);
@@ -1078,29 +686,11 @@ static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
     return FALSE;
   }
 
-  std::unique_ptr<Port> port;
-  if (!s.device.empty())
-    port = std::make_unique<SerialPort>(
-        SerialConfig{s.device, s.baudRate, s.dataBits, s.stopBits, s.parity, s.flowControl});
-  else
-    port = std::make_unique<FilePort>(s.location);
-  std::string why;
-  if (!port->open(why)) {
-    if (!s.device.empty())
-      GST_ELEMENT_ERROR(
-          self, RESOURCE, OPEN_WRITE,
-          ("Could not open serial port '%s' (property 'device'): %s", s.device.c_str(), why.c_str()),
-          (nullptr));
-    else
-      GST_ELEMENT_ERROR(
-          self, RESOURCE, OPEN_WRITE,
-          ("Could not open '%s' (property 'location') for writing: %s", s.location.c_str(), why.c_str()),
-          (nullptr));
-    return FALSE;
-  }
+  std::unique_ptr<robotctl::Port> port = openPort(self, s);
+  if (!port) return FALSE;
   GST_INFO_OBJECT(self, "writing to %s", port->describe().c_str());
 
-  WriterConfig config;
+  robotctl::WriterConfig config;
   config.protocol.protocol = s.protocol == GST_ROBOT_CTL_PROTOCOL_TEXT     ? colortrack::Protocol::Text
                              : s.protocol == GST_ROBOT_CTL_PROTOCOL_BINARY ? colortrack::Protocol::Binary
                                                                            : colortrack::Protocol::ZoneChar;
@@ -1108,7 +698,6 @@ static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
   config.protocol.outputScale = s.outputScale;
   config.rate = s.rate;
   config.stallTimeout = s.failsafe.lostTimeout;
-  config.postMessages = s.postMessages;
 
   State &state = stateOf(self);
   state = State{};
@@ -1118,7 +707,8 @@ static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
   self->priv->resetRequested = false;
 
   // The robot hears stop from the start, at the rate, until there is something to follow.
-  self->priv->writer = std::make_unique<CommandWriter>(GST_ELEMENT(self), std::move(port), config);
+  self->priv->listener = std::make_unique<ElementListener>(GST_ELEMENT(self), s.postMessages, s.outputScale);
+  self->priv->writer = std::make_unique<CommandWriter>(std::move(port), config, *self->priv->listener);
   self->priv->writer->start();
   GST_OBJECT_LOCK(self);
   settingsOf(self).running = true;
@@ -1134,6 +724,7 @@ static gboolean gst_robot_ctl_stop(GstBaseSink *sink) {
   if (self->priv->writer) {
     self->priv->writer->shutdown();  // sends the final stop
     self->priv->writer.reset();
+    self->priv->listener.reset();
   }
   stateOf(self) = State{};
   return TRUE;
@@ -1302,25 +893,16 @@ static GstStateChangeReturn gst_robot_ctl_change_state(GstElement *element, GstS
 // ---------------------------------------------------------------------------------------------------------
 // Class
 
-static void gst_robot_ctl_class_init(GstRobotCtlClass *klass) {
-  GObjectClass *gobject_class = G_OBJECT_CLASS(klass);
-  GstElementClass *element_class = GST_ELEMENT_CLASS(klass);
-  GstBaseSinkClass *sink_class = GST_BASE_SINK_CLASS(klass);
+namespace {
 
-  GST_DEBUG_CATEGORY_INIT(gst_robot_ctl_debug, "robotctl", 0, "Robot control from track metadata");
+constexpr auto rw = static_cast<GParamFlags>(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS);
+// Read by start() (NULL to READY): a change while started applies from the next start, with a warning.
+constexpr auto readAtStart = rw;
+// Applied from the next buffer.
+constexpr auto live = static_cast<GParamFlags>(rw | GST_PARAM_MUTABLE_PLAYING);
 
-  gobject_class->set_property = gst_robot_ctl_set_property;
-  gobject_class->get_property = gst_robot_ctl_get_property;
-  gobject_class->dispose = gst_robot_ctl_dispose;
-  gobject_class->finalize = gst_robot_ctl_finalize;
-
-  const colortrack::ControllerSettings c;
-  const colortrack::FailsafeSettings f;
-  constexpr auto rw = static_cast<GParamFlags>(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS);
-  // Read by start() (NULL to READY): a change while started applies from the next start, with a warning.
-  constexpr auto readAtStart = rw;
-  // Applied from the next buffer.
-  constexpr auto live = static_cast<GParamFlags>(rw | GST_PARAM_MUTABLE_PLAYING);
+// Where the commands go and how they are encoded.
+void installOutputProperties(GObjectClass *gobject_class) {
   auto install = [gobject_class](guint id, GParamSpec *spec) {
     g_object_class_install_property(gobject_class, id, spec);
   };
@@ -1366,6 +948,14 @@ static void gst_robot_ctl_class_init(GstRobotCtlClass *klass) {
                          "rate", "Rate",
                          "Commands per second; the current command is repeated at this rate; read at start",
                          0.5, 1000.0, kDefaultRate, readAtStart));
+}
+
+// How commands are decided.
+void installControllerProperties(GObjectClass *gobject_class) {
+  const colortrack::ControllerSettings c;
+  auto install = [gobject_class](guint id, GParamSpec *spec) {
+    g_object_class_install_property(gobject_class, id, spec);
+  };
   install(PROP_CONTROLLER,
           g_param_spec_enum("controller", "Controller", "How commands are decided",
                             GST_TYPE_ROBOT_CTL_CONTROLLER, GST_ROBOT_CTL_CONTROLLER_ZONE, live));
@@ -1425,6 +1015,14 @@ static void gst_robot_ctl_class_init(GstRobotCtlClass *klass) {
                               "Proportional controller: largest change of the angular "
                               "speed per second (0 = unlimited)",
                               0.0, 1000.0, c.maxAngularAccel, live));
+}
+
+// The failsafe, which target to follow and the messages.
+void installTargetProperties(GObjectClass *gobject_class) {
+  const colortrack::FailsafeSettings f;
+  auto install = [gobject_class](guint id, GParamSpec *spec) {
+    g_object_class_install_property(gobject_class, id, spec);
+  };
   install(PROP_LOST_TIMEOUT,
           g_param_spec_uint("lost-timeout", "Lost timeout",
                             "Milliseconds without a confirmed target, or without any buffer, "
@@ -1455,6 +1053,26 @@ static void gst_robot_ctl_class_init(GstRobotCtlClass *klass) {
           g_param_spec_boolean("post-messages", "Post messages",
                                "Post a \"robotctl\" element message for every command sent; read at start",
                                FALSE, readAtStart));
+}
+
+}  // namespace
+
+static void gst_robot_ctl_class_init(GstRobotCtlClass *klass) {
+  GObjectClass *gobject_class = G_OBJECT_CLASS(klass);
+  GstElementClass *element_class = GST_ELEMENT_CLASS(klass);
+  GstBaseSinkClass *sink_class = GST_BASE_SINK_CLASS(klass);
+
+  GST_DEBUG_CATEGORY_INIT(gst_robot_ctl_debug, "robotctl", 0, "Robot control from track metadata");
+
+  gobject_class->set_property = gst_robot_ctl_set_property;
+  gobject_class->get_property = gst_robot_ctl_get_property;
+  gobject_class->dispose = gst_robot_ctl_dispose;
+  gobject_class->finalize = gst_robot_ctl_finalize;
+
+  // In this order: it is the order gst-inspect-1.0 lists them in.
+  installOutputProperties(gobject_class);
+  installControllerProperties(gobject_class);
+  installTargetProperties(gobject_class);
 
   gst_element_class_set_static_metadata(element_class, "Robot controller", "Sink/Video/Analyzer",
                                         "Drives a robot towards the tracked target: serial commands from "

@@ -1,0 +1,215 @@
+#include "command-writer.h"
+
+#include <signal.h>
+
+#include <algorithm>
+
+namespace robotctl {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Reconnection back-off: from the first to the longest wait between attempts to reopen a lost port.
+constexpr auto kFirstRetry = std::chrono::milliseconds(100);
+constexpr auto kLongestRetry = std::chrono::milliseconds(2000);
+// The final stop may wait this long for a slow port before the element gives up on it.
+constexpr int kFinalStopTimeoutMs = 250;
+
+double monotonicSeconds() {
+  return std::chrono::duration<double>(Clock::now().time_since_epoch()).count();
+}
+
+int writeTimeoutMs(Clock::duration period) {
+  const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(period).count();
+  return static_cast<int>(std::clamp<long long>(ms, 5, 100));
+}
+
+// Time left until `deadline`, at least 1 ms (a port is always given a chance to take something).
+int msUntil(Clock::time_point deadline) {
+  const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+  return static_cast<int>(std::max<long long>(left, 1));
+}
+
+}  // namespace
+
+CommandWriter::CommandWriter(std::unique_ptr<Port> port, const WriterConfig &config, WriterListener &listener)
+    : port_(std::move(port)),
+      config_(config),
+      listener_(listener),
+      encoder_(config.protocol),
+      retryDelay_(kFirstRetry),
+      stallTimeout_(config.stallTimeout),
+      bufferWatchdog_(config.stallTimeout) {}
+
+void CommandWriter::start() {
+  thread_ = std::thread([this] { run(); });
+}
+
+void CommandWriter::submit(const Command &command) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  bufferWatchdog_.feed(monotonicSeconds());
+  if (!playing_ || flushing_) return;
+  pending_ = command;
+}
+
+void CommandWriter::stopNow(const char *reason) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    pending_ = Command{};
+    pending_.reason = reason;
+    urgent_ = true;
+  }
+  wake_.notify_one();
+}
+
+void CommandWriter::setPlaying(bool playing) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  playing_ = playing;
+  if (playing) bufferWatchdog_.feed(monotonicSeconds());
+}
+
+void CommandWriter::setFlushing(bool flushing) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  flushing_ = flushing;
+}
+
+void CommandWriter::setStallTimeout(double seconds) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  stallTimeout_ = seconds;
+  bufferWatchdog_.setTimeout(seconds);
+}
+
+void CommandWriter::shutdown() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    quit_ = true;
+  }
+  wake_.notify_one();
+  if (thread_.joinable()) thread_.join();
+  port_->close();
+}
+
+void CommandWriter::run() {
+  // A reader that goes away must come back as EPIPE, not as a signal that kills the process.
+  sigset_t set;
+  sigemptyset(&set);
+  sigaddset(&set, SIGPIPE);
+  pthread_sigmask(SIG_BLOCK, &set, nullptr);
+
+  const auto period =
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / config_.rate));
+  auto nextTick = Clock::now();
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (true) {
+    wake_.wait_until(lock, nextTick, [this] { return quit_ || urgent_; });
+    if (quit_) break;
+    const bool urgent = urgent_;
+    urgent_ = false;
+    const bool stalled = playing_ && bufferWatchdog_.expired(monotonicSeconds()) &&
+                         pending_.output.command != colortrack::DriveCommand::Stop;
+    if (stalled) {
+      pending_ = Command{};
+      pending_.reason = "stalled";
+    }
+    const Command command = pending_;
+    const double stallTimeout = stallTimeout_;
+    lock.unlock();
+    if (stalled) listener_.stalled(stallTimeout);
+    send(command, writeTimeoutMs(period));
+    lock.lock();
+    const auto now = Clock::now();
+    // An urgent stop restarts the rhythm; a tick that fell far behind (a slow port) does not burst to catch
+    // up.
+    nextTick = urgent || nextTick + period < now ? now + period : nextTick + period;
+  }
+  lock.unlock();
+  Command last;
+  last.reason = "shutdown";
+  send(last, kFinalStopTimeoutMs);
+}
+
+void CommandWriter::send(const Command &command, int timeoutMs) {
+  const auto deadline = Clock::now() + std::chrono::milliseconds(timeoutMs);
+  if (!port_->isOpen() && !reopen(command, deadline)) return;
+  // The rest of a cut frame goes first: the robot would misread a newer frame glued to a fragment.
+  if (!finishUnsent(deadline)) return;
+  write(command, deadline);
+}
+
+// Reopens a lost port once its back-off has passed and sends stop; true when `command` should follow.
+bool CommandWriter::reopen(const Command &command, Clock::time_point deadline) {
+  if (Clock::now() < retryAt_) return false;
+  std::string why;
+  if (!port_->open(why)) {
+    retryDelay_ = std::min(retryDelay_ * 2, std::chrono::duration_cast<Clock::duration>(kLongestRetry));
+    retryAt_ = Clock::now() + retryDelay_;
+    // Said once per outage (and again if the reason changes), not at every attempt.
+    listener_.reopenFailed(port_->describe(), why, why != waitingFor_,
+                           std::chrono::duration_cast<std::chrono::milliseconds>(retryDelay_));
+    waitingFor_ = why;
+    return false;
+  }
+  listener_.reconnected(port_->describe());
+  waitingFor_.clear();
+  // Whatever the robot did while it was cut off, it hears stop first.
+  Command stop;
+  stop.reason = "reconnected";
+  if (!write(stop, deadline)) return false;
+  return command.output.command != colortrack::DriveCommand::Stop;
+}
+
+// Sends the tail of the frame cut by an earlier timeout; true when there is none left.
+bool CommandWriter::finishUnsent(Clock::time_point deadline) {
+  if (unsent_.empty()) return true;
+  std::size_t written = 0;
+  std::string why;
+  const WriteResult result = port_->write(unsent_, msUntil(deadline), written, why);
+  unsent_.erase(unsent_.begin(), unsent_.begin() + static_cast<std::ptrdiff_t>(written));
+  switch (result) {
+    case WriteResult::Written:
+      retryDelay_ = kFirstRetry;
+      listener_.sent(unsentCommand_);
+      return true;
+    case WriteResult::Busy:
+      listener_.busy(port_->describe(), true, unsent_.size());
+      return false;
+    case WriteResult::Failed:
+      break;
+  }
+  connectionLost(why);
+  return false;
+}
+
+bool CommandWriter::write(const Command &command, Clock::time_point deadline) {
+  const std::vector<std::uint8_t> bytes = encoder_.encode(command.output);
+  std::size_t written = 0;
+  std::string why;
+  switch (port_->write(bytes, msUntil(deadline), written, why)) {
+    case WriteResult::Written:
+      retryDelay_ = kFirstRetry;
+      listener_.sent(command);
+      return true;
+    case WriteResult::Busy:
+      if (written > 0) {
+        unsent_.assign(bytes.begin() + static_cast<std::ptrdiff_t>(written), bytes.end());
+        unsentCommand_ = command;  // reported sent once its last byte is out
+      }
+      listener_.busy(port_->describe(), false, written > 0 ? unsent_.size() : 0);
+      return false;
+    case WriteResult::Failed:
+      break;
+  }
+  connectionLost(why);
+  return false;
+}
+
+void CommandWriter::connectionLost(const std::string &why) {
+  listener_.connectionLost(port_->describe(), why);
+  port_->close();
+  unsent_.clear();  // a new connection starts with a whole frame (stop)
+  retryDelay_ = kFirstRetry;
+  retryAt_ = Clock::now() + retryDelay_;
+}
+
+}  // namespace robotctl

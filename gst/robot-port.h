@@ -1,0 +1,82 @@
+// Where robotctl's bytes go: a file, FIFO, pseudo-terminal, stdout or a serial port, behind one interface
+// the command writer uses (tests give it a fake).
+#pragma once
+
+#include <sys/types.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+struct sp_port;
+
+namespace robotctl {
+
+enum class WriteResult { Written, Busy, Failed };
+
+class Port {
+ public:
+  virtual ~Port() = default;
+  virtual bool open(std::string &why) = 0;
+  virtual void close() = 0;
+  virtual bool isOpen() const = 0;
+  // Writes all of `bytes` within `timeoutMs` (> 0). Busy: the reader did not take them all in time; `written`
+  // says how many went out (a frame may be cut: the caller sends the rest before anything else).
+  virtual WriteResult write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::size_t &written,
+                            std::string &why) = 0;
+  virtual std::string describe() const = 0;
+};
+
+// A file, FIFO, pseudo-terminal or stdout ("-"), written without blocking. Only the first open creates (a
+// regular file, emptied); a reopen waits for the kind of file the first open found.
+class FilePort : public Port {
+ public:
+  explicit FilePort(std::string path) : path_(std::move(path)) {}
+  ~FilePort() override { close(); }
+
+  bool open(std::string &why) override;
+  void close() override;
+  bool isOpen() const override { return fd_ >= 0; }
+  WriteResult write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::size_t &written,
+                    std::string &why) override;
+  std::string describe() const override;
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+  bool openedBefore_ = false;
+  mode_t kind_ = 0;  // S_IFMT bits of what the first open found (a reopen needs the same kind)
+};
+
+// The serial settings libserialport understands; the element maps its enums onto these.
+enum class Parity { None, Odd, Even, Mark, Space };
+enum class FlowControl { None, XonXoff, RtsCts, DtrDsr };
+
+struct SerialConfig {
+  std::string device;
+  unsigned baudRate = 9600;
+  int dataBits = 8, stopBits = 1;
+  Parity parity = Parity::None;
+  FlowControl flowControl = FlowControl::None;
+};
+
+// A serial port through libserialport.
+class SerialPort : public Port {
+ public:
+  explicit SerialPort(SerialConfig config) : config_(std::move(config)) {}
+  ~SerialPort() override { close(); }
+
+  bool open(std::string &why) override;
+  void close() override;
+  bool isOpen() const override { return port_ != nullptr; }
+  WriteResult write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::size_t &written,
+                    std::string &why) override;
+  std::string describe() const override { return "serial port '" + config_.device + "'"; }
+
+ private:
+  SerialConfig config_;
+  sp_port *port_ = nullptr;
+};
+
+}  // namespace robotctl

@@ -1,0 +1,343 @@
+// robotctl's CommandWriter against a fake port: the exact bytes the robot would receive when the port cuts
+// frames, fails and comes back, and how stop, pause and flush gate what is sent. No GStreamer.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "command-writer.h"
+
+namespace robotctl {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Bytes = std::vector<std::uint8_t>;
+
+// Long enough for any loaded machine; a passing test never waits for it.
+constexpr auto kDeadline = std::chrono::seconds(3);
+
+colortrack::DriveOutput drive(colortrack::DriveCommand command, double left, double right) {
+  colortrack::DriveOutput out;
+  out.command = command;
+  out.left = left;
+  out.right = right;
+  out.targetVisible = true;
+  return out;
+}
+
+Command commandOf(colortrack::DriveOutput output, const char *reason = "target") {
+  Command command;
+  command.output = output;
+  command.reason = reason;
+  return command;
+}
+
+const Command kForward = commandOf(drive(colortrack::DriveCommand::Forward, 0.5, 0.5));
+const Command kLeft = commandOf(drive(colortrack::DriveCommand::Left, -0.3, 0.3));
+
+// The text protocol: one line per frame, of a length that depends on the command.
+WriterConfig textConfig(double rate) {
+  WriterConfig config;
+  config.protocol.protocol = colortrack::Protocol::Text;
+  config.rate = rate;
+  config.stallTimeout = 60;  // no stall unless a test asks for one
+  return config;
+}
+
+std::string lineOf(const Command &command) {
+  colortrack::ProtocolEncoder encoder(textConfig(1).protocol);
+  const Bytes bytes = encoder.encode(command.output);
+  return std::string(bytes.begin(), bytes.end());
+}
+
+const std::string kStopLine = lineOf(Command{});
+
+// What the port received and the writer reported, shared by the fake port, the listener and the test.
+struct Wire {
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::string received;  // every byte the port took, in order
+  std::vector<std::string> sentReasons;
+  std::vector<std::string> sentLines;
+  int lost = 0, reconnected = 0, stalled = 0;
+  std::vector<bool> reopenFailures;  // newReason of each failed reopen
+
+  // Waits until `done` (called with the lock held) or the deadline; returns `done`'s last answer.
+  bool waitFor(const std::function<bool()> &done) {
+    std::unique_lock<std::mutex> lock(mutex);
+    return changed.wait_until(lock, Clock::now() + kDeadline, done);
+  }
+  template <typename F>
+  auto read(F f) {
+    std::lock_guard<std::mutex> lock(mutex);
+    return f();
+  }
+};
+
+// A port that takes every byte unless told to cut writes short, fail one or refuse to open.
+class FakePort : public Port {
+ public:
+  explicit FakePort(Wire &wire) : wire_(wire) {}
+
+  // From the first write of `frame` on, the writes take only cuts[0], cuts[1], ... bytes (then all again).
+  // `onCut` runs in the first cut write, so the test acts before the writer's next tick.
+  void cutFrom(const std::string &frame, std::deque<std::size_t> cuts, std::function<void()> onCut) {
+    std::lock_guard<std::mutex> lock(wire_.mutex);
+    cutTrigger_ = frame;
+    cuts_ = std::move(cuts);
+    onCut_ = std::move(onCut);
+  }
+  // The next write fails; then `refusals` opens are refused.
+  void failNextWrite(int refusals) {
+    std::lock_guard<std::mutex> lock(wire_.mutex);
+    failNext_ = true;
+    refusals_ = refusals;
+  }
+  std::size_t cutsLeft() {
+    std::lock_guard<std::mutex> lock(wire_.mutex);
+    return cuts_.size();
+  }
+  // When the failed write happened and how much had been received then; when each open was tried.
+  Clock::time_point failedAt;
+  std::size_t receivedAtFailure = 0;
+  std::vector<Clock::time_point> openAttempts;
+
+  bool open(std::string &why) override {
+    std::lock_guard<std::mutex> lock(wire_.mutex);
+    openAttempts.push_back(Clock::now());
+    if (refusals_ > 0) {
+      --refusals_;
+      why = "fake: not there";
+      return false;
+    }
+    open_ = true;
+    return true;
+  }
+  void close() override { open_ = false; }
+  bool isOpen() const override { return open_; }
+
+  WriteResult write(const Bytes &bytes, int /*timeoutMs*/, std::size_t &written, std::string &why) override {
+    std::lock_guard<std::mutex> lock(wire_.mutex);
+    written = 0;
+    if (failNext_) {
+      failNext_ = false;
+      failedAt = Clock::now();
+      receivedAtFailure = wire_.received.size();
+      why = "fake: unplugged";
+      return WriteResult::Failed;
+    }
+    std::function<void()> onCut;
+    if (!cutTrigger_.empty() && std::string(bytes.begin(), bytes.end()) == cutTrigger_) {
+      cutTrigger_.clear();
+      onCut = std::move(onCut_);
+    }
+    written = bytes.size();
+    if (cutTrigger_.empty() && !cuts_.empty()) {
+      written = std::min(written, cuts_.front());
+      cuts_.pop_front();
+    }
+    if (onCut) onCut();
+    wire_.received.append(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(written));
+    wire_.changed.notify_all();
+    return written == bytes.size() ? WriteResult::Written : WriteResult::Busy;
+  }
+  std::string describe() const override { return "fake port"; }
+
+ private:
+  Wire &wire_;
+  bool open_ = false;  // writer thread only
+  std::string cutTrigger_;
+  std::deque<std::size_t> cuts_;
+  std::function<void()> onCut_;
+  bool failNext_ = false;
+  int refusals_ = 0;
+};
+
+class Recorder : public WriterListener {
+ public:
+  explicit Recorder(Wire &wire) : wire_(wire) {}
+  void sent(const Command &command) override {
+    record([&] {
+      wire_.sentReasons.push_back(command.reason);
+      wire_.sentLines.push_back(lineOf(command));
+    });
+  }
+  void stalled(double) override {
+    record([&] { ++wire_.stalled; });
+  }
+  void connectionLost(const std::string &, const std::string &) override {
+    record([&] { ++wire_.lost; });
+  }
+  void reopenFailed(const std::string &, const std::string &, bool newReason,
+                    std::chrono::milliseconds) override {
+    record([&] { wire_.reopenFailures.push_back(newReason); });
+  }
+  void reconnected(const std::string &) override {
+    record([&] { ++wire_.reconnected; });
+  }
+
+ private:
+  template <typename F>
+  void record(F f) {
+    std::lock_guard<std::mutex> lock(wire_.mutex);
+    f();
+    wire_.changed.notify_all();
+  }
+  Wire &wire_;
+};
+
+// A writer on a fake port, started.
+struct Rig {
+  Wire wire;
+  Recorder recorder{wire};
+  FakePort *port = nullptr;  // owned by the writer
+  std::unique_ptr<CommandWriter> writer;
+
+  explicit Rig(const WriterConfig &config) {
+    auto fake = std::make_unique<FakePort>(wire);
+    port = fake.get();
+    std::string why;
+    port->open(why);  // as the element does before it creates the writer
+    writer = std::make_unique<CommandWriter>(std::move(fake), config, recorder);
+    writer->start();
+  }
+  bool waitForText(const std::string &text, std::size_t from = 0) {
+    return wire.waitFor([&] { return wire.received.find(text, from) != std::string::npos; });
+  }
+  bool waitForSends(std::size_t count) {
+    return wire.waitFor([&] { return wire.sentReasons.size() >= count; });
+  }
+  std::string received() {
+    return wire.read([&] { return wire.received; });
+  }
+  std::size_t sends() {
+    return wire.read([&] { return wire.sentReasons.size(); });
+  }
+};
+
+// The lines of `text`, each checked to be one of `frames` whole; a fragment glued to a frame is not.
+::testing::AssertionResult wholeFrames(const std::string &text, const std::vector<std::string> &frames) {
+  std::size_t begin = 0;
+  for (std::size_t end; (end = text.find('\n', begin)) != std::string::npos; begin = end + 1) {
+    const std::string line = text.substr(begin, end + 1 - begin);
+    if (std::find(frames.begin(), frames.end(), line) == frames.end())
+      return ::testing::AssertionFailure() << "spliced or unknown frame \"" << line.substr(0, line.size() - 1)
+                                           << "\" in \"" << text << "\"";
+  }
+  return ::testing::AssertionSuccess();
+}
+
+TEST(CommandWriter, CutFrameIsCompletedBeforeAnyOtherCommand) {
+  Rig rig(textConfig(100));
+  ASSERT_TRUE(rig.waitForText(kStopLine));
+  rig.writer->setPlaying(true);
+  // The forward line is cut after 3 bytes, and its rest after 2 more: the robot has a fragment. A newer
+  // command is waiting by then.
+  rig.port->cutFrom(lineOf(kForward), {3, 2}, [&] { rig.writer->submit(kLeft); });
+  rig.writer->submit(kForward);
+  ASSERT_TRUE(rig.waitForText(lineOf(kLeft) + lineOf(kLeft)));
+  rig.writer->shutdown();
+
+  const std::string text = rig.received();
+  EXPECT_TRUE(wholeFrames(text, {kStopLine, lineOf(kForward), lineOf(kLeft)}));
+  const std::size_t forward = text.find(lineOf(kForward));
+  ASSERT_NE(forward, std::string::npos) << text;
+  EXPECT_EQ(text.substr(forward + lineOf(kForward).size(), lineOf(kLeft).size()), lineOf(kLeft));
+  EXPECT_EQ(rig.port->cutsLeft(), 0u);
+  // Forward is reported sent once, when its last byte went out, before the newer command.
+  const auto lines = rig.wire.read([&] { return rig.wire.sentLines; });
+  const auto firstForward = std::find(lines.begin(), lines.end(), lineOf(kForward));
+  ASSERT_NE(firstForward, lines.end());
+  EXPECT_EQ(std::count(lines.begin(), lines.end(), lineOf(kForward)), 1);
+  EXPECT_EQ(*(firstForward + 1), lineOf(kLeft));
+}
+
+TEST(CommandWriter, FailedWriteReconnectsWithBackOffAndStopsFirst) {
+  Rig rig(textConfig(100));
+  rig.writer->setPlaying(true);
+  rig.writer->submit(kForward);
+  ASSERT_TRUE(rig.waitForText(lineOf(kForward)));
+  rig.port->failNextWrite(2);  // unplugged; the first two reopens find nothing
+  ASSERT_TRUE(rig.wire.waitFor([&] { return rig.wire.reconnected == 1; }));
+  const std::size_t from = rig.wire.read([&] { return rig.port->receivedAtFailure; });
+  ASSERT_TRUE(rig.waitForText(lineOf(kForward), from));
+  rig.writer->shutdown();
+
+  // After the failure: stop first, then the command again.
+  const std::string after = rig.received().substr(from);
+  EXPECT_EQ(after.substr(0, kStopLine.size() + lineOf(kForward).size()), kStopLine + lineOf(kForward))
+      << after;
+  EXPECT_TRUE(wholeFrames(after, {kStopLine, lineOf(kForward)}));
+  rig.wire.read([&] {
+    EXPECT_EQ(rig.wire.lost, 1);
+    // Warned once for the outage, not at each attempt.
+    EXPECT_EQ(rig.wire.reopenFailures, (std::vector<bool>{true, false}));
+    const auto reconnected =
+        std::find(rig.wire.sentReasons.begin(), rig.wire.sentReasons.end(), std::string("reconnected"));
+    ASSERT_NE(reconnected, rig.wire.sentReasons.end());
+    EXPECT_EQ(*(reconnected + 1), "target");
+    // Back-off: 100 ms after the failure, then 200 and 400 ms between attempts (the first open is the rig's).
+    const std::vector<Clock::time_point> &opens = rig.port->openAttempts;
+    ASSERT_EQ(opens.size(), 4u);
+    using ms = std::chrono::milliseconds;
+    EXPECT_GE(std::chrono::duration_cast<ms>(opens[1] - rig.port->failedAt).count(), 100);
+    EXPECT_GE(std::chrono::duration_cast<ms>(opens[2] - opens[1]).count(), 200);
+    EXPECT_GE(std::chrono::duration_cast<ms>(opens[3] - opens[2]).count(), 400);
+  });
+}
+
+TEST(CommandWriter, StopNowDoesNotWaitForTheTick) {
+  Rig rig(textConfig(0.5));          // a tick every 2 s
+  ASSERT_TRUE(rig.waitForSends(1));  // the first tick: stop
+  rig.writer->setPlaying(true);
+  rig.writer->submit(kForward);
+  const auto asked = Clock::now();
+  rig.writer->stopNow("eos");
+  ASSERT_TRUE(rig.waitForSends(2));
+  EXPECT_LT(Clock::now() - asked, std::chrono::seconds(1));
+  EXPECT_EQ(rig.wire.read([&] { return rig.wire.sentReasons; }), (std::vector<std::string>{"start", "eos"}));
+  rig.writer->shutdown();
+  EXPECT_EQ(rig.received(), kStopLine + kStopLine + kStopLine);  // start, eos, shutdown: forward never
+  EXPECT_EQ(rig.wire.read([&] { return rig.wire.sentReasons.back(); }), "shutdown");
+}
+
+TEST(CommandWriter, SendsOnlyStopUnlessPlayingAndNotFlushing) {
+  Rig rig(textConfig(200));
+  rig.writer->submit(kForward);  // not playing yet
+  ASSERT_TRUE(rig.waitForSends(10));
+  rig.writer->setPlaying(true);
+  rig.writer->setFlushing(true);
+  rig.writer->submit(kForward);
+  ASSERT_TRUE(rig.waitForSends(rig.sends() + 10));
+  EXPECT_TRUE(wholeFrames(rig.received(), {kStopLine}));
+  // The same command is sent once the flush is over.
+  rig.writer->setFlushing(false);
+  rig.writer->submit(kForward);
+  EXPECT_TRUE(rig.waitForText(lineOf(kForward)));
+}
+
+TEST(CommandWriter, StallStopsAMovingRobot) {
+  WriterConfig config = textConfig(200);
+  config.stallTimeout = 0.05;
+  Rig rig(config);
+  rig.writer->setPlaying(true);
+  rig.writer->submit(kForward);
+  ASSERT_TRUE(rig.waitForText(lineOf(kForward)));
+  // No more buffers: stop, reported once.
+  ASSERT_TRUE(rig.wire.waitFor([&] {
+    return std::find(rig.wire.sentReasons.begin(), rig.wire.sentReasons.end(), std::string("stalled")) !=
+           rig.wire.sentReasons.end();
+  }));
+  const std::string text = rig.received();
+  EXPECT_EQ(text.substr(text.rfind(lineOf(kForward)) + lineOf(kForward).size(), kStopLine.size()), kStopLine);
+  EXPECT_EQ(rig.wire.read([&] { return rig.wire.stalled; }), 1);
+}
+
+}  // namespace
+}  // namespace robotctl
