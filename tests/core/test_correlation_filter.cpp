@@ -26,6 +26,32 @@ cv::Mat texture(cv::Size size, int seed) {
   return noise;
 }
 
+// The same texture as grey levels in [0, 1] (CV_32FC1), what the cell features read.
+cv::Mat grayTexture(cv::Size size, int seed) {
+  cv::Mat gray;
+  cv::cvtColor(texture(size, seed), gray, cv::COLOR_BGR2GRAY);
+  gray.convertTo(gray, CV_32F, 1.0 / 255);
+  return gray;
+}
+
+// A 24 x 24-cell filter learnt from `channels` alone.
+CorrelationFilter filterTrainedOn(const std::vector<cv::Mat> &channels) {
+  CorrelationFilter filter;
+  filter.init(cv::Size(24, 24), 1.0, 1e-3);
+  filter.train(channels, 1.0);
+  return filter;
+}
+
+// Where `filter` answers `channels` most strongly, and how strongly.
+cv::Point peakOf(const CorrelationFilter &filter, const std::vector<cv::Mat> &channels,
+                 double *value = nullptr) {
+  cv::Mat response;
+  filter.respond(channels, response);
+  cv::Point peak;
+  cv::minMaxLoc(response, nullptr, value, nullptr, &peak);
+  return peak;
+}
+
 // `image` moved by (dx, dy) and scaled by `scale` about `centre` (bilinear, border repeated).
 cv::Mat warped(const cv::Mat &image, cv::Point2d centre, double scale, double dx, double dy) {
   const cv::Matx23d m(scale, 0, (1 - scale) * centre.x + dx, 0, scale, (1 - scale) * centre.y + dy);
@@ -72,9 +98,7 @@ TEST(CellFeatures, OrientationOfAnEdge) {
 // rectangle on the cell grid, away from its border (where the direct path repeats the patch's edge and the
 // integral one sees the image beyond it).
 TEST(CellFeatures, IntegralPathMatchesDirectPath) {
-  cv::Mat gray;
-  cv::cvtColor(texture(cv::Size(96, 96), 4), gray, cv::COLOR_BGR2GRAY);
-  gray.convertTo(gray, CV_32F, 1.0 / 255);
+  const cv::Mat gray = grayTexture(cv::Size(96, 96), 4);
   const cv::Rect rect(12, 16, 64, 64);
   std::vector<cv::Mat> direct, integral;
   cellFeatures(gray(rect), 4, direct);
@@ -111,60 +135,40 @@ TEST(PatchSampler, PatchCoversTheRectangleItReports) {
 }
 
 TEST(CorrelationFilter, PeaksAtTheShiftOfTheTrainingPatch) {
-  const cv::Mat image = texture(cv::Size(160, 160), 3);
-  cv::Mat gray;
-  cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
-  gray.convertTo(gray, CV_32F, 1.0 / 255);
+  const cv::Mat gray = grayTexture(cv::Size(160, 160), 3);
   std::vector<cv::Mat> trained, shifted;
   cellFeatures(gray(cv::Rect(32, 32, 96, 96)), 4, trained);
   cellFeatures(gray(cv::Rect(32 + 12, 32 - 8, 96, 96)), 4, shifted);  // the target moved by (-3, +2) cells
-  CorrelationFilter filter;
-  filter.init(cv::Size(24, 24), 1.0, 1e-3);
-  filter.train(trained, 1.0);
-  cv::Mat response;
-  filter.respond(trained, response);
-  cv::Point peak;
-  double peakValue;
-  cv::minMaxLoc(response, nullptr, &peakValue, nullptr, &peak);
-  EXPECT_EQ(peak, cv::Point(12, 12));
+  const CorrelationFilter filter = filterTrainedOn(trained);
+  double peakValue = 0;
+  EXPECT_EQ(peakOf(filter, trained, &peakValue), cv::Point(12, 12));
   EXPECT_GT(peakValue, 0.5);
-  filter.respond(shifted, response);
-  cv::minMaxLoc(response, nullptr, nullptr, nullptr, &peak);
-  EXPECT_EQ(peak, cv::Point(12 - 3, 12 + 2));
+  EXPECT_EQ(peakOf(filter, shifted), cv::Point(12 - 3, 12 + 2));
 }
 
 // Learning from the search patch with the label moved to where the target was found is the same as learning
 // from a patch centred on it: afterwards the centred patch peaks in the middle, a shifted one at its shift.
 TEST(CorrelationFilter, LearnsFromTheSearchPatchWithTheLabelMoved) {
-  const cv::Mat image = texture(cv::Size(160, 160), 7);
-  cv::Mat gray;
-  cv::cvtColor(image, gray, cv::COLOR_BGR2GRAY);
-  gray.convertTo(gray, CV_32F, 1.0 / 255);
+  const cv::Mat gray = grayTexture(cv::Size(160, 160), 7);
   std::vector<cv::Mat> centred, searched, other;
   cellFeatures(gray(cv::Rect(32, 32, 96, 96)), 4, centred);
   cellFeatures(gray(cv::Rect(32 - 8, 32 + 4, 96, 96)), 4, searched);  // the target at (+2, -1) cells
   cellFeatures(gray(cv::Rect(32 + 8, 32 + 12, 96, 96)), 4, other);    // the target at (-2, -3) cells
-  CorrelationFilter filter;
-  filter.init(cv::Size(24, 24), 1.0, 1e-3);
-  filter.train(centred, 1.0);
-  cv::Mat response;
-  filter.respond(searched, response);
-  cv::Point peak;
-  cv::minMaxLoc(response, nullptr, nullptr, nullptr, &peak);
-  ASSERT_EQ(peak, cv::Point(12 + 2, 12 - 1));
+  CorrelationFilter filter = filterTrainedOn(centred);
+  ASSERT_EQ(peakOf(filter, searched), cv::Point(12 + 2, 12 - 1));
   // Replace the model by what the search patch shows (rate 1), the label at the target's offset.
   filter.trainOnLastResponse(cv::Point2d(2, -1), 1.0);
-  filter.respond(centred, response);
-  cv::minMaxLoc(response, nullptr, nullptr, nullptr, &peak);
-  EXPECT_EQ(peak, cv::Point(12, 12));
+  EXPECT_EQ(peakOf(filter, centred), cv::Point(12, 12));
+  cv::Mat response;
   filter.respond(other, response);
+  cv::Point peak;
   cv::minMaxLoc(response, nullptr, nullptr, nullptr, &peak);
   const cv::Point2d at = subCellPeak(response, peak);
   EXPECT_NEAR(at.x, 12 - 2, 0.25);
   EXPECT_NEAR(at.y, 12 - 3, 0.25);
   // A label half a cell beyond the target teaches the filter to answer half a cell further: the fraction
   // carries through.
-  filter.respond(searched, response);
+  peakOf(filter, searched);
   filter.trainOnLastResponse(cv::Point2d(2.5, -1), 1.0);
   filter.respond(centred, response);
   cv::minMaxLoc(response, nullptr, nullptr, nullptr, &peak);
