@@ -552,7 +552,8 @@ void printLegend(InputKind kind) {
       "same-colour\n"
       "         look-alike or a changed object), orange = coasting on the prediction; label \"1 0.91 "
       "tracking\" =\n"
-      "         track id, score, state (tracking / coasting); yellow line = the trail of the box centre; thin "
+      "         track id, score, state (tracking / coasting); yellow line = the trail of the box centre; "
+      "thin "
       "blue box =\n"
       "         the search window (the demo turns it on with draw=...+search-window; it is off by "
       "default)\n");

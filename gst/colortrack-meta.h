@@ -14,8 +14,9 @@
 
 /* The parameter structure on that meta (gst_video_region_of_interest_meta_get_param). */
 #define COLORTRACK_PARAMS_NAME "colortrack"
-#define COLORTRACK_PARAM_STATE "state"       /* string: one of COLORTRACK_STATE_* */
-#define COLORTRACK_PARAM_SCORE "score"       /* double: method=fused: confidence 0-1 (under 0.5: coasting); else the match value, 0 while coasting */
+#define COLORTRACK_PARAM_STATE "state" /* string: one of COLORTRACK_STATE_* */
+/* double: method=fused: confidence 0-1 (under 0.5: coasting); else the match value, 0 while coasting */
+#define COLORTRACK_PARAM_SCORE "score"
 #define COLORTRACK_PARAM_VERIFIED "verified" /* gboolean: the edge check accepted the match */
 #define COLORTRACK_PARAM_SCALE "scale"       /* double: box size relative to the template */
 #define COLORTRACK_PARAM_VX "vx"             /* double: horizontal velocity, pixels per frame */
