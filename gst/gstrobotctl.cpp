@@ -60,7 +60,6 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <memory>
 #include <string>
 
@@ -769,14 +768,6 @@ static gboolean gst_robot_ctl_event(GstBaseSink *sink, GstEvent *event) {
 
 namespace {
 
-colortrack::TrackState parseState(const char *text) {
-  if (!text) return colortrack::TrackState::Tracking;
-  if (!std::strcmp(text, "searching")) return colortrack::TrackState::Searching;
-  if (!std::strcmp(text, "coasting")) return colortrack::TrackState::Coasting;
-  if (!std::strcmp(text, "lost")) return colortrack::TrackState::Lost;
-  return colortrack::TrackState::Tracking;
-}
-
 // The selected ROI of a buffer: of type `roiType`, with id `targetId` (or the lowest id when it is < 0).
 // Other elements' boxes carry no state or score: they count as tracking with score 1.
 void readTarget(GstBuffer *buffer, GQuark roiType, gint targetId, colortrack::Observation &o) {
@@ -796,7 +787,9 @@ void readTarget(GstBuffer *buffer, GQuark roiType, gint targetId, colortrack::Ob
   const GstStructure *params =
       colortrack_find_roi_params(buffer, const_cast<GstVideoRegionOfInterestMeta *>(chosen));
   if (params) {
-    o.state = parseState(gst_structure_get_string(params, "state"));
+    // A missing or unknown state reads as tracking, like a box without params.
+    o.state = colortrack::parseTrackState(gst_structure_get_string(params, "state"))
+                  .value_or(colortrack::TrackState::Tracking);
     gst_structure_get_double(params, "score", &o.score);
   }
 }
