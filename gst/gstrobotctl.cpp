@@ -54,6 +54,7 @@
 #include "gstrobotctl.h"
 #include "command-writer.h"
 #include "robot-port.h"
+#include "robotctl-listener.h"
 #include "robotctl-settings.h"
 #include "track-params.h"
 
@@ -124,61 +125,6 @@ double monotonicSeconds() {
   return static_cast<double>(g_get_monotonic_time()) / G_USEC_PER_SEC;
 }
 
-// Reports the writer's events as the element's bus messages, warnings and debug log.
-class ElementListener : public robotctl::WriterListener {
- public:
-  ElementListener(GstElement *element, bool postMessages, int outputScale)
-      : element_(element), postMessages_(postMessages), outputScale_(outputScale) {}
-
-  void sent(const Command &command) override {
-    if (postMessages_) post(command);
-  }
-  void stalled(double timeout) override {
-    GST_INFO_OBJECT(element_, "no buffer for %.0f ms: stopping", timeout * 1000);
-  }
-  void busy(const std::string &port, bool tail, std::size_t left) override {
-    if (tail)
-      GST_LOG_OBJECT(element_, "%s is not taking data: %zu bytes of a command still to send", port.c_str(),
-                     left);
-    else
-      GST_LOG_OBJECT(element_, "%s is not taking data: %s", port.c_str(),
-                     left > 0 ? "the rest of the command goes first on the next tick" : "command dropped");
-  }
-  void connectionLost(const std::string &port, const std::string &why) override {
-    GST_ELEMENT_WARNING(element_, RESOURCE, WRITE,
-                        ("Lost the connection to %s: %s. Retrying.", port.c_str(), why.c_str()), (nullptr));
-  }
-  void reopenFailed(const std::string &port, const std::string &why, bool newReason,
-                    std::chrono::milliseconds retryIn) override {
-    if (newReason)
-      GST_ELEMENT_WARNING(element_, RESOURCE, OPEN_WRITE,
-                          ("Cannot reopen %s: %s. Retrying.", port.c_str(), why.c_str()), (nullptr));
-    GST_DEBUG_OBJECT(element_, "could not reopen %s: %s (next try in %lld ms)", port.c_str(), why.c_str(),
-                     static_cast<long long>(retryIn.count()));
-  }
-  void reconnected(const std::string &port) override {
-    GST_ELEMENT_INFO(element_, RESOURCE, WRITE, ("Reconnected to %s.", port.c_str()), (nullptr));
-  }
-
- private:
-  void post(const Command &command) {
-    const colortrack::DriveOutput &out = command.output;
-    const bool stop = out.command == colortrack::DriveCommand::Stop;
-    GstStructure *s = gst_structure_new(
-        "robotctl", "command", G_TYPE_STRING, colortrack::toString(out.command), "left", G_TYPE_INT,
-        stop ? 0 : colortrack::scaledSpeed(out.left, outputScale_), "right", G_TYPE_INT,
-        stop ? 0 : colortrack::scaledSpeed(out.right, outputScale_), "linear", G_TYPE_DOUBLE, out.linear,
-        "angular", G_TYPE_DOUBLE, out.angular, "target-visible", G_TYPE_BOOLEAN,
-        static_cast<gboolean>(out.targetVisible), "timestamp", G_TYPE_UINT64,
-        static_cast<guint64>(command.timestamp), "reason", G_TYPE_STRING, command.reason, nullptr);
-    gst_element_post_message(element_, gst_message_new_element(GST_OBJECT(element_), s));
-  }
-
-  GstElement *element_;
-  const bool postMessages_;
-  const int outputScale_;
-};
-
 // What the streaming thread owns (and start()/stop(), which never run concurrently with it).
 struct State {
   std::unique_ptr<colortrack::RobotController> controller;
@@ -193,8 +139,8 @@ struct State {
 struct _GstRobotCtlPrivate {
   robotctl::PropertyStore properties;
   State state;
-  std::unique_ptr<ElementListener> listener;  // outlives the writer
-  std::unique_ptr<CommandWriter> writer;      // between start() and stop()
+  std::unique_ptr<robotctl::ElementListener> listener;  // outlives the writer
+  std::unique_ptr<CommandWriter> writer;                // between start() and stop()
   std::atomic<bool> resetRequested{false};
 };
 
@@ -387,7 +333,8 @@ static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
   self->priv->resetRequested = false;
 
   // The robot hears stop from the start, at the rate, until there is something to follow.
-  self->priv->listener = std::make_unique<ElementListener>(GST_ELEMENT(self), s.postMessages, s.outputScale);
+  self->priv->listener = std::make_unique<robotctl::ElementListener>(GST_ELEMENT(self), GST_CAT_DEFAULT,
+                                                                     s.postMessages, s.outputScale);
   self->priv->writer = std::make_unique<CommandWriter>(std::move(port), config, *self->priv->listener);
   self->priv->writer->start();
   GST_OBJECT_LOCK(self);
