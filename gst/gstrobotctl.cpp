@@ -60,8 +60,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
-#include <cmath>
 #include <memory>
 #include <string>
 

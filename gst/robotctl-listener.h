@@ -3,6 +3,9 @@
 
 #include <gst/gst.h>
 
+#include <chrono>
+#include <string>
+
 #include "command-writer.h"
 
 namespace robotctl {
