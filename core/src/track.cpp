@@ -1,5 +1,7 @@
 #include "colortrack/track.hpp"
 
+#include <cstring>
+
 namespace colortrack {
 
 const char *toString(TrackState state) {
@@ -14,6 +16,14 @@ const char *toString(TrackState state) {
       return "lost";
   }
   return "unknown";  // unreachable for valid enum values; keeps -Wreturn-type quiet
+}
+
+std::optional<TrackState> parseTrackState(const char *text) {
+  if (!text) return std::nullopt;
+  for (TrackState state :
+       {TrackState::Searching, TrackState::Tracking, TrackState::Coasting, TrackState::Lost})
+    if (!std::strcmp(text, toString(state))) return state;
+  return std::nullopt;
 }
 
 }  // namespace colortrack

@@ -1,6 +1,7 @@
 // Track state machine.
 #pragma once
 
+#include <optional>
 #include <string>
 
 namespace colortrack {
@@ -9,5 +10,7 @@ namespace colortrack {
 enum class TrackState { Searching, Tracking, Coasting, Lost };
 
 const char *toString(TrackState state);
+// The state `toString` names; nullopt for null or any other text.
+std::optional<TrackState> parseTrackState(const char *text);
 
 }  // namespace colortrack

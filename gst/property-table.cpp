@@ -1,0 +1,72 @@
+#include "property-table.h"
+
+#include <cstdio>
+
+namespace gstglue {
+
+namespace {
+
+// A string as the messages quote it: null reads as empty.
+std::string quoted(const GValue *value) {
+  const gchar *text = g_value_get_string(value);
+  return std::string("'") + (text ? text : "") + "'";
+}
+
+std::string contents(const GValue *value) {
+  gchar *text = g_strdup_value_contents(value);
+  std::string result(text);
+  g_free(text);
+  return result;
+}
+
+}  // namespace
+
+GParamFlags flagsFor(Apply apply) {
+  const auto rw = static_cast<GParamFlags>(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS);
+  return apply == Apply::Live ? static_cast<GParamFlags>(rw | GST_PARAM_MUTABLE_PLAYING) : rw;
+}
+
+bool sameValue(const GValue *a, const GValue *b) {
+  // Exact for doubles: g_param_values_cmp would call values within the spec's epsilon the same.
+  if (G_VALUE_HOLDS_DOUBLE(a)) return g_value_get_double(a) == g_value_get_double(b);
+  if (G_VALUE_HOLDS_STRING(a)) return g_strcmp0(g_value_get_string(a), g_value_get_string(b)) == 0;
+  return gst_value_compare(a, b) == GST_VALUE_EQUAL;
+}
+
+std::string refusalText(GParamSpec *pspec, const GValue *value, const char *why) {
+  std::string shown;
+  if (G_VALUE_HOLDS_DOUBLE(value))
+    shown = std::to_string(g_value_get_double(value));
+  else if (G_VALUE_HOLDS_STRING(value))
+    shown = quoted(value);
+  else
+    shown = contents(value);
+  return "Invalid value " + shown + " for property '" + pspec->name + "': " + why;
+}
+
+std::string keepingText(const std::string &refusal, const GValue *kept) {
+  std::string shown;
+  if (G_VALUE_HOLDS_DOUBLE(kept)) {
+    char text[G_ASCII_DTOSTR_BUF_SIZE];
+    std::snprintf(text, sizeof text, "%g", g_value_get_double(kept));
+    shown = text;
+  } else if (G_VALUE_HOLDS_STRING(kept)) {
+    shown = quoted(kept);
+  } else {
+    shown = contents(kept);
+  }
+  return refusal + ". Keeping " + shown + ".";
+}
+
+std::string readAtStartText(GParamSpec *pspec) {
+  return std::string("Property '") + pspec->name +
+         "' is read at start: the new value applies from the next start (READY to NULL and back).";
+}
+
+#define GST_CAT_DEFAULT category
+void postSettingsWarning(GstElement *element, GstDebugCategory *category, const std::string &text) {
+  GST_ELEMENT_WARNING(element, RESOURCE, SETTINGS, ("%s", text.c_str()), (nullptr));
+}
+#undef GST_CAT_DEFAULT
+
+}  // namespace gstglue

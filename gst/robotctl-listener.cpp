@@ -1,0 +1,55 @@
+#include "robotctl-listener.h"
+
+#define GST_CAT_DEFAULT category_
+
+namespace robotctl {
+
+void ElementListener::sent(const Command &command) {
+  if (postMessages_) post(command);
+}
+
+void ElementListener::stalled(double timeout) {
+  GST_INFO_OBJECT(element_, "no buffer for %.0f ms: stopping", timeout * 1000);
+}
+
+void ElementListener::busy(const std::string &port, bool tail, std::size_t left) {
+  if (tail)
+    GST_LOG_OBJECT(element_, "%s is not taking data: %zu bytes of a command still to send", port.c_str(),
+                   left);
+  else
+    GST_LOG_OBJECT(element_, "%s is not taking data: %s", port.c_str(),
+                   left > 0 ? "the rest of the command goes first on the next tick" : "command dropped");
+}
+
+void ElementListener::connectionLost(const std::string &port, const std::string &why) {
+  GST_ELEMENT_WARNING(element_, RESOURCE, WRITE,
+                      ("Lost the connection to %s: %s. Retrying.", port.c_str(), why.c_str()), (nullptr));
+}
+
+void ElementListener::reopenFailed(const std::string &port, const std::string &why, bool newReason,
+                                   std::chrono::milliseconds retryIn) {
+  if (newReason)
+    GST_ELEMENT_WARNING(element_, RESOURCE, OPEN_WRITE,
+                        ("Cannot reopen %s: %s. Retrying.", port.c_str(), why.c_str()), (nullptr));
+  GST_DEBUG_OBJECT(element_, "could not reopen %s: %s (next try in %lld ms)", port.c_str(), why.c_str(),
+                   static_cast<long long>(retryIn.count()));
+}
+
+void ElementListener::reconnected(const std::string &port) {
+  GST_ELEMENT_INFO(element_, RESOURCE, WRITE, ("Reconnected to %s.", port.c_str()), (nullptr));
+}
+
+void ElementListener::post(const Command &command) {
+  const colortrack::DriveOutput &out = command.output;
+  const bool stop = out.command == colortrack::DriveCommand::Stop;
+  GstStructure *s = gst_structure_new(
+      "robotctl", "command", G_TYPE_STRING, colortrack::toString(out.command), "left", G_TYPE_INT,
+      stop ? 0 : colortrack::scaledSpeed(out.left, outputScale_), "right", G_TYPE_INT,
+      stop ? 0 : colortrack::scaledSpeed(out.right, outputScale_), "linear", G_TYPE_DOUBLE, out.linear,
+      "angular", G_TYPE_DOUBLE, out.angular, "target-visible", G_TYPE_BOOLEAN,
+      static_cast<gboolean>(out.targetVisible), "timestamp", G_TYPE_UINT64,
+      static_cast<guint64>(command.timestamp), "reason", G_TYPE_STRING, command.reason, nullptr);
+  gst_element_post_message(element_, gst_message_new_element(GST_OBJECT(element_), s));
+}
+
+}  // namespace robotctl

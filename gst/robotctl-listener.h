@@ -1,0 +1,37 @@
+// robotctl's view of its command writer: the writer's events as the element's bus messages, warnings and log.
+#pragma once
+
+#include <gst/gst.h>
+
+#include <chrono>
+#include <string>
+
+#include "command-writer.h"
+
+namespace robotctl {
+
+class ElementListener : public WriterListener {
+ public:
+  // Logs in `category`, the element's. With `postMessages`, each command sent is posted as a "robotctl"
+  // element message, its wheel speeds times `outputScale`.
+  ElementListener(GstElement *element, GstDebugCategory *category, bool postMessages, int outputScale)
+      : element_(element), category_(category), postMessages_(postMessages), outputScale_(outputScale) {}
+
+  void sent(const Command &command) override;
+  void stalled(double timeout) override;
+  void busy(const std::string &port, bool tail, std::size_t left) override;
+  void connectionLost(const std::string &port, const std::string &why) override;
+  void reopenFailed(const std::string &port, const std::string &why, bool newReason,
+                    std::chrono::milliseconds retryIn) override;
+  void reconnected(const std::string &port) override;
+
+ private:
+  void post(const Command &command);
+
+  GstElement *element_;
+  GstDebugCategory *category_;
+  const bool postMessages_;
+  const int outputScale_;
+};
+
+}  // namespace robotctl

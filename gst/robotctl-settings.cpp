@@ -1,0 +1,348 @@
+#include "robotctl-settings.h"
+
+#include <cmath>
+#include <type_traits>
+
+namespace robotctl {
+
+namespace {
+
+using gstglue::Apply;
+using Def = gstglue::PropertyDef<Settings>;
+using colortrack::ControllerSettings;
+using colortrack::FailsafeSettings;
+
+constexpr bool kVersioned = true;
+
+std::string textOf(const GValue *value) {
+  const gchar *text = g_value_get_string(value);
+  return text ? text : "";
+}
+
+// Accessors of a field, by type; `field` is a pointer to a member of Settings.
+template <auto field>
+void getText(const Settings &s, GValue *v) {
+  g_value_set_string(v, (s.*field).c_str());
+}
+template <auto field>
+void getTextOrNull(const Settings &s, GValue *v) {
+  g_value_set_string(v, (s.*field).empty() ? nullptr : (s.*field).c_str());
+}
+template <auto field>
+void setText(Settings &s, const GValue *v) {
+  s.*field = textOf(v);
+}
+template <auto field>
+void getInt(const Settings &s, GValue *v) {
+  g_value_set_int(v, s.*field);
+}
+template <auto field>
+void setInt(Settings &s, const GValue *v) {
+  s.*field = g_value_get_int(v);
+}
+template <auto field>
+void getEnum(const Settings &s, GValue *v) {
+  g_value_set_enum(v, s.*field);
+}
+template <auto field>
+void setEnum(Settings &s, const GValue *v) {
+  s.*field = static_cast<std::remove_reference_t<decltype(s.*field)>>(g_value_get_enum(v));
+}
+// A double of the controller's or the failsafe's settings.
+template <auto field>
+void getControl(const Settings &s, GValue *v) {
+  if constexpr (std::is_same_v<decltype(field), double ControllerSettings::*>)
+    g_value_set_double(v, s.controller.*field);
+  else
+    g_value_set_double(v, s.failsafe.*field);
+}
+template <auto field>
+void setControl(Settings &s, const GValue *v) {
+  if constexpr (std::is_same_v<decltype(field), double ControllerSettings::*>)
+    s.controller.*field = g_value_get_double(v);
+  else
+    s.failsafe.*field = g_value_get_double(v);
+}
+
+const char *refuseNegativeGain(const GValue *v) {
+  // A negative gain drives away from the target.
+  return g_value_get_double(v) < 0 ? "a gain must not be negative (it would steer away from the target)"
+                                   : nullptr;
+}
+
+const char *refuseEmptyRoiType(const GValue *v) {
+  // An empty type matches no region: the robot would never see a target.
+  return textOf(v).empty() ? "it names the type of the regions to follow (e.g. colortrack, object)" : nullptr;
+}
+
+// Where the commands go and how they are encoded: read at start.
+const Def kProperties[] = {
+    {Apply::AtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_string("device", "Device",
+                                  "Serial port to send the commands to (e.g. /dev/ttyUSB0, COM3); "
+                                  "exclusive with 'location'; read at start",
+                                  nullptr, f);
+     },
+     getTextOrNull<&Settings::device>, setText<&Settings::device>},
+    {Apply::AtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_uint(
+           "baud-rate", "Baud rate",
+           "Serial port speed in bit/s; one of the standard rates 50 ... 4000000; read at start", 50, 4000000,
+           Settings{}.baudRate, f);
+     },
+     [](const Settings &s, GValue *v) { g_value_set_uint(v, s.baudRate); },
+     [](Settings &s, const GValue *v) { s.baudRate = g_value_get_uint(v); }},
+    {Apply::AtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_int("data-bits", "Data bits", "Serial port data bits; read at start", 5, 8,
+                               Settings{}.dataBits, f);
+     },
+     getInt<&Settings::dataBits>, setInt<&Settings::dataBits>},
+    {Apply::AtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_enum("parity", "Parity", "Serial port parity; read at start",
+                                GST_TYPE_ROBOT_CTL_PARITY, Settings{}.parity, f);
+     },
+     getEnum<&Settings::parity>, setEnum<&Settings::parity>},
+    {Apply::AtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_int("stop-bits", "Stop bits", "Serial port stop bits; read at start", 1, 2,
+                               Settings{}.stopBits, f);
+     },
+     getInt<&Settings::stopBits>, setInt<&Settings::stopBits>},
+    {Apply::AtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_enum("flow-control", "Flow control", "Serial port flow control; read at start",
+                                GST_TYPE_ROBOT_CTL_FLOW_CONTROL, Settings{}.flowControl, f);
+     },
+     getEnum<&Settings::flowControl>, setEnum<&Settings::flowControl>},
+    {Apply::AtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_string("location", "Location",
+                                  "File, FIFO or pseudo-terminal to write the commands to, '-' for "
+                                  "stdout (dry runs, tests); exclusive with 'device'; read at start",
+                                  nullptr, f);
+     },
+     getTextOrNull<&Settings::location>, setText<&Settings::location>},
+    {Apply::AtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_enum("protocol", "Protocol", "How commands are encoded; read at start",
+                                GST_TYPE_ROBOT_CTL_PROTOCOL, Settings{}.protocol, f);
+     },
+     getEnum<&Settings::protocol>, setEnum<&Settings::protocol>},
+    {Apply::AtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_string(
+           "zone-chars", "Zone characters",
+           "The zone-char protocol's characters for forward, backward, left, right and "
+           "stop, in that order (five distinct printable characters); read at start",
+           Settings{}.zoneChars.c_str(), f);
+     },
+     getText<&Settings::zoneChars>, setText<&Settings::zoneChars>},
+    {Apply::AtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_int(
+           "output-scale", "Output scale",
+           "Integer sent for full wheel speed by the text and binary protocols; read at start", 1, 32767,
+           Settings{}.outputScale, f);
+     },
+     getInt<&Settings::outputScale>, setInt<&Settings::outputScale>},
+    {Apply::AtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_double(
+           "rate", "Rate", "Commands per second; the current command is repeated at this rate; read at start",
+           0.5, 1000.0, Settings{}.rate, f);
+     },
+     [](const Settings &s, GValue *v) { g_value_set_double(v, s.rate); },
+     [](Settings &s, const GValue *v) { s.rate = g_value_get_double(v); }},
+
+    // How commands are decided: from the next buffer.
+    {Apply::Live, kVersioned,
+     [](GParamFlags f) {
+       return g_param_spec_enum("controller", "Controller", "How commands are decided",
+                                GST_TYPE_ROBOT_CTL_CONTROLLER, GST_ROBOT_CTL_CONTROLLER_ZONE, f);
+     },
+     [](const Settings &s, GValue *v) {
+       g_value_set_enum(v, s.controller.kind == colortrack::ControllerKind::Proportional
+                               ? GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL
+                               : GST_ROBOT_CTL_CONTROLLER_ZONE);
+     },
+     [](Settings &s, const GValue *v) {
+       s.controller.kind = g_value_get_enum(v) == GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL
+                               ? colortrack::ControllerKind::Proportional
+                               : colortrack::ControllerKind::Zone;
+     }},
+    {Apply::Live, kVersioned,
+     [](GParamFlags f) {
+       return g_param_spec_enum("distance-cue", "Distance cue", "What tells how far the target is",
+                                GST_TYPE_ROBOT_CTL_DISTANCE_CUE, GST_ROBOT_CTL_DISTANCE_CUE_SIZE, f);
+     },
+     [](const Settings &s, GValue *v) {
+       g_value_set_enum(v, s.controller.distanceCue == colortrack::DistanceCue::Position
+                               ? GST_ROBOT_CTL_DISTANCE_CUE_POSITION
+                               : GST_ROBOT_CTL_DISTANCE_CUE_SIZE);
+     },
+     [](Settings &s, const GValue *v) {
+       s.controller.distanceCue = g_value_get_enum(v) == GST_ROBOT_CTL_DISTANCE_CUE_POSITION
+                                      ? colortrack::DistanceCue::Position
+                                      : colortrack::DistanceCue::Size;
+     }},
+    {Apply::Live, kVersioned,
+     [](GParamFlags f) {
+       return g_param_spec_double("set-point", "Set-point",
+                                  "Wanted distance cue: box height (or box bottom) as a fraction of the "
+                                  "frame height",
+                                  0.01, 1.0, ControllerSettings{}.setPoint, f);
+     },
+     getControl<&ControllerSettings::setPoint>, setControl<&ControllerSettings::setPoint>},
+    {Apply::Live, kVersioned,
+     [](GParamFlags f) {
+       return g_param_spec_double("turn-deadband", "Turn deadband",
+                                  "Horizontal offset (fraction of half the frame width) within "
+                                  "which the target counts as centred",
+                                  0.0, 1.0, ControllerSettings{}.turnDeadband, f);
+     },
+     getControl<&ControllerSettings::turnDeadband>, setControl<&ControllerSettings::turnDeadband>},
+    {Apply::Live, kVersioned,
+     [](GParamFlags f) {
+       return g_param_spec_double("distance-deadband", "Distance deadband",
+                                  "Relative distance error within which the distance counts as right", 0.0,
+                                  1.0, ControllerSettings{}.distanceDeadband, f);
+     },
+     getControl<&ControllerSettings::distanceDeadband>, setControl<&ControllerSettings::distanceDeadband>},
+    {Apply::Live, kVersioned,
+     [](GParamFlags f) {
+       return g_param_spec_double("hysteresis", "Hysteresis",
+                                  "Zone controller: how far inside a deadband the error must come "
+                                  "back before a turn or drive ends",
+                                  0.0, 1.0, ControllerSettings{}.hysteresis, f);
+     },
+     getControl<&ControllerSettings::hysteresis>, setControl<&ControllerSettings::hysteresis>},
+    {Apply::Live, kVersioned,
+     [](GParamFlags f) {
+       return g_param_spec_double(
+           "turn-gain", "Turn gain",
+           "Proportional controller: angular speed per unit horizontal offset, 0-100. The range "
+           "admits negatives only so that robotctl can refuse them with a clear error (at start; a "
+           "warning while playing, the old gain stays)",
+           -100.0, 100.0, ControllerSettings{}.turnGain, f);
+     },
+     getControl<&ControllerSettings::turnGain>, setControl<&ControllerSettings::turnGain>,
+     refuseNegativeGain},
+    {Apply::Live, kVersioned,
+     [](GParamFlags f) {
+       return g_param_spec_double(
+           "drive-gain", "Drive gain",
+           "Proportional controller: linear speed per unit relative distance "
+           "error, 0-100. The range admits negatives only so that robotctl can refuse "
+           "them with a clear error (at start; a warning while playing, the old gain stays)",
+           -100.0, 100.0, ControllerSettings{}.driveGain, f);
+     },
+     getControl<&ControllerSettings::driveGain>, setControl<&ControllerSettings::driveGain>,
+     refuseNegativeGain},
+    {Apply::Live, kVersioned,
+     [](GParamFlags f) {
+       return g_param_spec_double("max-linear", "Maximum linear speed",
+                                  "Largest forward/backward speed (fraction of full speed); the zone "
+                                  "controller's driving speed",
+                                  0.0, 1.0, ControllerSettings{}.maxLinear, f);
+     },
+     getControl<&ControllerSettings::maxLinear>, setControl<&ControllerSettings::maxLinear>},
+    {Apply::Live, kVersioned,
+     [](GParamFlags f) {
+       return g_param_spec_double("max-angular", "Maximum angular speed",
+                                  "Largest turn speed (fraction of full wheel speed); the zone "
+                                  "controller's turning speed",
+                                  0.0, 1.0, ControllerSettings{}.maxAngular, f);
+     },
+     getControl<&ControllerSettings::maxAngular>, setControl<&ControllerSettings::maxAngular>},
+    {Apply::Live, kVersioned,
+     [](GParamFlags f) {
+       return g_param_spec_double("max-linear-accel", "Maximum linear acceleration",
+                                  "Proportional controller: largest change of the linear speed "
+                                  "per second (0 = unlimited)",
+                                  0.0, 1000.0, ControllerSettings{}.maxLinearAccel, f);
+     },
+     getControl<&ControllerSettings::maxLinearAccel>, setControl<&ControllerSettings::maxLinearAccel>},
+    {Apply::Live, kVersioned,
+     [](GParamFlags f) {
+       return g_param_spec_double("max-angular-accel", "Maximum angular acceleration",
+                                  "Proportional controller: largest change of the angular "
+                                  "speed per second (0 = unlimited)",
+                                  0.0, 1000.0, ControllerSettings{}.maxAngularAccel, f);
+     },
+     getControl<&ControllerSettings::maxAngularAccel>, setControl<&ControllerSettings::maxAngularAccel>},
+
+    // The failsafe, which target to follow and the messages.
+    {Apply::Live, kVersioned,
+     [](GParamFlags f) {
+       return g_param_spec_uint("lost-timeout", "Lost timeout",
+                                "Milliseconds without a confirmed target, or without any buffer, "
+                                "before the robot is stopped",
+                                1, 600000,
+                                static_cast<guint>(std::lround(FailsafeSettings{}.lostTimeout * 1000)), f);
+     },
+     [](const Settings &s, GValue *v) {
+       g_value_set_uint(v, static_cast<guint>(std::lround(s.failsafe.lostTimeout * 1000)));
+     },
+     [](Settings &s, const GValue *v) { s.failsafe.lostTimeout = g_value_get_uint(v) / 1000.0; }},
+    {Apply::Live, kVersioned,
+     [](GParamFlags f) {
+       return g_param_spec_double("min-score", "Minimum score",
+                                  "A target with a lower score counts as not seen", 0.0, 1.0,
+                                  FailsafeSettings{}.minScore, f);
+     },
+     getControl<&FailsafeSettings::minScore>, setControl<&FailsafeSettings::minScore>},
+    {Apply::Live, kVersioned,
+     [](GParamFlags f) {
+       return g_param_spec_boolean("search-turn", "Search turn",
+                                   "After lost-timeout turn slowly towards where the target was last "
+                                   "seen instead of standing still",
+                                   FailsafeSettings{}.searchTurn, f);
+     },
+     [](const Settings &s, GValue *v) { g_value_set_boolean(v, s.failsafe.searchTurn); },
+     [](Settings &s, const GValue *v) { s.failsafe.searchTurn = g_value_get_boolean(v); }},
+    {Apply::Live, kVersioned,
+     [](GParamFlags f) {
+       return g_param_spec_double(
+           "search-speed", "Search speed",
+           "Angular speed of the search turn (fraction of full wheel speed); only used with search-turn=true",
+           0.0, 1.0, FailsafeSettings{}.searchSpeed, f);
+     },
+     getControl<&FailsafeSettings::searchSpeed>, setControl<&FailsafeSettings::searchSpeed>},
+    {Apply::Live, false,
+     [](GParamFlags f) {
+       return g_param_spec_string("roi-type", "ROI type",
+                                  "Type of the region-of-interest meta to follow, not empty "
+                                  "(\"object\" for cvtracker)",
+                                  Settings{}.roiType.c_str(), f);
+     },
+     getText<&Settings::roiType>, setText<&Settings::roiType>, refuseEmptyRoiType},
+    {Apply::Live, false,
+     [](GParamFlags f) {
+       return g_param_spec_int("target-id", "Target id",
+                               "Id of the region of interest to follow; -1 = the lowest id", -1, G_MAXINT,
+                               Settings{}.targetId, f);
+     },
+     getInt<&Settings::targetId>, setInt<&Settings::targetId>},
+    {Apply::AtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_boolean(
+           "post-messages", "Post messages",
+           "Post a \"robotctl\" element message for every command sent; read at start",
+           Settings{}.postMessages, f);
+     },
+     [](const Settings &s, GValue *v) { g_value_set_boolean(v, s.postMessages); },
+     [](Settings &s, const GValue *v) { s.postMessages = g_value_get_boolean(v); }},
+};
+
+}  // namespace
+
+const gstglue::PropertyTable<Settings> &properties() {
+  static const gstglue::PropertyTable<Settings> table(kProperties);
+  return table;
+}
+
+}  // namespace robotctl
