@@ -1,7 +1,6 @@
 #include "colortrack-settings.h"
 
 #include <optional>
-#include <type_traits>
 
 namespace colortrack_gst {
 

@@ -822,6 +822,15 @@ static void learn_range(GstColorTrack *self, GstVideoFrame *frame, const cv::Rec
   g_object_notify(G_OBJECT(self), "hsv-upper");
 }
 
+// Trails are kept per id; those of tracks that ended go.
+static void drop_ended_trails(State &state, const std::vector<colortrack::TrackedObject> &objects) {
+  for (auto it = state.trails.begin(); it != state.trails.end();) {
+    const bool alive = std::any_of(objects.begin(), objects.end(),
+                                   [&](const colortrack::TrackedObject &o) { return o.id == it->first; });
+    it = alive ? std::next(it) : state.trails.erase(it);
+  }
+}
+
 // One frame in threshold mode: segment, clean, label, associate; meta, overlay and message per track.
 static GstFlowReturn threshold_frame(GstColorTrack *self, GstVideoFrame *frame, const Snapshot &snapshot,
                                      const colortrack_gst::Requests &requests, guint64 frameNumber,
@@ -888,12 +897,7 @@ static GstFlowReturn threshold_frame(GstColorTrack *self, GstVideoFrame *frame, 
   const std::vector<colortrack::Blob> blobs = detector.detect(sampled_frame(frame));
   const std::vector<colortrack::TrackedObject> objects = state.multiTracker.update(blobs, size, dt);
 
-  // Trails per id; those of tracks that ended go.
-  for (auto it = state.trails.begin(); it != state.trails.end();) {
-    const bool alive = std::any_of(objects.begin(), objects.end(),
-                                   [&](const colortrack::TrackedObject &o) { return o.id == it->first; });
-    it = alive ? std::next(it) : state.trails.erase(it);
-  }
+  drop_ended_trails(state, objects);
   std::vector<cv::Rect> boxes;
   for (const colortrack::TrackedObject &o : objects) {
     if (snapshot.trailLength > 0) {
@@ -910,18 +914,25 @@ static GstFlowReturn threshold_frame(GstColorTrack *self, GstVideoFrame *frame, 
   return GST_FLOW_OK;
 }
 
+// The settings for this frame and the requests waiting for it (taken: one use only).
+static Snapshot take_frame_inputs(GstColorTrack *self, colortrack_gst::Requests &requests) {
+  GST_OBJECT_LOCK(self);
+  colortrack_gst::PropertyStore &store = storeOf(self);
+  const Snapshot snapshot = snapshotOf(store);
+  requests = std::exchange(store.shared.requests, {});
+  if (requests.initBox) store.settings.initBox.clear();  // init-box reads back empty once used
+  GST_OBJECT_UNLOCK(self);
+  return snapshot;
+}
+
 static GstFlowReturn gst_color_track_transform_frame_ip(GstVideoFilter *filter, GstVideoFrame *frame) {
   GstColorTrack *self = GST_COLOR_TRACK(filter);
   State &state = stateOf(self);
   GstBuffer *buffer = frame->buffer;
 
   // Snapshot of the settings; the init-box is taken (one use only).
-  GST_OBJECT_LOCK(self);
-  colortrack_gst::PropertyStore &store = storeOf(self);
-  const Snapshot snapshot = snapshotOf(store);
-  const colortrack_gst::Requests requests = std::exchange(store.shared.requests, {});
-  if (requests.initBox) store.settings.initBox.clear();
-  GST_OBJECT_UNLOCK(self);
+  colortrack_gst::Requests requests;
+  const Snapshot snapshot = take_frame_inputs(self, requests);
   const std::optional<cv::Rect> &initBox = requests.initBox;
   const std::optional<ClickRequest> &click = requests.click;
 
