@@ -59,6 +59,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -67,6 +68,7 @@
 #include "colortrack/multi_tracker.hpp"
 #include "colortrack/settings.hpp"
 #include "colortrack/tracker.hpp"
+#include "colortrack-settings.h"
 #include "frame-view.h"
 #include "overlay.h"
 #include "track-params.h"
@@ -76,60 +78,18 @@ GST_DEBUG_CATEGORY_STATIC(gst_color_track_debug);
 
 namespace {
 
-constexpr guint kDefaultDraw =
-    GST_COLOR_TRACK_DRAW_BOX | GST_COLOR_TRACK_DRAW_TRAIL | GST_COLOR_TRACK_DRAW_LABEL;
-constexpr guint kDefaultTrailLength = 30;
-constexpr gboolean kDefaultPostMessages = FALSE;
-constexpr gboolean kDefaultClickToTrack = TRUE;
-constexpr int kDefaultClickBoxSize = 64;
-constexpr int kMinClickBoxSize = colortrack::kMinTemplateSide;
+using colortrack_gst::ClickRequest;
+using colortrack_gst::Settings;
+
 constexpr int kLeftButton = 1, kRightButton = 3;
 // The state reported in messages after a right click, until a new target is given.
 constexpr const char *kIdleState = "idle";
 constexpr int kBoxThickness = 2;
 constexpr int kTrailThickness = 2;
 
-// A setting given as text: what the user wrote and, when it could not be parsed before streaming started,
-// why (reported as an element error at start).
-struct TextSetting {
-  std::string text;
-  std::string error;
-};
-
-// A mouse click from a GstNavigation event, waiting for the next frame: a left click starts tracking at
-// `point` (element frame coordinates), a right click stops.
-struct ClickRequest {
-  enum class Kind { Track, Stop } kind = Kind::Track;
-  cv::Point2d point;
-};
-
-// What the properties say. Written by set_property, read by the streaming thread as a snapshot; both under
-// GST_OBJECT_LOCK. Never touches the tracker.
-struct Settings {
-  GstColorTrackMode mode = GST_COLOR_TRACK_MODE_TEMPLATE;
-  colortrack::TrackerSettings tracker;
-  guint64 trackerGeneration = 0;  // bumped on every change of `tracker`
-  TextSetting bins, weights, initBox;
-  std::string templateLocation;
-  guint64 templateGeneration = 0;  // bumped when template-location changes
-  // A parsed init-box waiting for the next frame, and whether it was set while streaming (then a box that
-  // does not fit the frame is a warning, not an error).
-  std::optional<cv::Rect> pendingInitBox;
-  bool initBoxSetWhileStreaming = false;
-  // The latest click not yet applied. A click and an init-box replace each other: the latest request wins.
-  std::optional<ClickRequest> pendingClick;
-  bool clickToTrack = kDefaultClickToTrack;
-  int clickBoxSize = kDefaultClickBoxSize;
-  guint draw = kDefaultDraw;
-  guint trailLength = kDefaultTrailLength;
-  bool postMessages = kDefaultPostMessages;
-  bool streaming = false;  // between start() and stop(): a bad value is then a warning and is not applied
-  // mode=threshold: range, clean-up and blob limits; the range ends as the user wrote them.
-  colortrack::BlobSettings blobs;
-  TextSetting hsvLower, hsvUpper;
-  guint64 blobsGeneration = 0;  // bumped on every change of `blobs`
-  guint64 rangeGeneration = 0;  // bumped when hsv-lower/hsv-upper are set (a new target: ends idle)
-  cv::Size frameSize;           // from the caps (empty before), to judge min-area set while playing
+// The settings as one frame sees them, with the store's counters at that moment.
+struct Snapshot : Settings {
+  guint64 trackerGeneration = 0, templateGeneration = 0, blobsGeneration = 0, rangeGeneration = 0;
 };
 
 // What the streaming thread owns (and start()/stop(), which never run concurrently with it).
@@ -158,43 +118,9 @@ struct State {
 }  // namespace
 
 struct _GstColorTrackPrivate {
-  Settings settings;
+  colortrack_gst::PropertyStore store;
   State state;
   std::atomic<bool> resetRequested{false};
-};
-
-enum {
-  PROP_0,
-  PROP_MODE,
-  PROP_TEMPLATE_LOCATION,
-  PROP_INIT_BOX,
-  PROP_COLOR_SPACE,
-  PROP_BINS,
-  PROP_CHANNEL_WEIGHTS,
-  PROP_MATCH_THRESHOLD,
-  PROP_SCALE_MIN,
-  PROP_SCALE_MAX,
-  PROP_SCALE_STEP,
-  PROP_SEARCH_MARGIN,
-  PROP_PROCESS_NOISE,
-  PROP_MEASUREMENT_NOISE,
-  PROP_MAX_COAST_FRAMES,
-  PROP_VERIFY,
-  PROP_VERIFY_TOLERANCE,
-  PROP_DRAW,
-  PROP_TRAIL_LENGTH,
-  PROP_POST_MESSAGES,
-  PROP_METHOD,
-  PROP_LIKELIHOOD_THRESHOLD,
-  PROP_MODEL_UPDATE_RATE,
-  PROP_ADAPT_ASPECT,
-  PROP_HSV_LOWER,
-  PROP_HSV_UPPER,
-  PROP_MORPH_SIZE,
-  PROP_MIN_AREA,
-  PROP_MAX_OBJECTS,
-  PROP_CLICK_TO_TRACK,
-  PROP_CLICK_BOX_SIZE,
 };
 
 enum { SIGNAL_RESET, LAST_SIGNAL };
@@ -292,110 +218,22 @@ GType gst_color_track_draw_get_type(void) {
 
 namespace {
 
-colortrack::ColorSpace toColorSpace(gint value) {
-  return value == GST_COLOR_TRACK_COLOR_SPACE_RGB ? colortrack::ColorSpace::Rgb : colortrack::ColorSpace::Hsv;
+colortrack_gst::PropertyStore &storeOf(GstColorTrack *self) {
+  return self->priv->store;
 }
-GstColorTrackColorSpace fromColorSpace(colortrack::ColorSpace space) {
-  return space == colortrack::ColorSpace::Rgb ? GST_COLOR_TRACK_COLOR_SPACE_RGB
-                                              : GST_COLOR_TRACK_COLOR_SPACE_HSV;
-}
-
-// Switches without a default, so that a method added to one side and not the other is a compiler warning.
-GstColorTrackMethod methodOf(colortrack::Method method) {
-  switch (method) {
-    case colortrack::Method::Indexing:
-      return GST_COLOR_TRACK_METHOD_INDEXING;
-    case colortrack::Method::Discriminative:
-      return GST_COLOR_TRACK_METHOD_DISCRIMINATIVE;
-    case colortrack::Method::Fused:
-      return GST_COLOR_TRACK_METHOD_FUSED;
-  }
-  return GST_COLOR_TRACK_METHOD_FUSED;
+// Call with the object lock held.
+Snapshot snapshotOf(const colortrack_gst::PropertyStore &store) {
+  Snapshot snapshot;
+  static_cast<Settings &>(snapshot) = store.settings;
+  snapshot.trackerGeneration = store.versions[colortrack_gst::kTrackerVersion];
+  snapshot.templateGeneration = store.versions[colortrack_gst::kTemplateVersion];
+  snapshot.blobsGeneration = store.versions[colortrack_gst::kBlobsVersion];
+  snapshot.rangeGeneration = store.versions[colortrack_gst::kRangeVersion];
+  return snapshot;
 }
 
-colortrack::Method toMethod(gint value) {
-  switch (static_cast<GstColorTrackMethod>(value)) {
-    case GST_COLOR_TRACK_METHOD_INDEXING:
-      return colortrack::Method::Indexing;
-    case GST_COLOR_TRACK_METHOD_DISCRIMINATIVE:
-      return colortrack::Method::Discriminative;
-    case GST_COLOR_TRACK_METHOD_FUSED:
-      return colortrack::Method::Fused;
-  }
-  return colortrack::Method::Fused;
-}
-
-colortrack::VerifyMode toVerifyMode(gint value) {
-  switch (value) {
-    case GST_COLOR_TRACK_VERIFY_NONE:
-      return colortrack::VerifyMode::None;
-    case GST_COLOR_TRACK_VERIFY_EDGE_DENSITY:
-      return colortrack::VerifyMode::EdgeDensity;
-    case GST_COLOR_TRACK_VERIFY_EDGE_ENERGY:
-      return colortrack::VerifyMode::EdgeEnergy;
-    default:
-      return colortrack::VerifyMode::Both;
-  }
-}
-GstColorTrackVerify fromVerifyMode(colortrack::VerifyMode mode) {
-  switch (mode) {
-    case colortrack::VerifyMode::None:
-      return GST_COLOR_TRACK_VERIFY_NONE;
-    case colortrack::VerifyMode::EdgeDensity:
-      return GST_COLOR_TRACK_VERIFY_EDGE_DENSITY;
-    case colortrack::VerifyMode::EdgeEnergy:
-      return GST_COLOR_TRACK_VERIFY_EDGE_ENERGY;
-    case colortrack::VerifyMode::Both:
-      break;
-  }
-  return GST_COLOR_TRACK_VERIFY_BOTH;
-}
-
-Settings &settingsOf(GstColorTrack *self) {
-  return self->priv->settings;
-}
 State &stateOf(GstColorTrack *self) {
   return self->priv->state;
-}
-
-// Sets a text property. A value that does not parse is kept (and reported at start) before streaming; while
-// streaming it is rejected with a warning and the previous value stays. Posts outside the object lock, since
-// posting takes it.
-template <typename Parsed, typename Parse, typename Apply>
-void setTextProperty(GstColorTrack *self, const char *property, TextSetting Settings::*member,
-                     const GValue *value, Parse parse, Apply apply) {
-  const char *raw = g_value_get_string(value);
-  const std::string text = raw ? raw : "";
-  std::string error;
-  const std::optional<Parsed> parsed = parse(text, &error);
-
-  std::string kept;
-  bool rejected = false;
-  GST_OBJECT_LOCK(self);
-  Settings &s = settingsOf(self);
-  TextSetting &setting = s.*member;
-  if (parsed) {
-    setting.text = text;
-    setting.error.clear();
-    apply(s, *parsed);
-  } else if (!s.streaming) {
-    setting.text = text;
-    setting.error = error;
-  } else {
-    rejected = true;
-    kept = setting.text;
-  }
-  GST_OBJECT_UNLOCK(self);
-
-  if (rejected) {
-    GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS,
-                        ("Invalid value '%s' for property '%s': %s. Keeping '%s'.", text.c_str(), property,
-                         error.c_str(), kept.c_str()),
-                        (nullptr));
-  } else if (!parsed) {
-    GST_WARNING_OBJECT(self, "invalid %s '%s' (%s): the element will fail to start", property, text.c_str(),
-                       error.c_str());
-  }
 }
 
 // Reads a template file; on failure fills `why` and reports whether the file exists at all.
@@ -442,74 +280,6 @@ cv::Rect boxAround(const cv::Point2d &point, int side, cv::Size frame) {
   return cv::Rect(topLeft, cv::Size(side, side)) & frameRect;
 }
 
-// hsv-lower / hsv-upper. Each end is parsed alone; the pair must also make sense (lower s and v not above
-// upper). Before streaming a bad value is kept and reported at start (the other end may still be set after
-// it); while streaming it is rejected with a warning and the previous range stays.
-void setHsvProperty(GstColorTrack *self, bool lower, const GValue *value) {
-  const char *property = lower ? "hsv-lower" : "hsv-upper";
-  const char *raw = g_value_get_string(value);
-  const std::string text = raw ? raw : "";
-  std::string error;
-  const std::optional<colortrack::Hsv> parsed = colortrack::parseHsv(text, &error);
-
-  std::string kept;
-  bool rejected = false;
-  GST_OBJECT_LOCK(self);
-  Settings &s = settingsOf(self);
-  TextSetting &setting = lower ? s.hsvLower : s.hsvUpper;
-  colortrack::HsvRange candidate = s.blobs.range;
-  if (parsed) {
-    (lower ? candidate.lower : candidate.upper) = *parsed;
-    if (s.streaming) error = colortrack::validateRange(candidate);
-  }
-  if (parsed && error.empty()) {
-    setting.text = text;
-    setting.error.clear();
-    s.blobs.range = candidate;
-    ++s.blobsGeneration;
-    ++s.rangeGeneration;
-  } else if (!s.streaming) {
-    setting.text = text;
-    setting.error = error;
-  } else {
-    rejected = true;
-    kept = setting.text;
-  }
-  GST_OBJECT_UNLOCK(self);
-
-  if (rejected)
-    GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS,
-                        ("Invalid value '%s' for property '%s': %s. Keeping '%s'.", text.c_str(), property,
-                         error.c_str(), kept.c_str()),
-                        (nullptr));
-  else if (!parsed)
-    GST_WARNING_OBJECT(self, "invalid %s '%s' (%s): the element will fail to start", property, text.c_str(),
-                       error.c_str());
-}
-
-// min-area: larger than a known frame while playing is rejected with a warning (nothing could ever be
-// found); otherwise it is checked against every frame, where it is an error.
-void setMinArea(GstColorTrack *self, int minArea) {
-  int kept = 0;
-  cv::Size frame;
-  GST_OBJECT_LOCK(self);
-  Settings &s = settingsOf(self);
-  const bool rejected = s.streaming && !s.frameSize.empty() && minArea > s.frameSize.area();
-  if (rejected) {
-    kept = s.blobs.minArea;
-    frame = s.frameSize;
-  } else {
-    s.blobs.minArea = minArea;
-    ++s.blobsGeneration;
-  }
-  GST_OBJECT_UNLOCK(self);
-  if (rejected)
-    GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS,
-                        ("Property 'min-area' %d is larger than the %dx%d frame (%d pixels). Keeping %d.",
-                         minArea, frame.width, frame.height, frame.area(), kept),
-                        (nullptr));
-}
-
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------------------
@@ -523,270 +293,12 @@ static void gst_color_track_reset_action(GstColorTrack *self) {
 static void gst_color_track_set_property(GObject *object, guint prop_id, const GValue *value,
                                          GParamSpec *pspec) {
   GstColorTrack *self = GST_COLOR_TRACK(object);
-
-  switch (prop_id) {
-    case PROP_BINS:
-      setTextProperty<colortrack::BinLayout>(
-          self, "bins", &Settings::bins, value,
-          [](const std::string &t, std::string *e) { return colortrack::parseBins(t, e); },
-          [](Settings &s, const colortrack::BinLayout &v) {
-            s.tracker.bins = v;
-            ++s.trackerGeneration;
-          });
-      return;
-    case PROP_CHANNEL_WEIGHTS:
-      setTextProperty<colortrack::ChannelWeights>(
-          self, "channel-weights", &Settings::weights, value,
-          [](const std::string &t, std::string *e) { return colortrack::parseWeights(t, e); },
-          [](Settings &s, const colortrack::ChannelWeights &v) {
-            s.tracker.weights = v;
-            ++s.trackerGeneration;
-          });
-      return;
-    case PROP_HSV_LOWER:
-    case PROP_HSV_UPPER:
-      setHsvProperty(self, prop_id == PROP_HSV_LOWER, value);
-      return;
-    case PROP_MIN_AREA:
-      setMinArea(self, g_value_get_int(value));
-      return;
-    case PROP_INIT_BOX: {
-      bool streaming;
-      GST_OBJECT_LOCK(self);
-      streaming = settingsOf(self).streaming;
-      GST_OBJECT_UNLOCK(self);
-      // An empty string only clears a box that has not been used yet.
-      const char *raw = g_value_get_string(value);
-      if (!raw || !*raw) {
-        GST_OBJECT_LOCK(self);
-        settingsOf(self).initBox = TextSetting{};
-        settingsOf(self).pendingInitBox.reset();
-        GST_OBJECT_UNLOCK(self);
-        return;
-      }
-      setTextProperty<cv::Rect>(
-          self, "init-box", &Settings::initBox, value,
-          [](const std::string &t, std::string *e) -> std::optional<cv::Rect> {
-            const std::optional<cv::Rect> box = colortrack::parseBox(t, e);
-            if (!box) return box;
-            const std::string problem = colortrack::templateSizeProblem(box->size());
-            if (problem.empty()) return box;
-            if (e) *e = problem;
-            return std::nullopt;
-          },
-          [streaming](Settings &s, const cv::Rect &box) {
-            s.pendingInitBox = box;
-            s.initBoxSetWhileStreaming = streaming;
-            s.pendingClick.reset();  // the latest request wins
-          });
-      return;
-    }
-    default:
-      break;
-  }
-
-  GST_OBJECT_LOCK(self);
-  Settings &s = settingsOf(self);
-  colortrack::TrackerSettings &t = s.tracker;
-  bool trackerChanged = true;
-  switch (prop_id) {
-    case PROP_MODE:
-      s.mode = static_cast<GstColorTrackMode>(g_value_get_enum(value));
-      trackerChanged = false;
-      break;
-    case PROP_TEMPLATE_LOCATION: {
-      const char *path = g_value_get_string(value);
-      s.templateLocation = path ? path : "";
-      ++s.templateGeneration;
-      trackerChanged = false;
-      break;
-    }
-    case PROP_COLOR_SPACE:
-      t.colorSpace = toColorSpace(g_value_get_enum(value));
-      break;
-    case PROP_MATCH_THRESHOLD:
-      t.matchThreshold = g_value_get_double(value);
-      break;
-    case PROP_SCALE_MIN:
-      t.scale.minFactor = g_value_get_double(value);
-      break;
-    case PROP_SCALE_MAX:
-      t.scale.maxFactor = g_value_get_double(value);
-      break;
-    case PROP_SCALE_STEP:
-      t.scale.step = g_value_get_double(value);
-      break;
-    case PROP_SEARCH_MARGIN:
-      t.searchMargin = g_value_get_double(value);
-      break;
-    case PROP_PROCESS_NOISE:
-      t.kalman.processNoise = g_value_get_double(value);
-      break;
-    case PROP_MEASUREMENT_NOISE:
-      t.kalman.measurementNoise = g_value_get_double(value);
-      break;
-    case PROP_MAX_COAST_FRAMES:
-      t.maxCoastFrames = g_value_get_int(value);
-      break;
-    case PROP_VERIFY:
-      t.verify = toVerifyMode(g_value_get_enum(value));
-      break;
-    case PROP_VERIFY_TOLERANCE:
-      t.verifyTolerance = g_value_get_double(value);
-      break;
-    case PROP_METHOD:
-      t.method = toMethod(g_value_get_enum(value));
-      break;
-    case PROP_LIKELIHOOD_THRESHOLD:
-      t.likelihoodThreshold = g_value_get_double(value);
-      break;
-    case PROP_MODEL_UPDATE_RATE:
-      t.modelUpdateRate = g_value_get_double(value);
-      break;
-    case PROP_ADAPT_ASPECT:
-      t.adaptAspect = g_value_get_boolean(value);
-      break;
-    case PROP_DRAW:
-      s.draw = g_value_get_flags(value);
-      trackerChanged = false;
-      break;
-    case PROP_TRAIL_LENGTH:
-      s.trailLength = g_value_get_uint(value);
-      trackerChanged = false;
-      break;
-    case PROP_POST_MESSAGES:
-      s.postMessages = g_value_get_boolean(value);
-      trackerChanged = false;
-      break;
-    case PROP_MORPH_SIZE:
-      s.blobs.morphSize = g_value_get_int(value);
-      ++s.blobsGeneration;
-      trackerChanged = false;
-      break;
-    case PROP_MAX_OBJECTS:
-      s.blobs.maxObjects = g_value_get_int(value);
-      ++s.blobsGeneration;
-      trackerChanged = false;
-      break;
-    case PROP_CLICK_TO_TRACK:
-      s.clickToTrack = g_value_get_boolean(value);
-      trackerChanged = false;
-      break;
-    case PROP_CLICK_BOX_SIZE:
-      s.clickBoxSize = g_value_get_int(value);
-      trackerChanged = false;
-      break;
-    default:
-      trackerChanged = false;
-      G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
-      break;
-  }
-  if (trackerChanged) ++s.trackerGeneration;
-  GST_OBJECT_UNLOCK(self);
+  colortrack_gst::properties().set(GST_ELEMENT(self), GST_CAT_DEFAULT, storeOf(self), prop_id, value, pspec);
 }
 
 static void gst_color_track_get_property(GObject *object, guint prop_id, GValue *value, GParamSpec *pspec) {
   GstColorTrack *self = GST_COLOR_TRACK(object);
-
-  GST_OBJECT_LOCK(self);
-  const Settings &s = settingsOf(self);
-  const colortrack::TrackerSettings &t = s.tracker;
-  switch (prop_id) {
-    case PROP_MODE:
-      g_value_set_enum(value, s.mode);
-      break;
-    case PROP_TEMPLATE_LOCATION:
-      g_value_set_string(value, s.templateLocation.empty() ? nullptr : s.templateLocation.c_str());
-      break;
-    case PROP_INIT_BOX:
-      g_value_set_string(value, s.initBox.text.empty() ? nullptr : s.initBox.text.c_str());
-      break;
-    case PROP_COLOR_SPACE:
-      g_value_set_enum(value, fromColorSpace(t.colorSpace));
-      break;
-    case PROP_BINS:
-      g_value_set_string(value, s.bins.text.c_str());
-      break;
-    case PROP_CHANNEL_WEIGHTS:
-      g_value_set_string(value, s.weights.text.c_str());
-      break;
-    case PROP_MATCH_THRESHOLD:
-      g_value_set_double(value, t.matchThreshold);
-      break;
-    case PROP_SCALE_MIN:
-      g_value_set_double(value, t.scale.minFactor);
-      break;
-    case PROP_SCALE_MAX:
-      g_value_set_double(value, t.scale.maxFactor);
-      break;
-    case PROP_SCALE_STEP:
-      g_value_set_double(value, t.scale.step);
-      break;
-    case PROP_SEARCH_MARGIN:
-      g_value_set_double(value, t.searchMargin);
-      break;
-    case PROP_PROCESS_NOISE:
-      g_value_set_double(value, t.kalman.processNoise);
-      break;
-    case PROP_MEASUREMENT_NOISE:
-      g_value_set_double(value, t.kalman.measurementNoise);
-      break;
-    case PROP_MAX_COAST_FRAMES:
-      g_value_set_int(value, t.maxCoastFrames);
-      break;
-    case PROP_VERIFY:
-      g_value_set_enum(value, fromVerifyMode(t.verify));
-      break;
-    case PROP_VERIFY_TOLERANCE:
-      g_value_set_double(value, t.verifyTolerance);
-      break;
-    case PROP_METHOD:
-      g_value_set_enum(value, methodOf(t.method));
-      break;
-    case PROP_LIKELIHOOD_THRESHOLD:
-      g_value_set_double(value, t.likelihoodThreshold);
-      break;
-    case PROP_MODEL_UPDATE_RATE:
-      g_value_set_double(value, t.modelUpdateRate);
-      break;
-    case PROP_ADAPT_ASPECT:
-      g_value_set_boolean(value, t.adaptAspect);
-      break;
-    case PROP_DRAW:
-      g_value_set_flags(value, s.draw);
-      break;
-    case PROP_TRAIL_LENGTH:
-      g_value_set_uint(value, s.trailLength);
-      break;
-    case PROP_POST_MESSAGES:
-      g_value_set_boolean(value, s.postMessages);
-      break;
-    case PROP_HSV_LOWER:
-      g_value_set_string(value, s.hsvLower.text.c_str());
-      break;
-    case PROP_HSV_UPPER:
-      g_value_set_string(value, s.hsvUpper.text.c_str());
-      break;
-    case PROP_MORPH_SIZE:
-      g_value_set_int(value, s.blobs.morphSize);
-      break;
-    case PROP_MIN_AREA:
-      g_value_set_int(value, s.blobs.minArea);
-      break;
-    case PROP_MAX_OBJECTS:
-      g_value_set_int(value, s.blobs.maxObjects);
-      break;
-    case PROP_CLICK_TO_TRACK:
-      g_value_set_boolean(value, s.clickToTrack);
-      break;
-    case PROP_CLICK_BOX_SIZE:
-      g_value_set_int(value, s.clickBoxSize);
-      break;
-    default:
-      G_OBJECT_WARN_INVALID_PROPERTY_ID(object, prop_id, pspec);
-      break;
-  }
-  GST_OBJECT_UNLOCK(self);
+  colortrack_gst::properties().get(GST_ELEMENT(self), storeOf(self), prop_id, value, pspec);
 }
 
 static void gst_color_track_finalize(GObject *object) {
@@ -799,35 +311,38 @@ static void gst_color_track_finalize(GObject *object) {
 // ---------------------------------------------------------------------------------------------------------
 // Streaming
 
+// The first value refused before start, in the order the checks have always run; empty when none. Call with
+// the object lock held.
+static std::string first_refusal(GstColorTrack *self) {
+  const colortrack_gst::PropertyStore &store = storeOf(self);
+  for (const char *name : colortrack_gst::kCheckedAtStart) {
+    const GParamSpec *pspec = g_object_class_find_property(G_OBJECT_GET_CLASS(self), name);
+    const auto refused = store.refused.find(pspec->param_id);
+    if (refused != store.refused.end()) return refused->second;
+  }
+  return store.refused.empty() ? std::string() : store.refused.begin()->second;
+}
+
 // Validates what was set before streaming, loads the template file and creates the tracker.
 static gboolean gst_color_track_start(GstBaseTransform *trans) {
   GstColorTrack *self = GST_COLOR_TRACK(trans);
   State &state = stateOf(self);
 
   GST_OBJECT_LOCK(self);
-  const Settings snapshot = settingsOf(self);
+  const Snapshot snapshot = snapshotOf(storeOf(self));
+  const std::string refusal = first_refusal(self);
   GST_OBJECT_UNLOCK(self);
 
-  const std::pair<const char *, const TextSetting *> texts[] = {{"bins", &snapshot.bins},
-                                                                {"channel-weights", &snapshot.weights},
-                                                                {"init-box", &snapshot.initBox},
-                                                                {"hsv-lower", &snapshot.hsvLower},
-                                                                {"hsv-upper", &snapshot.hsvUpper}};
-  for (const auto &[property, setting] : texts) {
-    if (!setting->error.empty()) {
-      GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                        ("Invalid value '%s' for property '%s': %s", setting->text.c_str(), property,
-                         setting->error.c_str()),
-                        (nullptr));
-      return FALSE;
-    }
+  if (!refusal.empty()) {
+    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("%s", refusal.c_str()), (nullptr));
+    return FALSE;
   }
 
   const std::string rangeError = colortrack::validateRange(snapshot.blobs.range);
   if (!rangeError.empty()) {
     GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
                       ("Properties 'hsv-lower' '%s' and 'hsv-upper' '%s' do not make a range: %s",
-                       snapshot.hsvLower.text.c_str(), snapshot.hsvUpper.text.c_str(), rangeError.c_str()),
+                       snapshot.hsvLower.c_str(), snapshot.hsvUpper.c_str(), rangeError.c_str()),
                       (nullptr));
     return FALSE;
   }
@@ -877,7 +392,7 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
   }
 
   GST_OBJECT_LOCK(self);
-  settingsOf(self).streaming = true;
+  storeOf(self).running = true;
   GST_OBJECT_UNLOCK(self);
   self->priv->resetRequested = false;
   return TRUE;
@@ -886,7 +401,7 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
 static gboolean gst_color_track_stop(GstBaseTransform *trans) {
   GstColorTrack *self = GST_COLOR_TRACK(trans);
   GST_OBJECT_LOCK(self);
-  settingsOf(self).streaming = false;
+  storeOf(self).running = false;
   GST_OBJECT_UNLOCK(self);
   stateOf(self) = State{};
   return TRUE;
@@ -911,7 +426,7 @@ static gboolean gst_color_track_set_info(GstVideoFilter *filter, GstCaps *, GstV
   // New geometry: positions and velocities no longer mean anything; the template stays.
   stateOf(self).capsChanged = true;
   GST_OBJECT_LOCK(self);
-  settingsOf(self).frameSize = cv::Size(GST_VIDEO_INFO_WIDTH(in_info), GST_VIDEO_INFO_HEIGHT(in_info));
+  storeOf(self).shared.frameSize = cv::Size(GST_VIDEO_INFO_WIDTH(in_info), GST_VIDEO_INFO_HEIGHT(in_info));
   GST_OBJECT_UNLOCK(self);
   return TRUE;
 }
@@ -935,17 +450,17 @@ static void handle_navigation(GstColorTrack *self, GstEvent *event) {
   if (button != kLeftButton && button != kRightButton) return;
 
   GST_OBJECT_LOCK(self);
-  Settings &s = settingsOf(self);
-  const bool enabled = s.clickToTrack;
+  colortrack_gst::PropertyStore &store = storeOf(self);
+  const bool enabled = store.settings.clickToTrack;
   if (enabled) {
     ClickRequest click;
     click.kind = button == kLeftButton ? ClickRequest::Kind::Track : ClickRequest::Kind::Stop;
     click.point = cv::Point2d(x, y);
-    s.pendingClick = click;
+    store.shared.requests.click = click;
     // The latest request wins over an init-box that has not been used yet.
-    if (s.pendingInitBox) {
-      s.pendingInitBox.reset();
-      s.initBox = TextSetting{};
+    if (store.shared.requests.initBox) {
+      store.shared.requests.initBox.reset();
+      store.settings.initBox.clear();
     }
   }
   GST_OBJECT_UNLOCK(self);
@@ -1088,7 +603,7 @@ static InitBoxFit check_init_box(GstColorTrack *self, const cv::Rect &box, cv::S
 
 // Applies the settings snapshot to the tracker: everything that changed since the last frame.
 // Returns false (after posting an error) when streaming must stop.
-static bool apply_settings(GstColorTrack *self, const Settings &snapshot,
+static bool apply_settings(GstColorTrack *self, const Snapshot &snapshot,
                            const std::optional<cv::Rect> &initBox, bool initBoxWhileStreaming,
                            const std::string &initBoxText, const colortrack::FrameView &view) {
   State &state = stateOf(self);
@@ -1288,13 +803,13 @@ static void learn_range(GstColorTrack *self, GstVideoFrame *frame, const cv::Rec
   State &state = stateOf(self);
   const colortrack::HsvRange learnt = colortrack::learnRange(colortrack::FrameView(frame), box);
   GST_OBJECT_LOCK(self);
-  Settings &shared = settingsOf(self);
+  colortrack_gst::PropertyStore &store = storeOf(self);
+  Settings &shared = store.settings;
   shared.blobs.range = learnt;
-  shared.hsvLower = TextSetting{colortrack::formatHsv(learnt.lower), {}};
-  shared.hsvUpper = TextSetting{colortrack::formatHsv(learnt.upper), {}};
-  ++shared.blobsGeneration;
+  shared.hsvLower = colortrack::formatHsv(learnt.lower);
+  shared.hsvUpper = colortrack::formatHsv(learnt.upper);
   const colortrack::BlobSettings blobs = shared.blobs;
-  state.appliedBlobsGeneration = shared.blobsGeneration;
+  state.appliedBlobsGeneration = ++store.versions[colortrack_gst::kBlobsVersion];
   GST_OBJECT_UNLOCK(self);
   state.blobDetector->setSettings(blobs);
   state.multiTracker.reset();
@@ -1307,11 +822,21 @@ static void learn_range(GstColorTrack *self, GstVideoFrame *frame, const cv::Rec
   g_object_notify(G_OBJECT(self), "hsv-upper");
 }
 
+// Trails are kept per id; those of tracks that ended go.
+static void drop_ended_trails(State &state, const std::vector<colortrack::TrackedObject> &objects) {
+  for (auto it = state.trails.begin(); it != state.trails.end();) {
+    const bool alive = std::any_of(objects.begin(), objects.end(),
+                                   [&](const colortrack::TrackedObject &o) { return o.id == it->first; });
+    it = alive ? std::next(it) : state.trails.erase(it);
+  }
+}
+
 // One frame in threshold mode: segment, clean, label, associate; meta, overlay and message per track.
-static GstFlowReturn threshold_frame(GstColorTrack *self, GstVideoFrame *frame, const Settings &snapshot,
-                                     const std::optional<cv::Rect> &initBox,
-                                     const std::optional<ClickRequest> &click, guint64 frameNumber,
+static GstFlowReturn threshold_frame(GstColorTrack *self, GstVideoFrame *frame, const Snapshot &snapshot,
+                                     const colortrack_gst::Requests &requests, guint64 frameNumber,
                                      double dt) {
+  const std::optional<cv::Rect> &initBox = requests.initBox;
+  const std::optional<ClickRequest> &click = requests.click;
   State &state = stateOf(self);
   const cv::Size size(GST_VIDEO_FRAME_WIDTH(frame), GST_VIDEO_FRAME_HEIGHT(frame));
   colortrack::BlobDetector &detector = *state.blobDetector;
@@ -1341,9 +866,9 @@ static GstFlowReturn threshold_frame(GstColorTrack *self, GstVideoFrame *frame, 
 
   if (initBox) {
     const InitBoxFit fit =
-        check_init_box(self, *initBox, size, snapshot.initBoxSetWhileStreaming, snapshot.initBox.text);
+        check_init_box(self, *initBox, size, requests.initBoxWhileStreaming, snapshot.initBox);
     if (fit == InitBoxFit::Error) return GST_FLOW_ERROR;
-    if (fit == InitBoxFit::Fits) learn_range(self, frame, *initBox, "init-box " + snapshot.initBox.text);
+    if (fit == InitBoxFit::Fits) learn_range(self, frame, *initBox, "init-box " + snapshot.initBox);
   }
 
   if (click && click->kind == ClickRequest::Kind::Stop) {
@@ -1372,12 +897,7 @@ static GstFlowReturn threshold_frame(GstColorTrack *self, GstVideoFrame *frame, 
   const std::vector<colortrack::Blob> blobs = detector.detect(sampled_frame(frame));
   const std::vector<colortrack::TrackedObject> objects = state.multiTracker.update(blobs, size, dt);
 
-  // Trails per id; those of tracks that ended go.
-  for (auto it = state.trails.begin(); it != state.trails.end();) {
-    const bool alive = std::any_of(objects.begin(), objects.end(),
-                                   [&](const colortrack::TrackedObject &o) { return o.id == it->first; });
-    it = alive ? std::next(it) : state.trails.erase(it);
-  }
+  drop_ended_trails(state, objects);
   std::vector<cv::Rect> boxes;
   for (const colortrack::TrackedObject &o : objects) {
     if (snapshot.trailLength > 0) {
@@ -1394,23 +914,27 @@ static GstFlowReturn threshold_frame(GstColorTrack *self, GstVideoFrame *frame, 
   return GST_FLOW_OK;
 }
 
+// The settings for this frame and the requests waiting for it (taken: one use only).
+static Snapshot take_frame_inputs(GstColorTrack *self, colortrack_gst::Requests &requests) {
+  GST_OBJECT_LOCK(self);
+  colortrack_gst::PropertyStore &store = storeOf(self);
+  const Snapshot snapshot = snapshotOf(store);
+  requests = std::exchange(store.shared.requests, {});
+  if (requests.initBox) store.settings.initBox.clear();  // init-box reads back empty once used
+  GST_OBJECT_UNLOCK(self);
+  return snapshot;
+}
+
 static GstFlowReturn gst_color_track_transform_frame_ip(GstVideoFilter *filter, GstVideoFrame *frame) {
   GstColorTrack *self = GST_COLOR_TRACK(filter);
   State &state = stateOf(self);
   GstBuffer *buffer = frame->buffer;
 
   // Snapshot of the settings; the init-box is taken (one use only).
-  GST_OBJECT_LOCK(self);
-  Settings &shared = settingsOf(self);
-  const Settings snapshot = shared;
-  const std::optional<cv::Rect> initBox = shared.pendingInitBox;
-  if (initBox) {
-    shared.pendingInitBox.reset();
-    shared.initBox = TextSetting{};
-  }
-  const std::optional<ClickRequest> click = shared.pendingClick;
-  shared.pendingClick.reset();
-  GST_OBJECT_UNLOCK(self);
+  colortrack_gst::Requests requests;
+  const Snapshot snapshot = take_frame_inputs(self, requests);
+  const std::optional<cv::Rect> &initBox = requests.initBox;
+  const std::optional<ClickRequest> &click = requests.click;
 
   const guint64 frameNumber = state.frameCount++;
   const double dt = frame_step(self, filter, buffer);
@@ -1421,10 +945,9 @@ static GstFlowReturn gst_color_track_transform_frame_ip(GstVideoFilter *filter, 
       return GST_FLOW_ERROR;
     }
     if (snapshot.mode == GST_COLOR_TRACK_MODE_THRESHOLD)
-      return threshold_frame(self, frame, snapshot, initBox, click, frameNumber, dt);
+      return threshold_frame(self, frame, snapshot, requests, frameNumber, dt);
     const colortrack::FrameView view(frame);
-    if (!apply_settings(self, snapshot, initBox, snapshot.initBoxSetWhileStreaming, snapshot.initBox.text,
-                        view))
+    if (!apply_settings(self, snapshot, initBox, requests.initBoxWhileStreaming, snapshot.initBox, view))
       return GST_FLOW_ERROR;
     if (click) apply_click(self, *click, snapshot.clickBoxSize, view);
 
@@ -1497,189 +1020,7 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
   gobject_class->get_property = gst_color_track_get_property;
   gobject_class->finalize = gst_color_track_finalize;
 
-  const colortrack::TrackerSettings defaults;
-  constexpr auto rw = static_cast<GParamFlags>(G_PARAM_READWRITE | G_PARAM_STATIC_STRINGS);
-  constexpr auto live = static_cast<GParamFlags>(rw | GST_PARAM_MUTABLE_PLAYING);
-
-  g_object_class_install_property(
-      gobject_class, PROP_MODE,
-      g_param_spec_enum(
-          "mode", "Mode",
-          "How the object is defined: 'template' follows one object like a template; 'threshold' "
-          "follows every blob of pixels inside an HSV range, each with its own id",
-          GST_TYPE_COLOR_TRACK_MODE, GST_COLOR_TRACK_MODE_TEMPLATE, rw));
-  g_object_class_install_property(
-      gobject_class, PROP_TEMPLATE_LOCATION,
-      g_param_spec_string(
-          "template-location", "Template location",
-          "Image file (PNG, JPEG) of the object to track; a PNG alpha channel selects its pixels. "
-          "Loaded at start and again when changed",
-          nullptr, live));
-  g_object_class_install_property(
-      gobject_class, PROP_INIT_BOX,
-      g_param_spec_string(
-          "init-box", "Initial box",
-          "\"x,y,w,h\" in pixels, at least 8x8: the template is taken from this box of the next frame, "
-          "where tracking starts (mode=threshold: hsv-lower/hsv-upper are learnt from the object in it); "
-          "cleared once used",
-          nullptr, live));
-  g_object_class_install_property(
-      gobject_class, PROP_METHOD,
-      g_param_spec_enum(
-          "method", "Method",
-          "How frames are searched: 'indexing' is the paper's colour indexing; 'discriminative' "
-          "also learns which colours tell the object from its surroundings; 'fused' adds a shape cue (a "
-          "correlation filter), a scale filter, a confidence that gates learning, and re-detection",
-          GST_TYPE_COLOR_TRACK_METHOD, methodOf(defaults.method), live));
-  g_object_class_install_property(
-      gobject_class, PROP_LIKELIHOOD_THRESHOLD,
-      g_param_spec_double(
-          "likelihood-threshold", "Likelihood threshold",
-          "method=discriminative (and fused, while acquiring a template image): minimum mean object "
-          "likelihood (0-1) in the box for a detection",
-          0.0, 1.0, defaults.likelihoodThreshold, live));
-  g_object_class_install_property(
-      gobject_class, PROP_MODEL_UPDATE_RATE,
-      g_param_spec_double(
-          "model-update-rate", "Model update rate",
-          "method=discriminative or fused: how fast the colour likelihood follows appearance changes, "
-          "per frame (0 = learn once)",
-          0.0, 1.0, defaults.modelUpdateRate, live));
-  g_object_class_install_property(
-      gobject_class, PROP_ADAPT_ASPECT,
-      g_param_spec_boolean("adapt-aspect", "Adapt aspect",
-                           "method=discriminative: let the box's width and height change independently",
-                           defaults.adaptAspect, live));
-  g_object_class_install_property(
-      gobject_class, PROP_COLOR_SPACE,
-      g_param_spec_enum("color-space", "Colour space", "Colour space of the histograms",
-                        GST_TYPE_COLOR_TRACK_COLOR_SPACE, fromColorSpace(defaults.colorSpace), live));
-  g_object_class_install_property(
-      gobject_class, PROP_BINS,
-      g_param_spec_string("bins", "Bins", "Histogram bins per channel, \"c1,c2,c3\", each 1-256",
-                          colortrack::formatBins(defaults.bins).c_str(), live));
-  g_object_class_install_property(
-      gobject_class, PROP_CHANNEL_WEIGHTS,
-      g_param_spec_string(
-          "channel-weights", "Channel weights",
-          "Weight of each channel in the match, \"w1,w2,w3\", each 0-1 and not all 0 (V is weighted "
-          "down for robustness to lighting)",
-          colortrack::formatWeights(defaults.weights).c_str(), live));
-  g_object_class_install_property(
-      gobject_class, PROP_MATCH_THRESHOLD,
-      g_param_spec_double(
-          "match-threshold", "Match threshold",
-          "method=indexing only: minimum histogram match value (0-1) of a detection (fused uses "
-          "its confidence, discriminative likelihood-threshold)",
-          0.0, 1.0, defaults.matchThreshold, live));
-  g_object_class_install_property(
-      gobject_class, PROP_SCALE_MIN,
-      g_param_spec_double("scale-min", "Minimum scale step",
-                          "Smallest box size tried per frame, relative to the current box", 0.5, 1.0,
-                          defaults.scale.minFactor, live));
-  g_object_class_install_property(
-      gobject_class, PROP_SCALE_MAX,
-      g_param_spec_double("scale-max", "Maximum scale step",
-                          "Largest box size tried per frame, relative to the current box", 1.0, 2.0,
-                          defaults.scale.maxFactor, live));
-  g_object_class_install_property(
-      gobject_class, PROP_SCALE_STEP,
-      g_param_spec_double("scale-step", "Scale step", "Step between the box sizes tried", 0.001, 0.5,
-                          defaults.scale.step, live));
-  g_object_class_install_property(gobject_class, PROP_SEARCH_MARGIN,
-                                  g_param_spec_double("search-margin", "Search margin",
-                                                      "Search region around the prediction: the box grown on "
-                                                      "each side by this many half box sizes, plus 3 "
-                                                      "sigma of the predicted position",
-                                                      0.0, 20.0, defaults.searchMargin, live));
-  g_object_class_install_property(
-      gobject_class, PROP_PROCESS_NOISE,
-      g_param_spec_double("process-noise", "Process noise",
-                          "Kalman process noise (jerk spectral density, px^2/frame^5): higher follows sudden "
-                          "motion faster, lower smooths more",
-                          0.0, 1e6, defaults.kalman.processNoise, live));
-  g_object_class_install_property(
-      gobject_class, PROP_MEASUREMENT_NOISE,
-      g_param_spec_double("measurement-noise", "Measurement noise",
-                          "Kalman measurement noise (variance of a detection's position, px^2)", 1e-6, 1e6,
-                          defaults.kalman.measurementNoise, live));
-  g_object_class_install_property(gobject_class, PROP_MAX_COAST_FRAMES,
-                                  g_param_spec_int("max-coast-frames", "Maximum coasting frames",
-                                                   "Frames without a detection before the track is lost", 0,
-                                                   10000, defaults.maxCoastFrames, live));
-  g_object_class_install_property(
-      gobject_class, PROP_VERIFY,
-      g_param_spec_enum("verify", "Verify", "Edge check that tells the object from same-coloured look-alikes",
-                        GST_TYPE_COLOR_TRACK_VERIFY, fromVerifyMode(defaults.verify), live));
-  g_object_class_install_property(
-      gobject_class, PROP_VERIFY_TOLERANCE,
-      g_param_spec_double("verify-tolerance", "Verify tolerance",
-                          "Largest relative difference of edge density/energy from the template's for a "
-                          "verified match",
-                          0.0, 100.0, defaults.verifyTolerance, live));
-  g_object_class_install_property(gobject_class, PROP_DRAW,
-                                  g_param_spec_flags("draw", "Draw", "What the overlay shows",
-                                                     GST_TYPE_COLOR_TRACK_DRAW, kDefaultDraw, live));
-  g_object_class_install_property(
-      gobject_class, PROP_TRAIL_LENGTH,
-      g_param_spec_uint("trail-length", "Trail length", "Frames of box-centre history in the trail", 0, 10000,
-                        kDefaultTrailLength, live));
-  const colortrack::BlobSettings blobDefaults;
-  g_object_class_install_property(
-      gobject_class, PROP_HSV_LOWER,
-      g_param_spec_string(
-          "hsv-lower", "HSV lower bound",
-          "mode=threshold: lower end of the colour range, \"h,s,v\" with h in degrees 0-360 and s, v "
-          "0-1. A lower hue above the upper one wraps through 0 (340 to 20 is red); 0 to 360 is "
-          "every hue. Set by init-box when it learns a range",
-          colortrack::formatHsv(blobDefaults.range.lower).c_str(), live));
-  g_object_class_install_property(
-      gobject_class, PROP_HSV_UPPER,
-      g_param_spec_string(
-          "hsv-upper", "HSV upper bound",
-          "mode=threshold: upper end of the colour range, \"h,s,v\" (h 0-360, s and v 0-1; s and v "
-          "not below hsv-lower's)",
-          colortrack::formatHsv(blobDefaults.range.upper).c_str(), live));
-  g_object_class_install_property(
-      gobject_class, PROP_MORPH_SIZE,
-      g_param_spec_int(
-          "morph-size", "Morphology size",
-          "mode=threshold: side in pixels of the square opening (removes specks) then closing (fills "
-          "small holes) applied to the colour mask; 0 disables",
-          0, 255, blobDefaults.morphSize, live));
-  g_object_class_install_property(
-      gobject_class, PROP_MIN_AREA,
-      g_param_spec_int(
-          "min-area", "Minimum area",
-          "mode=threshold: smallest blob, in pixels, that counts as an object (must not exceed the "
-          "frame's pixel count)",
-          1, G_MAXINT, blobDefaults.minArea, live));
-  g_object_class_install_property(
-      gobject_class, PROP_MAX_OBJECTS,
-      g_param_spec_int("max-objects", "Maximum objects",
-                       "mode=threshold: at most this many blobs (the largest) are tracked per frame", 1, 64,
-                       blobDefaults.maxObjects, live));
-  g_object_class_install_property(
-      gobject_class, PROP_CLICK_TO_TRACK,
-      g_param_spec_boolean(
-          "click-to-track", "Click to track",
-          "Follow mouse clicks in the video window (GstNavigation events from the sink): a left "
-          "click starts tracking what was clicked (mode=threshold: learns its colour), a right "
-          "click stops until a new target is given. The events are passed upstream either way",
-          kDefaultClickToTrack, live));
-  g_object_class_install_property(
-      gobject_class, PROP_CLICK_BOX_SIZE,
-      g_param_spec_int(
-          "click-box-size", "Click box size",
-          "Side in pixels (of this element's frames) of the square centred on a left click, clipped "
-          "to the frame, from which the template is taken (mode=threshold: the colour is learnt from "
-          "its middle half)",
-          kMinClickBoxSize, 8192, kDefaultClickBoxSize, live));
-  g_object_class_install_property(
-      gobject_class, PROP_POST_MESSAGES,
-      g_param_spec_boolean("post-messages", "Post messages",
-                           "Post a \"colortrack\" element message with the track for every frame",
-                           kDefaultPostMessages, live));
+  colortrack_gst::properties().install(gobject_class);
 
   /**
    * GstColorTrack::reset:
@@ -1716,9 +1057,4 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
 
 static void gst_color_track_init(GstColorTrack *self) {
   self->priv = new GstColorTrackPrivate();
-  Settings &s = self->priv->settings;
-  s.bins.text = colortrack::formatBins(s.tracker.bins);
-  s.weights.text = colortrack::formatWeights(s.tracker.weights);
-  s.hsvLower.text = colortrack::formatHsv(s.blobs.range.lower);
-  s.hsvUpper.text = colortrack::formatHsv(s.blobs.range.upper);
 }

@@ -294,7 +294,7 @@ static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
   GST_OBJECT_LOCK(self);
   const robotctl::PropertyStore &store = storeOf(self);
   const robotctl::Settings s = store.settings;
-  const guint64 version = store.version;
+  const guint64 version = store.versions[0];
   const std::string refusal = store.refused.empty() ? std::string() : store.refused.begin()->second;
   GST_OBJECT_UNLOCK(self);
 
@@ -433,7 +433,7 @@ static GstFlowReturn gst_robot_ctl_render(GstBaseSink *sink, GstBuffer *buffer) 
 
   GST_OBJECT_LOCK(self);
   const robotctl::Settings &shared = storeOf(self).settings;
-  const guint64 generation = storeOf(self).version;
+  const guint64 generation = storeOf(self).versions[0];
   const colortrack::ControllerSettings controllerSettings = shared.controller;
   const colortrack::FailsafeSettings failsafeSettings = shared.failsafe;
   const GQuark roiType = g_quark_from_string(shared.roiType.c_str());

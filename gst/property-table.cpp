@@ -67,6 +67,9 @@ std::string readAtStartText(GParamSpec *pspec) {
 void postSettingsWarning(GstElement *element, GstDebugCategory *category, const std::string &text) {
   GST_ELEMENT_WARNING(element, RESOURCE, SETTINGS, ("%s", text.c_str()), (nullptr));
 }
+void logRefusedBeforeStart(GstElement *element, GstDebugCategory *category, const std::string &refusal) {
+  GST_WARNING_OBJECT(element, "%s: the element will fail to start", refusal.c_str());
+}
 #undef GST_CAT_DEFAULT
 
 }  // namespace gstglue

@@ -14,28 +14,46 @@ namespace gstglue {
 enum class Apply {
   Live,     // applied from the next buffer (GST_PARAM_MUTABLE_PLAYING)
   AtStart,  // read at start: a change while started warns that it applies from the next start
+  // Applied from the next buffer but not flagged GST_PARAM_MUTABLE_PLAYING (colortrack's mode, as it always
+  // was declared).
+  LiveUnflagged,
 };
 
-// One property. `S` is the element's settings: the property values and nothing else.
-template <typename S>
+// An element with nothing to share besides its property values.
+struct NoShared {};
+
+// What an element keeps per instance, under its object lock. `S` is the element's settings: the property
+// values and nothing else. `X` is what else the threads share: requests waiting for the streaming thread and
+// runtime facts a property's check needs.
+template <typename S, typename X = NoShared>
+struct PropertyStore {
+  S settings;
+  X shared;
+  // Counters bumped by each accepted value of a property that names them (PropertyDef::versions), so the
+  // streaming thread re-reads only what changed.
+  guint64 versions[4] = {};
+  bool running = false;                  // between start and stop
+  std::map<guint, std::string> refused;  // by property id: a value refused before start, an error at start
+};
+
+// One property.
+template <typename S, typename X = NoShared>
 struct PropertyDef {
   Apply apply;
-  bool versioned;  // an accepted value bumps PropertyStore::version
+  unsigned versions;  // bit i set: an accepted value bumps PropertyStore::versions[i] (true: counter 0)
   GParamSpec *(*spec)(GParamFlags flags);
   void (*get)(const S &settings, GValue *value);
   void (*set)(S &settings, const GValue *value);
   // Why a value of the spec's range is still refused, or null to accept it.
   const char *(*refuse)(const GValue *value) = nullptr;
-};
-
-// What an element keeps per instance, under its object lock.
-template <typename S>
-struct PropertyStore {
-  S settings;
-  // Bumped by each accepted value of a versioned property, so the streaming thread re-reads only on change.
-  guint64 version = 0;
-  bool running = false;                  // between start and stop
-  std::map<guint, std::string> refused;  // by property id: a value refused before start, an error at start
+  // The same for a value judged by parsing it or against the store (the other settings, running, the
+  // runtime facts): why it is refused, or empty to accept. May set `warning` to a whole text that replaces
+  // the usual "Invalid value ... Keeping ..." while running.
+  std::string (*check)(const PropertyStore<S, X> &store, const GValue *value, std::string *warning) = nullptr;
+  // A value refused before start is still stored, so that it reads back as written (text properties).
+  bool keepRefused = false;
+  // Called under the lock after an accepted value is set, e.g. to post a request for the streaming thread.
+  void (*accepted)(PropertyStore<S, X> &store) = nullptr;
 };
 
 // The helpers the table's templates share; in property-table.cpp.
@@ -45,13 +63,14 @@ std::string refusalText(GParamSpec *pspec, const GValue *value, const char *why)
 std::string keepingText(const std::string &refusal, const GValue *kept);
 std::string readAtStartText(GParamSpec *pspec);
 void postSettingsWarning(GstElement *element, GstDebugCategory *category, const std::string &text);
+void logRefusedBeforeStart(GstElement *element, GstDebugCategory *category, const std::string &refusal);
 
-template <typename S>
+template <typename S, typename X = NoShared>
 class PropertyTable {
  public:
   // Property ids are 1 + the index in `defs`; gst-inspect-1.0 lists them in this order.
   template <std::size_t N>
-  explicit PropertyTable(const PropertyDef<S> (&defs)[N]) : defs_(defs), count_(N) {}
+  explicit PropertyTable(const PropertyDef<S, X> (&defs)[N]) : defs_(defs), count_(N) {}
 
   void install(GObjectClass *klass) const {
     for (std::size_t i = 0; i < count_; ++i)
@@ -59,7 +78,7 @@ class PropertyTable {
                                       defs_[i].spec(flagsFor(defs_[i].apply)));
   }
 
-  void get(GstElement *element, const PropertyStore<S> &store, guint id, GValue *value,
+  void get(GstElement *element, const PropertyStore<S, X> &store, guint id, GValue *value,
            GParamSpec *pspec) const {
     if (id == 0 || id > count_) {
       G_OBJECT_WARN_INVALID_PROPERTY_ID(element, id, pspec);
@@ -71,42 +90,51 @@ class PropertyTable {
   }
 
   // Warnings are logged in `category`, the element's.
-  void set(GstElement *element, GstDebugCategory *category, PropertyStore<S> &store, guint id,
+  void set(GstElement *element, GstDebugCategory *category, PropertyStore<S, X> &store, guint id,
            const GValue *value, GParamSpec *pspec) const {
     if (id == 0 || id > count_) {
       G_OBJECT_WARN_INVALID_PROPERTY_ID(element, id, pspec);
       return;
     }
-    const PropertyDef<S> &def = defs_[id - 1];
+    const PropertyDef<S, X> &def = defs_[id - 1];
     GValue before = G_VALUE_INIT, after = G_VALUE_INIT;
     g_value_init(&before, G_PARAM_SPEC_VALUE_TYPE(pspec));
     g_value_init(&after, G_PARAM_SPEC_VALUE_TYPE(pspec));
-    std::string warning;
+    std::string warning, refusedBeforeStart;
     GST_OBJECT_LOCK(element);
     def.get(store.settings, &before);
-    if (const char *why = def.refuse ? def.refuse(value) : nullptr) {
-      const std::string refusal = refusalText(pspec, value, why);
-      if (store.running)
-        warning = keepingText(refusal, &before);
-      else
-        store.refused[id] = refusal;
+    const char *refused = def.refuse ? def.refuse(value) : nullptr;
+    std::string why = refused ? refused : "";
+    if (why.empty() && def.check) why = def.check(store, value, &warning);
+    if (!why.empty()) {
+      const std::string refusal = refusalText(pspec, value, why.c_str());
+      if (store.running) {
+        if (warning.empty()) warning = keepingText(refusal, &before);
+      } else {
+        store.refused[id] = refusedBeforeStart = refusal;
+        if (def.keepRefused) def.set(store.settings, value);
+      }
     } else {
+      warning.clear();
       store.refused.erase(id);
       def.set(store.settings, value);
-      if (def.versioned) ++store.version;
+      for (unsigned i = 0; i < G_N_ELEMENTS(store.versions); ++i)
+        if (def.versions & (1u << i)) ++store.versions[i];
+      if (def.accepted) def.accepted(store);
       def.get(store.settings, &after);
       // Said at once, or the user would think the new value applied.
       if (def.apply == Apply::AtStart && store.running && !sameValue(&before, &after))
         warning = readAtStartText(pspec);
     }
     GST_OBJECT_UNLOCK(element);
+    if (!refusedBeforeStart.empty()) logRefusedBeforeStart(element, category, refusedBeforeStart);
     g_value_unset(&before);
     g_value_unset(&after);
     if (!warning.empty()) postSettingsWarning(element, category, warning);
   }
 
  private:
-  const PropertyDef<S> *defs_;
+  const PropertyDef<S, X> *defs_;
   std::size_t count_;
 };
 
