@@ -119,6 +119,19 @@ robotctl::FlowControl toFlowControl(GstRobotCtlFlowControl flow) {
   return robotctl::FlowControl::None;
 }
 
+// No default: -Wswitch names a protocol added to the property but not mapped here.
+colortrack::Protocol toProtocol(GstRobotCtlProtocol protocol) {
+  switch (protocol) {
+    case GST_ROBOT_CTL_PROTOCOL_TEXT:
+      return colortrack::Protocol::Text;
+    case GST_ROBOT_CTL_PROTOCOL_BINARY:
+      return colortrack::Protocol::Binary;
+    case GST_ROBOT_CTL_PROTOCOL_ZONE_CHAR:
+      break;
+  }
+  return colortrack::Protocol::ZoneChar;
+}
+
 double monotonicSeconds() {
   return static_cast<double>(g_get_monotonic_time()) / G_USEC_PER_SEC;
 }
@@ -315,9 +328,7 @@ static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
   GST_INFO_OBJECT(self, "writing to %s", port->describe().c_str());
 
   robotctl::WriterConfig config;
-  config.protocol.protocol = s.protocol == GST_ROBOT_CTL_PROTOCOL_TEXT     ? colortrack::Protocol::Text
-                             : s.protocol == GST_ROBOT_CTL_PROTOCOL_BINARY ? colortrack::Protocol::Binary
-                                                                           : colortrack::Protocol::ZoneChar;
+  config.protocol.protocol = toProtocol(s.protocol);
   config.protocol.zoneChars = *zoneChars;
   config.protocol.outputScale = s.outputScale;
   config.rate = s.rate;

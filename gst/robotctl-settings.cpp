@@ -14,6 +14,48 @@ using colortrack::FailsafeSettings;
 
 constexpr bool kVersioned = true;
 
+// GStreamer enum <-> core enum: switches with no default, so -Wswitch names a value added to either side.
+// The value after each switch is only reached by an out-of-range number (GParamSpecEnum refuses those).
+colortrack::ControllerKind toControllerKind(GstRobotCtlController controller) {
+  switch (controller) {
+    case GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL:
+      return colortrack::ControllerKind::Proportional;
+    case GST_ROBOT_CTL_CONTROLLER_ZONE:
+      break;
+  }
+  return colortrack::ControllerKind::Zone;
+}
+
+GstRobotCtlController fromControllerKind(colortrack::ControllerKind kind) {
+  switch (kind) {
+    case colortrack::ControllerKind::Proportional:
+      return GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL;
+    case colortrack::ControllerKind::Zone:
+      break;
+  }
+  return GST_ROBOT_CTL_CONTROLLER_ZONE;
+}
+
+colortrack::DistanceCue toDistanceCue(GstRobotCtlDistanceCue cue) {
+  switch (cue) {
+    case GST_ROBOT_CTL_DISTANCE_CUE_POSITION:
+      return colortrack::DistanceCue::Position;
+    case GST_ROBOT_CTL_DISTANCE_CUE_SIZE:
+      break;
+  }
+  return colortrack::DistanceCue::Size;
+}
+
+GstRobotCtlDistanceCue fromDistanceCue(colortrack::DistanceCue cue) {
+  switch (cue) {
+    case colortrack::DistanceCue::Position:
+      return GST_ROBOT_CTL_DISTANCE_CUE_POSITION;
+    case colortrack::DistanceCue::Size:
+      break;
+  }
+  return GST_ROBOT_CTL_DISTANCE_CUE_SIZE;
+}
+
 std::string textOf(const GValue *value) {
   const gchar *text = g_value_get_string(value);
   return text ? text : "";
@@ -164,30 +206,18 @@ const Def kProperties[] = {
        return g_param_spec_enum("controller", "Controller", "How commands are decided",
                                 GST_TYPE_ROBOT_CTL_CONTROLLER, GST_ROBOT_CTL_CONTROLLER_ZONE, f);
      },
-     [](const Settings &s, GValue *v) {
-       g_value_set_enum(v, s.controller.kind == colortrack::ControllerKind::Proportional
-                               ? GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL
-                               : GST_ROBOT_CTL_CONTROLLER_ZONE);
-     },
+     [](const Settings &s, GValue *v) { g_value_set_enum(v, fromControllerKind(s.controller.kind)); },
      [](Settings &s, const GValue *v) {
-       s.controller.kind = g_value_get_enum(v) == GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL
-                               ? colortrack::ControllerKind::Proportional
-                               : colortrack::ControllerKind::Zone;
+       s.controller.kind = toControllerKind(static_cast<GstRobotCtlController>(g_value_get_enum(v)));
      }},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_enum("distance-cue", "Distance cue", "What tells how far the target is",
                                 GST_TYPE_ROBOT_CTL_DISTANCE_CUE, GST_ROBOT_CTL_DISTANCE_CUE_SIZE, f);
      },
-     [](const Settings &s, GValue *v) {
-       g_value_set_enum(v, s.controller.distanceCue == colortrack::DistanceCue::Position
-                               ? GST_ROBOT_CTL_DISTANCE_CUE_POSITION
-                               : GST_ROBOT_CTL_DISTANCE_CUE_SIZE);
-     },
+     [](const Settings &s, GValue *v) { g_value_set_enum(v, fromDistanceCue(s.controller.distanceCue)); },
      [](Settings &s, const GValue *v) {
-       s.controller.distanceCue = g_value_get_enum(v) == GST_ROBOT_CTL_DISTANCE_CUE_POSITION
-                                      ? colortrack::DistanceCue::Position
-                                      : colortrack::DistanceCue::Size;
+       s.controller.distanceCue = toDistanceCue(static_cast<GstRobotCtlDistanceCue>(g_value_get_enum(v)));
      }},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
