@@ -7,6 +7,10 @@ namespace colortrack_gst {
 namespace {
 
 using gstglue::Apply;
+using gstglue::getText;
+using gstglue::getTextOrNull;
+using gstglue::setText;
+using gstglue::textOf;
 using Def = gstglue::PropertyDef<Settings, Shared>;
 using colortrack::TrackerSettings;
 
@@ -72,24 +76,7 @@ GstColorTrackVerify fromVerifyMode(colortrack::VerifyMode mode) {
   return GST_COLOR_TRACK_VERIFY_BOTH;
 }
 
-std::string textOf(const GValue *value) {
-  const gchar *text = g_value_get_string(value);
-  return text ? text : "";
-}
-
-// Accessors of a field, by type; `field` is a pointer to a member of Settings or of one of its parts.
-template <auto field>
-void getText(const Settings &s, GValue *v) {
-  g_value_set_string(v, (s.*field).c_str());
-}
-template <auto field>
-void getTextOrNull(const Settings &s, GValue *v) {
-  g_value_set_string(v, (s.*field).empty() ? nullptr : (s.*field).c_str());
-}
-template <auto field>
-void setText(Settings &s, const GValue *v) {
-  s.*field = textOf(v);
-}
+// Accessors of a field of one of Settings' parts, by type (text fields: gstglue's).
 template <auto field>
 void getTrackerDouble(const Settings &s, GValue *v) {
   g_value_set_double(v, s.tracker.*field);

@@ -4,6 +4,11 @@
 
 namespace gstglue {
 
+std::string textOf(const GValue *value) {
+  const gchar *text = g_value_get_string(value);
+  return text ? text : "";
+}
+
 namespace {
 
 // A string as the messages quote it: null reads as empty.

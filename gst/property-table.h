@@ -56,6 +56,34 @@ struct PropertyDef {
   void (*accepted)(PropertyStore<S, X> &store) = nullptr;
 };
 
+// The class a pointer to member belongs to, so that the field accessors below need only the member.
+template <typename T>
+struct MemberClass;
+template <typename C, typename M>
+struct MemberClass<M C::*> {
+  using type = C;
+};
+template <auto field>
+using ClassOf = typename MemberClass<decltype(field)>::type;
+
+// The text of a string GValue, "" for NULL.
+std::string textOf(const GValue *value);
+
+// Table accessors of a std::string field of an element's settings.
+template <auto field>
+void getText(const ClassOf<field> &s, GValue *v) {
+  g_value_set_string(v, (s.*field).c_str());
+}
+// An empty text reads back as NULL (a property whose default is "none").
+template <auto field>
+void getTextOrNull(const ClassOf<field> &s, GValue *v) {
+  g_value_set_string(v, (s.*field).empty() ? nullptr : (s.*field).c_str());
+}
+template <auto field>
+void setText(ClassOf<field> &s, const GValue *v) {
+  s.*field = textOf(v);
+}
+
 // The helpers the table's templates share; in property-table.cpp.
 GParamFlags flagsFor(Apply apply);
 bool sameValue(const GValue *a, const GValue *b);

@@ -8,6 +8,10 @@ namespace robotctl {
 namespace {
 
 using gstglue::Apply;
+using gstglue::getText;
+using gstglue::getTextOrNull;
+using gstglue::setText;
+using gstglue::textOf;
 using Def = gstglue::PropertyDef<Settings>;
 using colortrack::ControllerSettings;
 using colortrack::FailsafeSettings;
@@ -56,24 +60,7 @@ GstRobotCtlDistanceCue fromDistanceCue(colortrack::DistanceCue cue) {
   return GST_ROBOT_CTL_DISTANCE_CUE_SIZE;
 }
 
-std::string textOf(const GValue *value) {
-  const gchar *text = g_value_get_string(value);
-  return text ? text : "";
-}
-
-// Accessors of a field, by type; `field` is a pointer to a member of Settings.
-template <auto field>
-void getText(const Settings &s, GValue *v) {
-  g_value_set_string(v, (s.*field).c_str());
-}
-template <auto field>
-void getTextOrNull(const Settings &s, GValue *v) {
-  g_value_set_string(v, (s.*field).empty() ? nullptr : (s.*field).c_str());
-}
-template <auto field>
-void setText(Settings &s, const GValue *v) {
-  s.*field = textOf(v);
-}
+// Accessors of a field, by type; `field` is a pointer to a member of Settings (text: gstglue's).
 template <auto field>
 void getInt(const Settings &s, GValue *v) {
   g_value_set_int(v, s.*field);
