@@ -19,11 +19,22 @@ constexpr unsigned kTracker = 1u << kTrackerVersion, kTemplate = 1u << kTemplate
 
 // Switches without a default, so that a value added to one side and not the other is a compiler warning.
 colortrack::ColorSpace toColorSpace(gint value) {
-  return value == GST_COLOR_TRACK_COLOR_SPACE_RGB ? colortrack::ColorSpace::Rgb : colortrack::ColorSpace::Hsv;
+  switch (static_cast<GstColorTrackColorSpace>(value)) {
+    case GST_COLOR_TRACK_COLOR_SPACE_RGB:
+      return colortrack::ColorSpace::Rgb;
+    case GST_COLOR_TRACK_COLOR_SPACE_HSV:
+      break;
+  }
+  return colortrack::ColorSpace::Hsv;
 }
 GstColorTrackColorSpace fromColorSpace(colortrack::ColorSpace space) {
-  return space == colortrack::ColorSpace::Rgb ? GST_COLOR_TRACK_COLOR_SPACE_RGB
-                                              : GST_COLOR_TRACK_COLOR_SPACE_HSV;
+  switch (space) {
+    case colortrack::ColorSpace::Rgb:
+      return GST_COLOR_TRACK_COLOR_SPACE_RGB;
+    case colortrack::ColorSpace::Hsv:
+      break;
+  }
+  return GST_COLOR_TRACK_COLOR_SPACE_HSV;
 }
 
 GstColorTrackMethod methodOf(colortrack::Method method) {
@@ -51,16 +62,17 @@ colortrack::Method toMethod(gint value) {
 }
 
 colortrack::VerifyMode toVerifyMode(gint value) {
-  switch (value) {
+  switch (static_cast<GstColorTrackVerify>(value)) {
     case GST_COLOR_TRACK_VERIFY_NONE:
       return colortrack::VerifyMode::None;
     case GST_COLOR_TRACK_VERIFY_EDGE_DENSITY:
       return colortrack::VerifyMode::EdgeDensity;
     case GST_COLOR_TRACK_VERIFY_EDGE_ENERGY:
       return colortrack::VerifyMode::EdgeEnergy;
-    default:
-      return colortrack::VerifyMode::Both;
+    case GST_COLOR_TRACK_VERIFY_BOTH:
+      break;
   }
+  return colortrack::VerifyMode::Both;
 }
 GstColorTrackVerify fromVerifyMode(colortrack::VerifyMode mode) {
   switch (mode) {
