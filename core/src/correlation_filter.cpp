@@ -5,6 +5,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include <Eigen/Core>
+
 namespace colortrack {
 
 namespace {
@@ -151,9 +153,19 @@ void ScaleFilter::init(int scales, double step, double sigma, double lambda) {
     label.at<float>(0, i) = static_cast<float>(std::exp(-0.5 * offset * offset / (sigma * sigma)));
   }
   cv::dft(label, labelSpectrum_);
-  window_.create(scales, 1, CV_32F);  // Hann window without its zero ends
-  for (int i = 0; i < scales; ++i)
-    window_.at<float>(i, 0) = static_cast<float>(0.5 - 0.5 * std::cos(2 * CV_PI * (i + 1) / (scales + 1)));
+  // Column j of the matrix makes packed spectrum element j (layout below) of the windowed samples:
+  // Re(k) = sum_i w_i x_i cos(2 pi k i / n), Im(k) = -sum_i w_i x_i sin(2 pi k i / n).
+  windowedDft_.create(scales, scales, CV_32F);
+  for (int i = 0; i < scales; ++i) {
+    const double w = 0.5 - 0.5 * std::cos(2 * CV_PI * (i + 1) / (scales + 1));  // Hann without its zero ends
+    float *row = windowedDft_.ptr<float>(i);
+    row[0] = static_cast<float>(w);
+    for (int k = 1; 2 * k - 1 < scales; ++k) {
+      const double angle = 2 * CV_PI * k * i / scales;
+      row[2 * k - 1] = static_cast<float>(w * std::cos(angle));
+      if (2 * k < scales) row[2 * k] = static_cast<float>(-w * std::sin(angle));
+    }
+  }
   lambda_ = lambda;
   step_ = step;
   numerator_.release();
@@ -171,16 +183,19 @@ inline float imaginaryAt(const float *row, int k, int n) {
 
 }  // namespace
 
-// Features x scales packed spectrum of samples (scales x features), windowed over the scales.
+// Features x scales packed spectrum of samples (scales x features), windowed over the scales. The DFT along
+// the scale axis is a product with a small fixed matrix (Eigen's blocked, vectorised product): one matrix
+// product over all feature columns cost a fifth of what cv::dft took for the same rows of odd length 33,
+// which OpenCV transforms one short row at a time.
 void ScaleFilter::transform(const cv::Mat &samples, cv::Mat &spectrum) {
-  CV_Assert(samples.rows == static_cast<int>(factors_.size()) && samples.type() == CV_32FC1);
-  transposed_.create(samples.cols, samples.rows, CV_32F);
-  for (int i = 0; i < samples.rows; ++i) {
-    const float w = window_.at<float>(i, 0);
-    const float *in = samples.ptr<float>(i);
-    for (int f = 0; f < samples.cols; ++f) transposed_.at<float>(f, i) = in[f] * w;
-  }
-  cv::dft(transposed_, spectrum, cv::DFT_ROWS);
+  using RowMajor = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  const int scales = static_cast<int>(factors_.size());
+  CV_Assert(samples.rows == scales && samples.type() == CV_32FC1 && samples.isContinuous());
+  spectrum.create(samples.cols, scales, CV_32F);
+  const Eigen::Map<const RowMajor> in(samples.ptr<float>(), scales, samples.cols);
+  const Eigen::Map<const RowMajor> dft(windowedDft_.ptr<float>(), scales, scales);
+  Eigen::Map<RowMajor> out(spectrum.ptr<float>(), samples.cols, scales);
+  out.noalias() = in.transpose() * dft;
 }
 
 void ScaleFilter::train(const cv::Mat &samples, double rate) {

@@ -4,6 +4,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "colortrack/area_resample.hpp"
+
 namespace colortrack {
 
 cv::Size sampledSize(const cv::Rect &rect, int step) {
@@ -83,7 +85,10 @@ cv::Rect2d PatchSampler::extract(const cv::Rect2d &rect, cv::Size size, cv::Mat 
   // Area averaging when shrinking (bilinear alone aliases fine texture into the features: mean AUC 0.548
   // against 0.512 on the shared sequences).
   const bool shrinking = source.cols > size.width && source.rows > size.height;
-  cv::resize(source, out, size, 0, 0, shrinking ? cv::INTER_AREA : cv::INTER_LINEAR);
+  if (shrinking)
+    shrinkByArea(source, size, out);
+  else
+    cv::resize(source, out, size, 0, 0, cv::INTER_LINEAR);
   return cv::Rect2d(origin_.x + roi.x * step_, origin_.y + roi.y * step_, roi.width * step_,
                     roi.height * step_);
 }

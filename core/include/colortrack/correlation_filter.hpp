@@ -66,14 +66,15 @@ class ScaleFilter {
   void transform(const cv::Mat &samples, cv::Mat &spectrum);
   void trainOnSpectrum(const cv::Mat &spectrum, double rate);
   std::vector<double> factors_;
-  cv::Mat window_;                  // Hann window over the scales, as a column
+  // The Hann window over the scales and the packed DFT along the scale axis as one scales x scales matrix:
+  // a sample's spectrum is its row of features times this matrix (see transform()).
+  cv::Mat windowedDft_;
   cv::Mat labelSpectrum_;           // 1 x scales, packed (CCS)
   cv::Mat numerator_;               // features x scales, packed (CCS)
   std::vector<float> denominator_;  // per frequency 0 .. scales / 2
   double lambda_ = 1e-2;
   double step_ = 1.02;
   cv::Mat lastSpectrum_;  // of the samples last given to estimate()
-  cv::Mat transposed_;    // scratch
 };
 
 // Sub-cell position of the maximum of `response` at `peak`: a parabola through the logarithms of the peak and
