@@ -48,6 +48,48 @@ FrameView::FrameView(const GstVideoFrame *frame)
   if (GST_VIDEO_FORMAT_INFO_IS_RGB(frame->info.finfo)) packed_ = packedLayout(frame->info.finfo);
 }
 
+SampledFrame FrameView::channels(cv::Mat & /*scratch*/) const {
+  const GstVideoFrame *frame = frame_;
+  const int w = size_.width, h = size_.height;
+  const int cw = (w + 1) / 2, ch = (h + 1) / 2;
+  const auto bytes = [frame](int plane, int rows, int rowBytes) {
+    return cv::Mat(rows, rowBytes, CV_8UC1, GST_VIDEO_FRAME_PLANE_DATA(frame, plane),
+                   static_cast<size_t>(GST_VIDEO_FRAME_PLANE_STRIDE(frame, plane)));
+  };
+  SampledFrame out;
+  out.size = cv::Size(w, h);
+  out.encoding = PixelEncoding::Yuv601;
+  switch (format_) {
+    case GST_VIDEO_FORMAT_I420:
+      out.channels = {ChannelSampler{bytes(0, h, w), 0, 1, 1, 1},
+                      ChannelSampler{bytes(1, ch, cw), 0, 1, 2, 2},
+                      ChannelSampler{bytes(2, ch, cw), 0, 1, 2, 2}};
+      break;
+    case GST_VIDEO_FORMAT_NV12: {
+      const cv::Mat uv = bytes(1, ch, 2 * cw);
+      out.channels = {ChannelSampler{bytes(0, h, w), 0, 1, 1, 1}, ChannelSampler{uv, 0, 2, 2, 2},
+                      ChannelSampler{uv, 1, 2, 2, 2}};
+      break;
+    }
+    case GST_VIDEO_FORMAT_YUY2: {
+      const cv::Mat packed = bytes(0, h, 4 * cw);  // Y0 U Y1 V per two pixels
+      out.channels = {ChannelSampler{packed, 0, 2, 1, 1}, ChannelSampler{packed, 1, 4, 2, 1},
+                      ChannelSampler{packed, 3, 4, 2, 1}};
+      break;
+    }
+    default: {
+      const PackedLayout &layout = packed_;
+      const cv::Mat packed = bytes(0, h, w * layout.pixelBytes);
+      out.encoding = PixelEncoding::Rgb;
+      out.channels = {ChannelSampler{packed, layout.red, layout.pixelBytes, 1, 1},
+                      ChannelSampler{packed, layout.green, layout.pixelBytes, 1, 1},
+                      ChannelSampler{packed, layout.blue, layout.pixelBytes, 1, 1}};
+      break;
+    }
+  }
+  return out;
+}
+
 void FrameView::bgr(const cv::Rect &rect, cv::Mat &out) const {
   CV_Assert((rect & cv::Rect(cv::Point(), size_)) == rect && !rect.empty());
   switch (format_) {

@@ -22,7 +22,7 @@
  * stream-time, running-time, duration, frame, state, x, y, width, height, score, verified and scale.
  *
  * The overlay (#GstColorTrack:draw) shows the box in red for a colour-only match, green when verified and
- * orange while coasting on the prediction, the path of the box centre in red, the search window in blue
+ * orange while coasting on the prediction, the path of the box centre in yellow, the search window in blue
  * and an "id score state" label. YUV input is read and drawn with the BT.601 matrix.
  *
  * Click to track (#GstColorTrack:click-to-track): a left click in the window of a video sink that sends
@@ -51,77 +51,36 @@
 #include "gstcolortrack.h"
 
 #include <algorithm>
-#include <atomic>
-#include <cmath>
-#include <cstdio>
-#include <deque>
-#include <map>
 #include <memory>
-#include <optional>
 #include <string>
 #include <utility>
-#include <vector>
 
 #include <opencv2/core.hpp>
 
 #include "colortrack/blobs.hpp"
-#include "colortrack/multi_tracker.hpp"
-#include "colortrack/settings.hpp"
 #include "colortrack/tracker.hpp"
+#include "colortrack-meta.h"
+#include "colortrack-modes.h"
 #include "colortrack-settings.h"
+#include "colortrack-state.h"
+#include "enum-types.h"
 #include "frame-view.h"
-#include "overlay.h"
-#include "track-params.h"
+#include "track-overlay.h"
+#include "track-report.h"
 
-GST_DEBUG_CATEGORY_STATIC(gst_color_track_debug);
+GST_DEBUG_CATEGORY(gst_color_track_debug);
 #define GST_CAT_DEFAULT gst_color_track_debug
 
 namespace {
 
 using colortrack_gst::ClickRequest;
 using colortrack_gst::Settings;
+using colortrack_gst::Snapshot;
+using colortrack_gst::State;
 
 constexpr int kLeftButton = 1, kRightButton = 3;
-// The state reported in messages after a right click, until a new target is given.
-constexpr const char *kIdleState = "idle";
-constexpr int kBoxThickness = 2;
-constexpr int kTrailThickness = 2;
-
-// The settings as one frame sees them, with the store's counters at that moment.
-struct Snapshot : Settings {
-  guint64 trackerGeneration = 0, templateGeneration = 0, blobsGeneration = 0, rangeGeneration = 0;
-};
-
-// What the streaming thread owns (and start()/stop(), which never run concurrently with it).
-struct State {
-  std::unique_ptr<colortrack::Tracker> tracker;
-  guint64 appliedTrackerGeneration = 0;
-  guint64 appliedTemplateGeneration = 0;
-  std::string templateOrigin;  // "template-location 'x.png'" or "init-box '1,2,3,4'", for error messages
-  std::deque<cv::Point2d> trail;
-  int trailTrackId = 0;
-  guint64 frameCount = 0;
-  bool warnedNoTemplate = false;
-  bool capsChanged = false;
-  // After a right click: nothing is tracked (no meta, no overlay) until a left click, init-box,
-  // template-location (template mode) or hsv-lower/hsv-upper (threshold mode) gives a new target.
-  bool idle = false;
-  GstClockTime lastPts = GST_CLOCK_TIME_NONE;
-  // mode=threshold.
-  std::unique_ptr<colortrack::BlobDetector> blobDetector;
-  colortrack::MultiTracker multiTracker;
-  guint64 appliedBlobsGeneration = 0;
-  guint64 appliedRangeGeneration = 0;
-  std::map<int, std::deque<cv::Point2d>> trails;  // per track id
-};
 
 }  // namespace
-
-struct _GstColorTrackPrivate {
-  colortrack_gst::PropertyStore store;
-  State state;
-  std::atomic<bool> resetRequested{false};
-};
 
 enum { SIGNAL_RESET, LAST_SIGNAL };
 static guint gst_color_track_signals[LAST_SIGNAL] = {0};
@@ -140,78 +99,41 @@ GST_ELEMENT_REGISTER_DEFINE(colortrack, "colortrack", GST_RANK_NONE, GST_TYPE_CO
 // ---------------------------------------------------------------------------------------------------------
 // Enum and flags types
 
-GType gst_color_track_mode_get_type(void) {
-  static gsize type = 0;
-  static const GEnumValue values[] = {
-      {GST_COLOR_TRACK_MODE_TEMPLATE, "Track the object of a template (template-location or init-box)",
-       "template"},
-      {GST_COLOR_TRACK_MODE_THRESHOLD,
-       "Track every blob inside an HSV range (hsv-lower/hsv-upper, or learnt from init-box), each with an id",
-       "threshold"},
-      {0, nullptr, nullptr},
-  };
-  if (g_once_init_enter(&type)) g_once_init_leave(&type, g_enum_register_static("GstColorTrackMode", values));
-  return type;
-}
-
-GType gst_color_track_color_space_get_type(void) {
-  static gsize type = 0;
-  static const GEnumValue values[] = {
-      {GST_COLOR_TRACK_COLOR_SPACE_RGB, "RGB histograms (original colour indexing)", "rgb"},
-      {GST_COLOR_TRACK_COLOR_SPACE_HSV, "HSV histograms (modified colour indexing, lighting-robust)", "hsv"},
-      {0, nullptr, nullptr},
-  };
-  if (g_once_init_enter(&type))
-    g_once_init_leave(&type, g_enum_register_static("GstColorTrackColorSpace", values));
-  return type;
-}
-
-GType gst_color_track_verify_get_type(void) {
-  static gsize type = 0;
-  static const GEnumValue values[] = {
-      {GST_COLOR_TRACK_VERIFY_NONE, "No check: every colour match is verified", "none"},
-      {GST_COLOR_TRACK_VERIFY_EDGE_DENSITY, "Edge density close to the template's", "edge-density"},
-      {GST_COLOR_TRACK_VERIFY_EDGE_ENERGY, "Edge energy close to the template's", "edge-energy"},
-      {GST_COLOR_TRACK_VERIFY_BOTH, "Edge density and energy both close to the template's", "both"},
-      {0, nullptr, nullptr},
-  };
-  if (g_once_init_enter(&type))
-    g_once_init_leave(&type, g_enum_register_static("GstColorTrackVerify", values));
-  return type;
-}
-
-GType gst_color_track_method_get_type(void) {
-  static gsize type = 0;
-  static const GEnumValue values[] = {
-      {GST_COLOR_TRACK_METHOD_INDEXING, "Modified colour indexing: template histograms by intersection",
-       "indexing"},
-      {GST_COLOR_TRACK_METHOD_DISCRIMINATIVE,
-       "Colour only: object-versus-surroundings colour likelihood with a motion prior (fastest)",
-       "discriminative"},
-      {GST_COLOR_TRACK_METHOD_FUSED,
-       "Shape (correlation filter) and colour fused, with confidence and re-detection (most accurate)",
-       "fused"},
-      {0, nullptr, nullptr},
-  };
-  if (g_once_init_enter(&type))
-    g_once_init_leave(&type, g_enum_register_static("GstColorTrackMethod", values));
-  return type;
-}
-
-GType gst_color_track_draw_get_type(void) {
-  static gsize type = 0;
-  static const GFlagsValue values[] = {
-      {GST_COLOR_TRACK_DRAW_BOX, "Box (red: colour match, green: verified, orange: coasting)", "box"},
-      {GST_COLOR_TRACK_DRAW_TRAIL, "Trail of the box centre (yellow)", "trail"},
-      {GST_COLOR_TRACK_DRAW_SEARCH_WINDOW, "Region searched this frame (blue)", "search-window"},
-      {GST_COLOR_TRACK_DRAW_LABEL, "Label \"id score state\" (threshold: \"id area state\")", "label"},
-      {GST_COLOR_TRACK_DRAW_MASK, "mode=threshold: pixels inside the HSV range, tinted magenta", "mask"},
-      {0, nullptr, nullptr},
-  };
-  if (g_once_init_enter(&type))
-    g_once_init_leave(&type, g_flags_register_static("GstColorTrackDraw", values));
-  return type;
-}
+COLORTRACK_DEFINE_ENUM_TYPE(
+    gst_color_track_mode_get_type, "GstColorTrackMode",
+    {GST_COLOR_TRACK_MODE_TEMPLATE, "Track the object of a template (template-location or init-box)",
+     "template"},
+    {GST_COLOR_TRACK_MODE_THRESHOLD,
+     "Track every blob inside an HSV range (hsv-lower/hsv-upper, or learnt from init-box), each with an id",
+     "threshold"})
+COLORTRACK_DEFINE_ENUM_TYPE(gst_color_track_color_space_get_type, "GstColorTrackColorSpace",
+                            {GST_COLOR_TRACK_COLOR_SPACE_RGB, "RGB histograms (original colour indexing)",
+                             "rgb"},
+                            {GST_COLOR_TRACK_COLOR_SPACE_HSV,
+                             "HSV histograms (modified colour indexing, lighting-robust)", "hsv"})
+COLORTRACK_DEFINE_ENUM_TYPE(
+    gst_color_track_verify_get_type, "GstColorTrackVerify",
+    {GST_COLOR_TRACK_VERIFY_NONE, "No check: every colour match is verified", "none"},
+    {GST_COLOR_TRACK_VERIFY_EDGE_DENSITY, "Edge density close to the template's", "edge-density"},
+    {GST_COLOR_TRACK_VERIFY_EDGE_ENERGY, "Edge energy close to the template's", "edge-energy"},
+    {GST_COLOR_TRACK_VERIFY_BOTH, "Edge density and energy both close to the template's", "both"})
+COLORTRACK_DEFINE_ENUM_TYPE(
+    gst_color_track_method_get_type, "GstColorTrackMethod",
+    {GST_COLOR_TRACK_METHOD_INDEXING, "Modified colour indexing: template histograms by intersection",
+     "indexing"},
+    {GST_COLOR_TRACK_METHOD_DISCRIMINATIVE,
+     "Colour only: object-versus-surroundings colour likelihood with a motion prior (fastest)",
+     "discriminative"},
+    {GST_COLOR_TRACK_METHOD_FUSED,
+     "Shape (correlation filter) and colour fused, with confidence and re-detection (most accurate)",
+     "fused"})
+COLORTRACK_DEFINE_FLAGS_TYPE(
+    gst_color_track_draw_get_type, "GstColorTrackDraw",
+    {GST_COLOR_TRACK_DRAW_BOX, "Box (red: colour match, green: verified, orange: coasting)", "box"},
+    {GST_COLOR_TRACK_DRAW_TRAIL, "Trail of the box centre (yellow)", "trail"},
+    {GST_COLOR_TRACK_DRAW_SEARCH_WINDOW, "Region searched this frame (blue)", "search-window"},
+    {GST_COLOR_TRACK_DRAW_LABEL, "Label \"id score state\" (threshold: \"id area state\")", "label"},
+    {GST_COLOR_TRACK_DRAW_MASK, "mode=threshold: pixels inside the HSV range, tinted magenta", "mask"})
 
 // ---------------------------------------------------------------------------------------------------------
 // Helpers
@@ -236,48 +158,12 @@ State &stateOf(GstColorTrack *self) {
   return self->priv->state;
 }
 
-// Reads a template file; on failure fills `why` and reports whether the file exists at all.
-bool loadTemplateFile(const std::string &path, cv::Mat &bgr, cv::Mat &mask, std::string &why, bool &missing) {
-  missing = !g_file_test(path.c_str(), G_FILE_TEST_EXISTS);
-  // Said here, before OpenCV is asked: it would log its own "can't open/read file" warning first.
-  if (missing) {
-    why = "no such file";
-    return false;
-  }
-  try {
-    colortrack::loadTemplate(path, bgr, mask);
-    return true;
-  } catch (const std::exception &e) {
-    why = e.what();
-    return false;
-  }
-}
-
 // Frame duration in nanoseconds, from the caps' frame rate or the buffer's duration (0 when unknown).
 GstClockTime frameDuration(const GstVideoInfo *info, GstBuffer *buffer) {
   if (GST_VIDEO_INFO_FPS_N(info) > 0 && GST_VIDEO_INFO_FPS_D(info) > 0)
     return gst_util_uint64_scale_int(GST_SECOND, GST_VIDEO_INFO_FPS_D(info), GST_VIDEO_INFO_FPS_N(info));
   if (GST_BUFFER_DURATION_IS_VALID(buffer)) return GST_BUFFER_DURATION(buffer);
   return 0;
-}
-
-// The filtered box rounded to whole pixels and clipped to the frame (empty when it lies outside).
-cv::Rect roundedClippedBox(const cv::Rect2d &box, cv::Size frame) {
-  const int x0 = static_cast<int>(std::lround(box.x)), y0 = static_cast<int>(std::lround(box.y));
-  const int x1 = static_cast<int>(std::lround(box.x + box.width));
-  const int y1 = static_cast<int>(std::lround(box.y + box.height));
-  return cv::Rect(cv::Point(x0, y0), cv::Point(x1, y1)) & cv::Rect(cv::Point(), frame);
-}
-
-// The square of side `side` centred on `point`, clipped to the frame (so it stays centred on what was
-// clicked, only smaller, near an edge). Empty when the point lies outside the frame, e.g. a click on a
-// sink's letterbox border.
-cv::Rect boxAround(const cv::Point2d &point, int side, cv::Size frame) {
-  const cv::Rect frameRect(cv::Point(), frame);
-  if (!(point.x >= 0 && point.y >= 0 && point.x < frame.width && point.y < frame.height)) return cv::Rect();
-  const cv::Point topLeft(static_cast<int>(std::lround(point.x - side / 2.0)),
-                          static_cast<int>(std::lround(point.y - side / 2.0)));
-  return cv::Rect(topLeft, cv::Size(side, side)) & frameRect;
 }
 
 }  // namespace
@@ -349,10 +235,10 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
 
   try {
     state = State{};
-    state.tracker = std::make_unique<colortrack::Tracker>(snapshot.tracker);
+    state.templateTracker = std::make_unique<colortrack::Tracker>(snapshot.tracker);
     state.appliedTrackerGeneration = snapshot.trackerGeneration;
     state.appliedTemplateGeneration = snapshot.templateGeneration;
-    state.blobDetector = std::make_unique<colortrack::BlobDetector>(snapshot.blobs);
+    state.thresholdTracker = std::make_unique<colortrack::ThresholdTracker>(snapshot.blobs);
     state.appliedBlobsGeneration = snapshot.blobsGeneration;
     state.appliedRangeGeneration = snapshot.rangeGeneration;
     // Threshold mode has no template: a template-location is not even read.
@@ -360,7 +246,7 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
       cv::Mat bgr, mask;
       std::string why;
       bool missing = false;
-      if (!loadTemplateFile(snapshot.templateLocation, bgr, mask, why, missing)) {
+      if (!colortrack_gst::loadTemplateFile(snapshot.templateLocation, bgr, mask, why, missing)) {
         if (missing)
           GST_ELEMENT_ERROR(self, RESOURCE, NOT_FOUND,
                             ("Template file '%s' (property 'template-location') does not exist.",
@@ -382,7 +268,7 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
         state = State{};
         return FALSE;
       }
-      state.tracker->setTemplate(bgr, mask);
+      state.templateTracker->setTemplate(bgr, mask);
       state.templateOrigin = "template-location '" + snapshot.templateLocation + "'";
     }
   } catch (const std::exception &e) {
@@ -490,430 +376,6 @@ static double frame_step(GstColorTrack *self, GstVideoFilter *filter, GstBuffer 
   return dt;
 }
 
-// One ROI meta of type "colortrack" with its params (on the meta and in the params meta, see track-params.h);
-// `area` only in threshold mode.
-static void attach_track_meta(GstBuffer *buffer, const cv::Rect &box, gint id, colortrack::TrackState state,
-                              double score, bool verified, double scale, double vx, double vy,
-                              const double *area = nullptr) {
-  GstVideoRegionOfInterestMeta *meta = gst_buffer_add_video_region_of_interest_meta(
-      buffer, "colortrack", static_cast<guint>(box.x), static_cast<guint>(box.y),
-      static_cast<guint>(box.width), static_cast<guint>(box.height));
-  meta->id = id;
-  GstStructure *params = gst_structure_new("colortrack", "state", G_TYPE_STRING, colortrack::toString(state),
-                                           "score", G_TYPE_DOUBLE, score, "verified", G_TYPE_BOOLEAN,
-                                           static_cast<gboolean>(verified), "scale", G_TYPE_DOUBLE, scale,
-                                           "vx", G_TYPE_DOUBLE, vx, "vy", G_TYPE_DOUBLE, vy, nullptr);
-  if (area) gst_structure_set(params, "area", G_TYPE_DOUBLE, *area, nullptr);
-  colortrack_add_roi_params(buffer, meta, params);
-}
-
-static void attach_meta(GstBuffer *buffer, const colortrack::TrackOutput &out, const cv::Rect &box) {
-  attach_track_meta(buffer, box, out.id, out.state, out.score, out.verified, out.scale, out.vx, out.vy);
-}
-
-// `objects` (threshold mode) adds the "objects" field: a GST_TYPE_LIST of "colortrack-object" structures.
-// `stateName` replaces the tracker's state (kIdleState after a right click).
-static void post_track_message(GstColorTrack *self, GstBuffer *buffer, guint64 frame,
-                               const colortrack::TrackOutput &out,
-                               const std::vector<colortrack::TrackedObject> *objects = nullptr,
-                               const char *stateName = nullptr) {
-  const GstSegment *segment = &GST_BASE_TRANSFORM(self)->segment;
-  const GstClockTime pts = GST_BUFFER_PTS(buffer);
-  GstClockTime streamTime = GST_CLOCK_TIME_NONE, runningTime = GST_CLOCK_TIME_NONE;
-  if (GST_CLOCK_TIME_IS_VALID(pts) && segment->format == GST_FORMAT_TIME) {
-    streamTime = gst_segment_to_stream_time(segment, GST_FORMAT_TIME, pts);
-    runningTime = gst_segment_to_running_time(segment, GST_FORMAT_TIME, pts);
-  }
-  const cv::Rect2d box = out.hasBox ? out.box : cv::Rect2d();
-  GstStructure *s = gst_structure_new(
-      "colortrack", "timestamp", G_TYPE_UINT64, static_cast<guint64>(pts), "stream-time", G_TYPE_UINT64,
-      static_cast<guint64>(streamTime), "running-time", G_TYPE_UINT64, static_cast<guint64>(runningTime),
-      "duration", G_TYPE_UINT64, static_cast<guint64>(GST_BUFFER_DURATION(buffer)), "frame", G_TYPE_UINT64,
-      frame, "id", G_TYPE_INT, out.id, "state", G_TYPE_STRING,
-      stateName ? stateName : colortrack::toString(out.state), "x", G_TYPE_DOUBLE, box.x, "y", G_TYPE_DOUBLE,
-      box.y, "width", G_TYPE_DOUBLE, box.width, "height", G_TYPE_DOUBLE, box.height, "score", G_TYPE_DOUBLE,
-      out.score, "verified", G_TYPE_BOOLEAN, static_cast<gboolean>(out.verified), "scale", G_TYPE_DOUBLE,
-      out.scale, nullptr);
-  if (objects) {
-    GValue list = G_VALUE_INIT;
-    g_value_init(&list, GST_TYPE_LIST);
-    for (const colortrack::TrackedObject &o : *objects) {
-      GValue item = G_VALUE_INIT;
-      g_value_init(&item, GST_TYPE_STRUCTURE);
-      GstStructure *object = gst_structure_new(
-          "colortrack-object", "id", G_TYPE_INT, o.id, "x", G_TYPE_DOUBLE, o.box.x, "y", G_TYPE_DOUBLE,
-          o.box.y, "width", G_TYPE_DOUBLE, o.box.width, "height", G_TYPE_DOUBLE, o.box.height, "cx",
-          G_TYPE_DOUBLE, o.centre.x, "cy", G_TYPE_DOUBLE, o.centre.y, "area", G_TYPE_DOUBLE, o.area, "state",
-          G_TYPE_STRING, colortrack::toString(o.state), "score", G_TYPE_DOUBLE, o.score, nullptr);
-      gst_value_set_structure(&item, object);
-      gst_structure_free(object);
-      gst_value_list_append_and_take_value(&list, &item);
-    }
-    gst_structure_take_value(s, "objects", &list);
-  }
-  gst_element_post_message(GST_ELEMENT(self), gst_message_new_element(GST_OBJECT(self), s));
-}
-
-static void draw_overlay(GstVideoFrame *frame, const Settings &settings, const State &state,
-                         const colortrack::TrackOutput &out, const cv::Rect &box) {
-  if (settings.draw == 0) return;
-  colortrack::FrameCanvas canvas(frame);
-  if ((settings.draw & GST_COLOR_TRACK_DRAW_SEARCH_WINDOW) && !out.searchRegion.empty())
-    canvas.boxOutline(out.searchRegion, colortrack::colors::kBlue, 1);
-  if ((settings.draw & GST_COLOR_TRACK_DRAW_TRAIL) && state.trail.size() >= 2) {
-    std::vector<cv::Point> points;
-    points.reserve(state.trail.size());
-    for (const cv::Point2d &p : state.trail) points.emplace_back(cvRound(p.x), cvRound(p.y));
-    canvas.polyline(points, colortrack::colors::kYellow, kTrailThickness);
-  }
-  if (!out.hasBox || box.empty()) return;
-  if (settings.draw & GST_COLOR_TRACK_DRAW_BOX) {
-    const colortrack::Rgb colour = out.state == colortrack::TrackState::Coasting ? colortrack::colors::kOrange
-                                   : out.verified                                ? colortrack::colors::kGreen
-                                                                                 : colortrack::colors::kRed;
-    canvas.boxOutline(box, colour, kBoxThickness);
-  }
-  if (settings.draw & GST_COLOR_TRACK_DRAW_LABEL) {
-    char text[64];
-    std::snprintf(text, sizeof text, "%d %.2f %s", out.id, out.score, colortrack::toString(out.state));
-    canvas.label(text, cv::Point(box.x, box.y - 4));
-  }
-}
-
-enum class InitBoxFit { Fits, Ignored, Error };
-
-// An init-box that does not lie inside the frame: an element error before streaming, a warning (and the box
-// ignored) when it was set while playing.
-static InitBoxFit check_init_box(GstColorTrack *self, const cv::Rect &box, cv::Size frame,
-                                 bool whileStreaming, const std::string &text) {
-  if ((box & cv::Rect(cv::Point(), frame)) == box) return InitBoxFit::Fits;
-  if (whileStreaming) {
-    GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS,
-                        ("Property 'init-box' '%s' does not fit in the %dx%d frame: ignored.", text.c_str(),
-                         frame.width, frame.height),
-                        (nullptr));
-    return InitBoxFit::Ignored;
-  }
-  GST_ELEMENT_ERROR(
-      self, RESOURCE, SETTINGS,
-      ("Property 'init-box' '%s' does not fit in the %dx%d frame.", text.c_str(), frame.width, frame.height),
-      (nullptr));
-  return InitBoxFit::Error;
-}
-
-// Applies the settings snapshot to the tracker: everything that changed since the last frame.
-// Returns false (after posting an error) when streaming must stop.
-static bool apply_settings(GstColorTrack *self, const Snapshot &snapshot,
-                           const std::optional<cv::Rect> &initBox, bool initBoxWhileStreaming,
-                           const std::string &initBoxText, const colortrack::FrameView &view) {
-  State &state = stateOf(self);
-  colortrack::Tracker &tracker = *state.tracker;
-
-  if (snapshot.trackerGeneration != state.appliedTrackerGeneration) {
-    tracker.setSettings(snapshot.tracker);
-    state.appliedTrackerGeneration = snapshot.trackerGeneration;
-  }
-
-  if (snapshot.templateGeneration != state.appliedTemplateGeneration) {
-    state.appliedTemplateGeneration = snapshot.templateGeneration;
-    if (!snapshot.templateLocation.empty()) {
-      cv::Mat bgr, mask;
-      std::string why;
-      bool missing = false;
-      if (loadTemplateFile(snapshot.templateLocation, bgr, mask, why, missing)) {
-        tracker.setTemplate(bgr, mask);
-        state.templateOrigin = "template-location '" + snapshot.templateLocation + "'";
-        state.trail.clear();
-        state.warnedNoTemplate = false;
-        state.idle = false;
-      } else {
-        // Not fatal while streaming: the previous template keeps working.
-        GST_ELEMENT_WARNING(self, RESOURCE, OPEN_READ,
-                            ("Could not read the template image '%s' (property 'template-location'): %s. "
-                             "Keeping the previous template.",
-                             snapshot.templateLocation.c_str(), why.c_str()),
-                            (missing ? "the file does not exist" : nullptr));
-      }
-    }
-  }
-
-  if (state.capsChanged || self->priv->resetRequested.exchange(false)) {
-    state.capsChanged = false;
-    tracker.reset();
-    state.trail.clear();
-  }
-
-  if (initBox) {
-    const InitBoxFit fit = check_init_box(self, *initBox, view.size(), initBoxWhileStreaming, initBoxText);
-    if (fit == InitBoxFit::Error) return false;
-    if (fit == InitBoxFit::Fits) {
-      tracker.setTemplateFromBox(view, *initBox);
-      state.templateOrigin = "init-box '" + initBoxText + "'";
-      state.trail.clear();
-      state.warnedNoTemplate = false;
-      state.idle = false;
-    }
-  }
-  return true;
-}
-
-static std::string describeClick(const ClickRequest &click, const cv::Rect &box) {
-  char text[96];
-  std::snprintf(text, sizeof text, "the click at %.0f,%.0f (box %d,%d,%d,%d)", click.point.x, click.point.y,
-                box.x, box.y, box.width, box.height);
-  return text;
-}
-
-// Template mode: a left click takes the template from the box around it and starts tracking there, exactly
-// as init-box does; a right click stops until a new target is given.
-static void apply_click(GstColorTrack *self, const ClickRequest &click, int boxSize,
-                        const colortrack::FrameView &view) {
-  State &state = stateOf(self);
-  if (click.kind == ClickRequest::Kind::Stop) {
-    state.tracker->reset();
-    state.trail.clear();
-    state.idle = true;
-    return;
-  }
-  const cv::Rect box = boxAround(click.point, boxSize, view.size());
-  if (box.empty()) {
-    GST_INFO_OBJECT(self, "click at %.1f,%.1f lies outside the %dx%d frame: ignored", click.point.x,
-                    click.point.y, view.size().width, view.size().height);
-    return;
-  }
-  state.tracker->setTemplateFromBox(view, box);
-  state.templateOrigin = describeClick(click, box);
-  state.trail.clear();
-  state.warnedNoTemplate = false;
-  state.idle = false;
-  GST_INFO_OBJECT(self, "template from %s", state.templateOrigin.c_str());
-}
-
-// ---------------------------------------------------------------------------------------------------------
-// Threshold mode
-
-// The frame's bytes described channel by channel, so the segmentation reads any supported format in place
-// (YUV through a YUV lookup table) instead of converting the whole frame to BGR first.
-static colortrack::SampledFrame sampled_frame(const GstVideoFrame *frame) {
-  const int w = GST_VIDEO_FRAME_WIDTH(frame), h = GST_VIDEO_FRAME_HEIGHT(frame);
-  const int cw = (w + 1) / 2, ch = (h + 1) / 2;
-  const auto bytes = [frame](int plane, int rows, int rowBytes) {
-    return cv::Mat(rows, rowBytes, CV_8UC1, GST_VIDEO_FRAME_PLANE_DATA(frame, plane),
-                   static_cast<size_t>(GST_VIDEO_FRAME_PLANE_STRIDE(frame, plane)));
-  };
-  colortrack::SampledFrame out;
-  out.size = cv::Size(w, h);
-  out.encoding = colortrack::PixelEncoding::Yuv601;
-  switch (GST_VIDEO_FRAME_FORMAT(frame)) {
-    case GST_VIDEO_FORMAT_I420:
-      out.channels = {colortrack::ChannelSampler{bytes(0, h, w), 0, 1, 1, 1},
-                      colortrack::ChannelSampler{bytes(1, ch, cw), 0, 1, 2, 2},
-                      colortrack::ChannelSampler{bytes(2, ch, cw), 0, 1, 2, 2}};
-      break;
-    case GST_VIDEO_FORMAT_NV12: {
-      const cv::Mat uv = bytes(1, ch, 2 * cw);
-      out.channels = {colortrack::ChannelSampler{bytes(0, h, w), 0, 1, 1, 1},
-                      colortrack::ChannelSampler{uv, 0, 2, 2, 2}, colortrack::ChannelSampler{uv, 1, 2, 2, 2}};
-      break;
-    }
-    case GST_VIDEO_FORMAT_YUY2: {
-      const cv::Mat packed = bytes(0, h, 4 * cw);  // Y0 U Y1 V per two pixels
-      out.channels = {colortrack::ChannelSampler{packed, 0, 2, 1, 1},
-                      colortrack::ChannelSampler{packed, 1, 4, 2, 1},
-                      colortrack::ChannelSampler{packed, 3, 4, 2, 1}};
-      break;
-    }
-    default: {
-      const colortrack::PackedLayout layout = colortrack::packedLayout(frame->info.finfo);
-      const cv::Mat packed = bytes(0, h, w * layout.pixelBytes);
-      out.encoding = colortrack::PixelEncoding::Rgb;
-      out.channels = {colortrack::ChannelSampler{packed, layout.red, layout.pixelBytes, 1, 1},
-                      colortrack::ChannelSampler{packed, layout.green, layout.pixelBytes, 1, 1},
-                      colortrack::ChannelSampler{packed, layout.blue, layout.pixelBytes, 1, 1}};
-      break;
-    }
-  }
-  return out;
-}
-
-static colortrack::MultiTrackerSettings multi_tracker_settings(const Settings &settings) {
-  colortrack::MultiTrackerSettings m;
-  m.kalman = settings.tracker.kalman;
-  m.maxCoastFrames = settings.tracker.maxCoastFrames;
-  return m;
-}
-
-// The primary target (largest reported track) in the single-target shape of template mode.
-static colortrack::TrackOutput primary_output(const std::vector<colortrack::TrackedObject> &objects) {
-  colortrack::TrackOutput out;
-  const int primary = colortrack::primaryIndex(objects);
-  if (primary < 0) return out;  // searching, no box
-  const colortrack::TrackedObject &o = objects[primary];
-  out.state = o.state;
-  out.hasBox = true;
-  out.id = o.id;
-  out.box = o.box;
-  out.score = o.score;
-  out.verified = true;  // no edge check in threshold mode
-  out.scale = o.scale;
-  out.vx = o.vx;
-  out.vy = o.vy;
-  return out;
-}
-
-static void attach_object_meta(GstBuffer *buffer, const colortrack::TrackedObject &o, const cv::Rect &box) {
-  // Blobs are found by colour alone; there is no edge check in threshold mode.
-  attach_track_meta(buffer, box, o.id, o.state, o.score, true, o.scale, o.vx, o.vy, &o.area);
-}
-
-static void draw_threshold_overlay(GstVideoFrame *frame, const Settings &settings, const State &state,
-                                   const std::vector<colortrack::TrackedObject> &objects,
-                                   const std::vector<cv::Rect> &boxes) {
-  if (settings.draw == 0) return;
-  colortrack::FrameCanvas canvas(frame);
-  if (settings.draw & GST_COLOR_TRACK_DRAW_MASK)
-    canvas.tintMask(state.blobDetector->mask(), state.blobDetector->lastDecimation(),
-                    colortrack::colors::kMagenta);
-  for (size_t i = 0; i < objects.size(); ++i) {
-    const colortrack::TrackedObject &o = objects[i];
-    const colortrack::Rgb colour = colortrack::idColour(o.id);
-    const auto trail = state.trails.find(o.id);
-    if ((settings.draw & GST_COLOR_TRACK_DRAW_TRAIL) && trail != state.trails.end() &&
-        trail->second.size() >= 2) {
-      std::vector<cv::Point> points;
-      for (const cv::Point2d &p : trail->second) points.emplace_back(cvRound(p.x), cvRound(p.y));
-      canvas.polyline(points, colour, kTrailThickness);
-    }
-    if (boxes[i].empty()) continue;
-    // Coasting tracks get a thin outline: the id colour says who, the weight says how sure.
-    if (settings.draw & GST_COLOR_TRACK_DRAW_BOX)
-      canvas.boxOutline(boxes[i], colour, o.state == colortrack::TrackState::Coasting ? 1 : kBoxThickness);
-    if (settings.draw & GST_COLOR_TRACK_DRAW_LABEL) {
-      char text[64];
-      std::snprintf(text, sizeof text, "%d %.0f %s", o.id, o.area, colortrack::toString(o.state));
-      canvas.label(text, cv::Point(boxes[i].x, boxes[i].y - 4));
-    }
-  }
-}
-
-// Learns hsv-lower/hsv-upper from the pixels of `box` (init-box or a click) and starts over with that range;
-// the properties then report it, so it can be reused in a launch line.
-static void learn_range(GstColorTrack *self, GstVideoFrame *frame, const cv::Rect &box,
-                        const std::string &origin) {
-  State &state = stateOf(self);
-  const colortrack::HsvRange learnt = colortrack::learnRange(colortrack::FrameView(frame), box);
-  GST_OBJECT_LOCK(self);
-  colortrack_gst::PropertyStore &store = storeOf(self);
-  Settings &shared = store.settings;
-  shared.blobs.range = learnt;
-  shared.hsvLower = colortrack::formatHsv(learnt.lower);
-  shared.hsvUpper = colortrack::formatHsv(learnt.upper);
-  const colortrack::BlobSettings blobs = shared.blobs;
-  state.appliedBlobsGeneration = ++store.versions[colortrack_gst::kBlobsVersion];
-  GST_OBJECT_UNLOCK(self);
-  state.blobDetector->setSettings(blobs);
-  state.multiTracker.reset();
-  state.trails.clear();
-  state.idle = false;
-  GST_INFO_OBJECT(self, "learnt hsv-lower %s hsv-upper %s from %s",
-                  colortrack::formatHsv(learnt.lower).c_str(), colortrack::formatHsv(learnt.upper).c_str(),
-                  origin.c_str());
-  g_object_notify(G_OBJECT(self), "hsv-lower");
-  g_object_notify(G_OBJECT(self), "hsv-upper");
-}
-
-// Trails are kept per id; those of tracks that ended go.
-static void drop_ended_trails(State &state, const std::vector<colortrack::TrackedObject> &objects) {
-  for (auto it = state.trails.begin(); it != state.trails.end();) {
-    const bool alive = std::any_of(objects.begin(), objects.end(),
-                                   [&](const colortrack::TrackedObject &o) { return o.id == it->first; });
-    it = alive ? std::next(it) : state.trails.erase(it);
-  }
-}
-
-// One frame in threshold mode: segment, clean, label, associate; meta, overlay and message per track.
-static GstFlowReturn threshold_frame(GstColorTrack *self, GstVideoFrame *frame, const Snapshot &snapshot,
-                                     const colortrack_gst::Requests &requests, guint64 frameNumber,
-                                     double dt) {
-  const std::optional<cv::Rect> &initBox = requests.initBox;
-  const std::optional<ClickRequest> &click = requests.click;
-  State &state = stateOf(self);
-  const cv::Size size(GST_VIDEO_FRAME_WIDTH(frame), GST_VIDEO_FRAME_HEIGHT(frame));
-  colortrack::BlobDetector &detector = *state.blobDetector;
-
-  if (snapshot.blobs.minArea > size.area()) {
-    GST_ELEMENT_ERROR(
-        self, RESOURCE, SETTINGS,
-        ("Property 'min-area' %d is larger than the %dx%d frame (%d pixels): nothing can be found.",
-         snapshot.blobs.minArea, size.width, size.height, size.area()),
-        (nullptr));
-    return GST_FLOW_ERROR;
-  }
-  if (snapshot.blobsGeneration != state.appliedBlobsGeneration) {
-    detector.setSettings(snapshot.blobs);
-    state.appliedBlobsGeneration = snapshot.blobsGeneration;
-  }
-  if (snapshot.rangeGeneration != state.appliedRangeGeneration) {
-    state.appliedRangeGeneration = snapshot.rangeGeneration;
-    state.idle = false;  // a new range is a new target
-  }
-  state.multiTracker.setSettings(multi_tracker_settings(snapshot));
-  if (state.capsChanged || self->priv->resetRequested.exchange(false)) {
-    state.capsChanged = false;
-    state.multiTracker.reset();
-    state.trails.clear();
-  }
-
-  if (initBox) {
-    const InitBoxFit fit =
-        check_init_box(self, *initBox, size, requests.initBoxWhileStreaming, snapshot.initBox);
-    if (fit == InitBoxFit::Error) return GST_FLOW_ERROR;
-    if (fit == InitBoxFit::Fits) learn_range(self, frame, *initBox, "init-box " + snapshot.initBox);
-  }
-
-  if (click && click->kind == ClickRequest::Kind::Stop) {
-    state.multiTracker.reset();
-    state.trails.clear();
-    state.idle = true;
-  } else if (click) {
-    // The colour is sampled from the middle half of the box: a click lands near an object's centre, and a
-    // sample that reached past a small object's edge would learn the background's colours too.
-    const cv::Rect sample = boxAround(click->point, std::max(1, snapshot.clickBoxSize / 2), size);
-    if (sample.empty())
-      GST_INFO_OBJECT(self, "click at %.1f,%.1f lies outside the %dx%d frame: ignored", click->point.x,
-                      click->point.y, size.width, size.height);
-    else
-      learn_range(self, frame, sample, describeClick(*click, sample));
-  }
-
-  if (state.idle) {
-    if (snapshot.postMessages) {
-      const std::vector<colortrack::TrackedObject> none;
-      post_track_message(self, frame->buffer, frameNumber, colortrack::TrackOutput(), &none, kIdleState);
-    }
-    return GST_FLOW_OK;
-  }
-
-  const std::vector<colortrack::Blob> blobs = detector.detect(sampled_frame(frame));
-  const std::vector<colortrack::TrackedObject> objects = state.multiTracker.update(blobs, size, dt);
-
-  drop_ended_trails(state, objects);
-  std::vector<cv::Rect> boxes;
-  for (const colortrack::TrackedObject &o : objects) {
-    if (snapshot.trailLength > 0) {
-      std::deque<cv::Point2d> &trail = state.trails[o.id];
-      trail.push_back(o.centre);
-      while (trail.size() > snapshot.trailLength) trail.pop_front();
-    }
-    boxes.push_back(roundedClippedBox(o.box, size));
-    if (!boxes.back().empty()) attach_object_meta(frame->buffer, o, boxes.back());
-  }
-  draw_threshold_overlay(frame, snapshot, state, objects, boxes);
-  if (snapshot.postMessages)
-    post_track_message(self, frame->buffer, frameNumber, primary_output(objects), &objects);
-  return GST_FLOW_OK;
-}
-
 // The settings for this frame and the requests waiting for it (taken: one use only).
 static Snapshot take_frame_inputs(GstColorTrack *self, colortrack_gst::Requests &requests) {
   GST_OBJECT_LOCK(self);
@@ -925,76 +387,77 @@ static Snapshot take_frame_inputs(GstColorTrack *self, colortrack_gst::Requests 
   return snapshot;
 }
 
+// Tells the pipeline what `report` holds: meta on the buffer, the overlay, the message.
+static void report_frame(GstColorTrack *self, GstVideoFrame *frame, const Snapshot &snapshot,
+                         guint64 frameNumber, const colortrack::FrameReport &report) {
+  State &state = stateOf(self);
+  const cv::Size size(GST_VIDEO_FRAME_WIDTH(frame), GST_VIDEO_FRAME_HEIGHT(frame));
+  state.trails.update(report.tracks, snapshot.trailLength);
+  for (const colortrack::TrackReport &track : report.tracks)
+    colortrack_gst::attachTrackMeta(frame->buffer, track, size);
+  colortrack_gst::OverlayParts parts;
+  parts.box = snapshot.draw & GST_COLOR_TRACK_DRAW_BOX;
+  parts.trail = snapshot.draw & GST_COLOR_TRACK_DRAW_TRAIL;
+  parts.searchWindow = snapshot.draw & GST_COLOR_TRACK_DRAW_SEARCH_WINDOW;
+  parts.label = snapshot.draw & GST_COLOR_TRACK_DRAW_LABEL;
+  parts.mask = snapshot.draw & GST_COLOR_TRACK_DRAW_MASK;
+  colortrack_gst::drawTracks(frame, report, state.trails, parts);
+  if (snapshot.postMessages)
+    colortrack_gst::postTrackMessage(GST_ELEMENT(self), GST_BASE_TRANSFORM(self)->segment, frame->buffer,
+                                     frameNumber, report);
+}
+
+// One frame, either mode: the mode brings its tracker up to date, the tracker reports, the report goes out.
+static GstFlowReturn track_frame(GstColorTrack *self, GstVideoFrame *frame, const Snapshot &snapshot,
+                                 const colortrack_gst::Requests &requests, guint64 frameNumber, double dt) {
+  State &state = stateOf(self);
+  const colortrack::FrameView view(frame);
+  const bool threshold = snapshot.mode == GST_COLOR_TRACK_MODE_THRESHOLD;
+  const bool prepared = threshold ? colortrack_gst::prepareThresholdFrame(self, snapshot, requests, view)
+                                  : colortrack_gst::prepareTemplateFrame(self, snapshot, requests, view);
+  if (!prepared) return GST_FLOW_ERROR;
+
+  // No track, but messages still come for every frame (an application waiting for a click sees why).
+  colortrack::FrameReport empty;
+  empty.listsTracks = threshold;
+  if (state.idle) {
+    if (snapshot.postMessages)
+      colortrack_gst::postTrackMessage(GST_ELEMENT(self), GST_BASE_TRANSFORM(self)->segment, frame->buffer,
+                                       frameNumber, empty, COLORTRACK_STATE_IDLE);
+    return GST_FLOW_OK;
+  }
+  if (!threshold) {
+    switch (colortrack_gst::templateReadiness(self, view.size())) {
+      case colortrack_gst::TemplateReadiness::Ready:
+        break;
+      case colortrack_gst::TemplateReadiness::NoTemplate:
+        if (snapshot.postMessages)
+          colortrack_gst::postTrackMessage(GST_ELEMENT(self), GST_BASE_TRANSFORM(self)->segment,
+                                           frame->buffer, frameNumber, empty);
+        return GST_FLOW_OK;
+      case colortrack_gst::TemplateReadiness::Error:
+        return GST_FLOW_ERROR;
+    }
+  }
+  colortrack::FrameTracker &tracker =
+      threshold ? static_cast<colortrack::FrameTracker &>(*state.thresholdTracker) : *state.templateTracker;
+  report_frame(self, frame, snapshot, frameNumber, tracker.track(view, dt));
+  return GST_FLOW_OK;
+}
+
 static GstFlowReturn gst_color_track_transform_frame_ip(GstVideoFilter *filter, GstVideoFrame *frame) {
   GstColorTrack *self = GST_COLOR_TRACK(filter);
   State &state = stateOf(self);
-  GstBuffer *buffer = frame->buffer;
-
-  // Snapshot of the settings; the init-box is taken (one use only).
   colortrack_gst::Requests requests;
   const Snapshot snapshot = take_frame_inputs(self, requests);
-  const std::optional<cv::Rect> &initBox = requests.initBox;
-  const std::optional<ClickRequest> &click = requests.click;
-
   const guint64 frameNumber = state.frameCount++;
-  const double dt = frame_step(self, filter, buffer);
-
+  const double dt = frame_step(self, filter, frame->buffer);
   try {
-    if (!state.tracker || !state.blobDetector) {
+    if (!state.templateTracker || !state.thresholdTracker) {
       GST_ELEMENT_ERROR(self, CORE, FAILED, ("colortrack was not started."), (nullptr));
       return GST_FLOW_ERROR;
     }
-    if (snapshot.mode == GST_COLOR_TRACK_MODE_THRESHOLD)
-      return threshold_frame(self, frame, snapshot, requests, frameNumber, dt);
-    const colortrack::FrameView view(frame);
-    if (!apply_settings(self, snapshot, initBox, requests.initBoxWhileStreaming, snapshot.initBox, view))
-      return GST_FLOW_ERROR;
-    if (click) apply_click(self, *click, snapshot.clickBoxSize, view);
-
-    if (state.idle) {
-      if (snapshot.postMessages)
-        post_track_message(self, buffer, frameNumber, colortrack::TrackOutput(), nullptr, kIdleState);
-      return GST_FLOW_OK;
-    }
-
-    colortrack::Tracker &tracker = *state.tracker;
-    if (!tracker.hasTemplate()) {
-      if (!state.warnedNoTemplate) {
-        state.warnedNoTemplate = true;
-        GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS,
-                            ("No template: set 'template-location' or 'init-box', or click the object in the "
-                             "video window. Passing video through."),
-                            (nullptr));
-      }
-      // Messages still come for every frame (an application waiting for a click sees "searching").
-      if (snapshot.postMessages) post_track_message(self, buffer, frameNumber, colortrack::TrackOutput());
-      return GST_FLOW_OK;
-    }
-
-    const cv::Size templateSize = tracker.templateSize();
-    if (templateSize.width > view.size().width || templateSize.height > view.size().height) {
-      GST_ELEMENT_ERROR(
-          self, RESOURCE, SETTINGS,
-          ("The template from %s (%dx%d) is larger than the %dx%d frame.", state.templateOrigin.c_str(),
-           templateSize.width, templateSize.height, view.size().width, view.size().height),
-          (nullptr));
-      return GST_FLOW_ERROR;
-    }
-
-    const colortrack::TrackOutput out = tracker.process(view, dt);
-
-    if (!out.hasBox || out.id != state.trailTrackId) state.trail.clear();
-    state.trailTrackId = out.id;
-    if (out.hasBox && snapshot.trailLength > 0) {
-      state.trail.emplace_back(out.box.x + out.box.width / 2, out.box.y + out.box.height / 2);
-      while (state.trail.size() > snapshot.trailLength) state.trail.pop_front();
-    }
-
-    const cv::Rect box = out.hasBox ? roundedClippedBox(out.box, view.size()) : cv::Rect();
-    if (out.hasBox && !box.empty()) attach_meta(buffer, out, box);
-    draw_overlay(frame, snapshot, state, out, box);
-    if (snapshot.postMessages) post_track_message(self, buffer, frameNumber, out);
-    return GST_FLOW_OK;
+    return track_frame(self, frame, snapshot, requests, frameNumber, dt);
   } catch (const colortrack::TrackerError &e) {
     GST_ELEMENT_ERROR(self, STREAM, FAILED, ("Tracking failed: %s", e.what()), (nullptr));
   } catch (const cv::Exception &e) {

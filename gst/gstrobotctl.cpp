@@ -53,6 +53,7 @@
 
 #include "gstrobotctl.h"
 #include "command-writer.h"
+#include "enum-types.h"
 #include "robot-port.h"
 #include "robotctl-listener.h"
 #include "robotctl-settings.h"
@@ -166,34 +167,31 @@ GST_ELEMENT_REGISTER_DEFINE(robotctl, "robotctl", GST_RANK_NONE, GST_TYPE_ROBOT_
 // ---------------------------------------------------------------------------------------------------------
 // Enum types
 
-#define DEFINE_ENUM_TYPE(function, name, ...)                                                     \
-  GType function(void) {                                                                          \
-    static gsize type = 0;                                                                        \
-    static const GEnumValue values[] = {__VA_ARGS__, {0, nullptr, nullptr}};                      \
-    if (g_once_init_enter(&type)) g_once_init_leave(&type, g_enum_register_static(name, values)); \
-    return type;                                                                                  \
-  }
-
-DEFINE_ENUM_TYPE(gst_robot_ctl_protocol_get_type, "GstRobotCtlProtocol",
-                 {GST_ROBOT_CTL_PROTOCOL_ZONE_CHAR, "One character per command (zone-chars)", "zone-char"},
-                 {GST_ROBOT_CTL_PROTOCOL_TEXT, "One line \"L=<int> R=<int>\" per command", "text"},
-                 {GST_ROBOT_CTL_PROTOCOL_BINARY, "Framed packet with sequence number and CRC-8", "binary"})
-DEFINE_ENUM_TYPE(gst_robot_ctl_controller_get_type, "GstRobotCtlController",
-                 {GST_ROBOT_CTL_CONTROLLER_ZONE, "Forward/backward/left/right/stop by frame zone", "zone"},
-                 {GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL, "Wheel speeds proportional to the errors",
-                  "proportional"})
-DEFINE_ENUM_TYPE(gst_robot_ctl_distance_cue_get_type, "GstRobotCtlDistanceCue",
-                 {GST_ROBOT_CTL_DISTANCE_CUE_SIZE, "Box height / frame height", "size"},
-                 {GST_ROBOT_CTL_DISTANCE_CUE_POSITION, "Box bottom / frame height", "position"})
-DEFINE_ENUM_TYPE(gst_robot_ctl_parity_get_type, "GstRobotCtlParity",
-                 {GST_ROBOT_CTL_PARITY_NONE, "None", "none"}, {GST_ROBOT_CTL_PARITY_ODD, "Odd", "odd"},
-                 {GST_ROBOT_CTL_PARITY_EVEN, "Even", "even"}, {GST_ROBOT_CTL_PARITY_MARK, "Mark", "mark"},
-                 {GST_ROBOT_CTL_PARITY_SPACE, "Space", "space"})
-DEFINE_ENUM_TYPE(gst_robot_ctl_flow_control_get_type, "GstRobotCtlFlowControl",
-                 {GST_ROBOT_CTL_FLOW_CONTROL_NONE, "None", "none"},
-                 {GST_ROBOT_CTL_FLOW_CONTROL_XONXOFF, "Software (XON/XOFF)", "xonxoff"},
-                 {GST_ROBOT_CTL_FLOW_CONTROL_RTSCTS, "Hardware (RTS/CTS)", "rtscts"},
-                 {GST_ROBOT_CTL_FLOW_CONTROL_DTRDSR, "Hardware (DTR/DSR)", "dtrdsr"})
+COLORTRACK_DEFINE_ENUM_TYPE(gst_robot_ctl_protocol_get_type, "GstRobotCtlProtocol",
+                            {GST_ROBOT_CTL_PROTOCOL_ZONE_CHAR, "One character per command (zone-chars)",
+                             "zone-char"},
+                            {GST_ROBOT_CTL_PROTOCOL_TEXT, "One line \"L=<int> R=<int>\" per command", "text"},
+                            {GST_ROBOT_CTL_PROTOCOL_BINARY, "Framed packet with sequence number and CRC-8",
+                             "binary"})
+COLORTRACK_DEFINE_ENUM_TYPE(gst_robot_ctl_controller_get_type, "GstRobotCtlController",
+                            {GST_ROBOT_CTL_CONTROLLER_ZONE, "Forward/backward/left/right/stop by frame zone",
+                             "zone"},
+                            {GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL, "Wheel speeds proportional to the errors",
+                             "proportional"})
+COLORTRACK_DEFINE_ENUM_TYPE(gst_robot_ctl_distance_cue_get_type, "GstRobotCtlDistanceCue",
+                            {GST_ROBOT_CTL_DISTANCE_CUE_SIZE, "Box height / frame height", "size"},
+                            {GST_ROBOT_CTL_DISTANCE_CUE_POSITION, "Box bottom / frame height", "position"})
+COLORTRACK_DEFINE_ENUM_TYPE(gst_robot_ctl_parity_get_type, "GstRobotCtlParity",
+                            {GST_ROBOT_CTL_PARITY_NONE, "None", "none"},
+                            {GST_ROBOT_CTL_PARITY_ODD, "Odd", "odd"},
+                            {GST_ROBOT_CTL_PARITY_EVEN, "Even", "even"},
+                            {GST_ROBOT_CTL_PARITY_MARK, "Mark", "mark"},
+                            {GST_ROBOT_CTL_PARITY_SPACE, "Space", "space"})
+COLORTRACK_DEFINE_ENUM_TYPE(gst_robot_ctl_flow_control_get_type, "GstRobotCtlFlowControl",
+                            {GST_ROBOT_CTL_FLOW_CONTROL_NONE, "None", "none"},
+                            {GST_ROBOT_CTL_FLOW_CONTROL_XONXOFF, "Software (XON/XOFF)", "xonxoff"},
+                            {GST_ROBOT_CTL_FLOW_CONTROL_RTSCTS, "Hardware (RTS/CTS)", "rtscts"},
+                            {GST_ROBOT_CTL_FLOW_CONTROL_DTRDSR, "Hardware (DTR/DSR)", "dtrdsr"})
 
 // ---------------------------------------------------------------------------------------------------------
 // GObject

@@ -125,16 +125,6 @@ RangeLut::RangeLut(const HsvRange &range, PixelEncoding encoding)
       }
 }
 
-SampledFrame sampledBgr(const cv::Mat &bgr) {
-  CV_Assert(bgr.type() == CV_8UC3);
-  SampledFrame frame;
-  frame.encoding = PixelEncoding::Rgb;
-  frame.size = bgr.size();
-  const cv::Mat bytes(bgr.rows, bgr.cols * 3, CV_8UC1, bgr.data, bgr.step);
-  for (int c = 0; c < 3; ++c) frame.channels[c] = ChannelSampler{bytes, 2 - c, 3, 1, 1};  // R, G, B
-  return frame;
-}
-
 int autoDecimation(cv::Size frame) {
   return frame.area() <= 640 * 480 ? 1 : 2;
 }

@@ -18,6 +18,25 @@ cv::Rect sampledCover(const cv::Rect &rect, int step) {
                   std::min(rect.height, size.height * step));
 }
 
+SampledFrame sampledBgr(const cv::Mat &bgr) {
+  CV_Assert(bgr.type() == CV_8UC3);
+  SampledFrame frame;
+  frame.encoding = PixelEncoding::Rgb;
+  frame.size = bgr.size();
+  const cv::Mat bytes(bgr.rows, bgr.cols * 3, CV_8UC1, bgr.data, bgr.step);
+  for (int c = 0; c < 3; ++c) frame.channels[c] = ChannelSampler{bytes, 2 - c, 3, 1, 1};  // R, G, B
+  return frame;
+}
+
+SampledFrame ImageSource::channels(cv::Mat &scratch) const {
+  bgr(cv::Rect(cv::Point(), size()), scratch);
+  return colortrack::sampledBgr(scratch);
+}
+
+SampledFrame MatImageSource::channels(cv::Mat &) const {
+  return colortrack::sampledBgr(bgr_);
+}
+
 void ImageSource::sampledBgr(const cv::Rect &rect, int step, cv::Mat &out) const {
   if (step <= 1) return bgr(rect, out);
   cv::Mat full;

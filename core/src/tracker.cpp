@@ -703,6 +703,26 @@ TrackOutput Tracker::process(const ImageSource &frame, double dt) {
   return out;
 }
 
+FrameReport Tracker::track(const ImageSource &frame, double dt) {
+  const TrackOutput out = process(frame, dt);
+  FrameReport report;
+  TrackReport &r = report.primary;
+  r.id = out.id;
+  r.state = out.state;
+  if (out.hasBox) {
+    r.box = out.box;
+    r.centre = cv::Point2d(out.box.x + out.box.width / 2, out.box.y + out.box.height / 2);
+  }
+  r.score = out.score;
+  r.verified = out.verified;
+  r.scale = out.scale;
+  r.vx = out.vx;
+  r.vy = out.vy;
+  if (out.hasBox) report.tracks.push_back(r);
+  report.searchRegion = out.searchRegion;
+  return report;
+}
+
 void loadTemplate(const std::string &path, cv::Mat &bgr, cv::Mat &mask) {
   cv::Mat image;
   try {

@@ -32,12 +32,6 @@ std::string formatHsv(const Hsv &hsv);
 // Both ends together: s and v of `lower` must not exceed those of `upper` (hue may wrap). Empty when valid.
 std::string validateRange(const HsvRange &range);
 
-// What the three bytes sampled from a frame mean.
-enum class PixelEncoding {
-  Rgb,     // channels R, G, B
-  Yuv601,  // channels Y, U, V, BT.601 limited range (OpenCV's YUV conversions, as FrameView reads YUV)
-};
-
 // Inside/outside for every colour, in a table indexed by the top 6 bits of each channel (256 KiB). A cell
 // is decided by its centre colour, so a range edge is resolved to +-2 of 255 per channel: the price of one
 // table load per pixel instead of a per-pixel HSV conversion.
@@ -62,26 +56,6 @@ class RangeLut {
   PixelEncoding encoding_;
   std::vector<std::uint8_t> table_;  // 255 inside, 0 outside
 };
-
-// One colour channel of a frame as bytes in memory: the sample of frame pixel (x, y) is
-// plane.ptr(y / ySub)[(x / xSub) * sampleBytes + byteOffset]. Describes packed RGB (any byte order),
-// planar and semi-planar 4:2:0 and packed 4:2:2 alike, so a frame is segmented without converting it.
-struct ChannelSampler {
-  cv::Mat plane;  // CV_8UC1 view of the plane's bytes (width = bytes per row in use)
-  int byteOffset = 0;
-  int sampleBytes = 1;
-  int xSub = 1, ySub = 1;
-};
-
-// A frame to segment: three channels in the order the encoding names them.
-struct SampledFrame {
-  std::array<ChannelSampler, 3> channels;
-  PixelEncoding encoding = PixelEncoding::Rgb;
-  cv::Size size;  // frame size in pixels
-};
-
-// A BGR image (CV_8UC3) as a SampledFrame (a view: `bgr` must outlive it).
-SampledFrame sampledBgr(const cv::Mat &bgr);
 
 struct BlobSettings {
   HsvRange range;

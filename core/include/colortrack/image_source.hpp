@@ -2,6 +2,8 @@
 // asks for (a search window while tracking) instead of whole frames.
 #pragma once
 
+#include <array>
+
 #include <opencv2/core.hpp>
 
 namespace colortrack {
@@ -10,6 +12,33 @@ namespace colortrack {
 // a nearest-neighbour resize of that part to the sample size reads pixel i * step, as the tracker assumes).
 cv::Size sampledSize(const cv::Rect &rect, int step);
 cv::Rect sampledCover(const cv::Rect &rect, int step);
+
+// What the three bytes sampled from a frame mean.
+enum class PixelEncoding {
+  Rgb,     // channels R, G, B
+  Yuv601,  // channels Y, U, V, BT.601 limited range (OpenCV's YUV conversions, as FrameView reads YUV)
+};
+
+// One colour channel of a frame as bytes in memory: the sample of frame pixel (x, y) is
+// plane.ptr(y / ySub)[(x / xSub) * sampleBytes + byteOffset]. Describes packed RGB (any byte order),
+// planar and semi-planar 4:2:0 and packed 4:2:2 alike, so a frame is segmented without converting it.
+struct ChannelSampler {
+  cv::Mat plane;  // CV_8UC1 view of the plane's bytes (width = bytes per row in use)
+  int byteOffset = 0;
+  int sampleBytes = 1;
+  int xSub = 1, ySub = 1;
+};
+
+// A frame's bytes as three channels in the order the encoding names them (threshold mode segments them
+// where they lie).
+struct SampledFrame {
+  std::array<ChannelSampler, 3> channels;
+  PixelEncoding encoding = PixelEncoding::Rgb;
+  cv::Size size;  // frame size in pixels
+};
+
+// A BGR image (CV_8UC3) as a SampledFrame (a view: `bgr` must outlive it).
+SampledFrame sampledBgr(const cv::Mat &bgr);
 
 class ImageSource {
  public:
@@ -20,6 +49,9 @@ class ImageSource {
   // Every `step`-th pixel of `rect` in both directions (nearest neighbour), as BGR: size rect / step. Sources
   // that can read a sample without converting the whole rectangle override this.
   virtual void sampledBgr(const cv::Rect &rect, int step, cv::Mat &out) const;
+  // The whole frame channel by channel. Sources that can describe their bytes in place override this; the
+  // default converts the frame to BGR into `scratch` (which the result then views).
+  virtual SampledFrame channels(cv::Mat &scratch) const;
 };
 
 // An ImageSource over a BGR cv::Mat (tests, benchmarks, template files).
@@ -29,6 +61,7 @@ class MatImageSource : public ImageSource {
   cv::Size size() const override { return bgr_.size(); }
   void bgr(const cv::Rect &rect, cv::Mat &out) const override { bgr_(rect).copyTo(out); }
   void sampledBgr(const cv::Rect &rect, int step, cv::Mat &out) const override;
+  SampledFrame channels(cv::Mat &scratch) const override;
 
  private:
   cv::Mat bgr_;

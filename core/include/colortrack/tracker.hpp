@@ -9,6 +9,7 @@
 
 #include "colortrack/color.hpp"
 #include "colortrack/edges.hpp"
+#include "colortrack/frame_tracker.hpp"
 #include "colortrack/histogram.hpp"
 #include "colortrack/image_source.hpp"
 #include "colortrack/kalman.hpp"
@@ -80,10 +81,10 @@ class TrackerError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-class Tracker {
+class Tracker : public FrameTracker {
  public:
   explicit Tracker(const TrackerSettings &settings = TrackerSettings());
-  ~Tracker();
+  ~Tracker() override;
 
   // Settings may change at any time; the template model is rebuilt if the colour space or bins change.
   void setSettings(const TrackerSettings &settings);
@@ -99,9 +100,11 @@ class Tracker {
   // Processes one frame. dt: time since the previous frame in frames (1 unless timestamps say otherwise).
   // Throws TrackerError when the template does not fit in the frame.
   TrackOutput process(const ImageSource &frame, double dt = 1.0);
+  // process() as the element sees it: the track (if any) as the primary and only report.
+  FrameReport track(const ImageSource &frame, double dt) override;
 
   // Forget the track (keeps the template): the next frame searches the whole frame.
-  void reset();
+  void reset() override;
 
  private:
   struct Impl;

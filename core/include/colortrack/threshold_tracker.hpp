@@ -1,0 +1,33 @@
+// Threshold mode as one tracker: the frame segmented into blobs (blobs.hpp), the blobs followed by the
+// multi-object tracker (multi_tracker.hpp).
+#pragma once
+
+#include <vector>
+
+#include "colortrack/blobs.hpp"
+#include "colortrack/frame_tracker.hpp"
+#include "colortrack/multi_tracker.hpp"
+
+namespace colortrack {
+
+class ThresholdTracker : public FrameTracker {
+ public:
+  explicit ThresholdTracker(const BlobSettings &blobs = BlobSettings(),
+                            const MultiTrackerSettings &tracks = MultiTrackerSettings());
+
+  // A new range, clean-up or size limit applies from the next frame; the tracks go on.
+  void setBlobSettings(const BlobSettings &settings) { detector_.setSettings(settings); }
+  const BlobSettings &blobSettings() const { return detector_.settings(); }
+  void setTrackSettings(const MultiTrackerSettings &settings) { tracks_.setSettings(settings); }
+
+  // Reports every confirmed track (by id); the primary target is the largest.
+  FrameReport track(const ImageSource &frame, double dt) override;
+  void reset() override { tracks_.reset(); }
+
+ private:
+  BlobDetector detector_;
+  MultiTracker tracks_;
+  cv::Mat converted_;  // the frame as BGR, for sources that cannot be read in place
+};
+
+}  // namespace colortrack

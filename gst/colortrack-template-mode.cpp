@@ -1,0 +1,134 @@
+// Template mode's preparation of a frame: the template tracker brought up to date with the properties and
+// the requests before it tracks.
+#include <exception>
+
+#include <gst/gst.h>
+
+#include "colortrack-modes.h"
+
+#define GST_CAT_DEFAULT gst_color_track_debug
+
+namespace colortrack_gst {
+
+bool loadTemplateFile(const std::string &path, cv::Mat &bgr, cv::Mat &mask, std::string &why, bool &missing) {
+  missing = !g_file_test(path.c_str(), G_FILE_TEST_EXISTS);
+  // Said here, before OpenCV is asked: it would log its own "can't open/read file" warning first.
+  if (missing) {
+    why = "no such file";
+    return false;
+  }
+  try {
+    colortrack::loadTemplate(path, bgr, mask);
+    return true;
+  } catch (const std::exception &e) {
+    why = e.what();
+    return false;
+  }
+}
+
+namespace {
+
+// A new target: its trail starts over and the element leaves the idle state.
+void targetChanged(State &state, const std::string &origin) {
+  state.templateOrigin = origin;
+  state.trails.clear();
+  state.warnedNoTemplate = false;
+  state.idle = false;
+}
+
+// A template-location set while streaming: read now; a file that cannot be read keeps the previous template.
+void reloadTemplate(GstColorTrack *self, State &state, const std::string &location) {
+  cv::Mat bgr, mask;
+  std::string why;
+  bool missing = false;
+  if (loadTemplateFile(location, bgr, mask, why, missing)) {
+    state.templateTracker->setTemplate(bgr, mask);
+    targetChanged(state, "template-location '" + location + "'");
+    return;
+  }
+  GST_ELEMENT_WARNING(self, RESOURCE, OPEN_READ,
+                      ("Could not read the template image '%s' (property 'template-location'): %s. "
+                       "Keeping the previous template.",
+                       location.c_str(), why.c_str()),
+                      (missing ? "the file does not exist" : nullptr));
+}
+
+// A left click takes the template from the box around it and starts tracking there, exactly as init-box
+// does; a right click stops until a new target is given.
+void applyClick(GstColorTrack *self, State &state, const ClickRequest &click, int boxSize,
+                const colortrack::FrameView &view) {
+  if (click.kind == ClickRequest::Kind::Stop) {
+    state.templateTracker->reset();
+    state.trails.clear();
+    state.idle = true;
+    return;
+  }
+  const cv::Rect box = boxAround(click.point, boxSize, view.size());
+  if (box.empty()) {
+    GST_INFO_OBJECT(self, "click at %.1f,%.1f lies outside the %dx%d frame: ignored", click.point.x,
+                    click.point.y, view.size().width, view.size().height);
+    return;
+  }
+  state.templateTracker->setTemplateFromBox(view, box);
+  targetChanged(state, describeClick(click, box));
+  GST_INFO_OBJECT(self, "template from %s", state.templateOrigin.c_str());
+}
+
+}  // namespace
+
+bool prepareTemplateFrame(GstColorTrack *self, const Snapshot &snapshot, const Requests &requests,
+                          const colortrack::FrameView &view) {
+  State &state = self->priv->state;
+  colortrack::Tracker &tracker = *state.templateTracker;
+
+  if (snapshot.trackerGeneration != state.appliedTrackerGeneration) {
+    tracker.setSettings(snapshot.tracker);
+    state.appliedTrackerGeneration = snapshot.trackerGeneration;
+  }
+  if (snapshot.templateGeneration != state.appliedTemplateGeneration) {
+    state.appliedTemplateGeneration = snapshot.templateGeneration;
+    if (!snapshot.templateLocation.empty()) reloadTemplate(self, state, snapshot.templateLocation);
+  }
+  if (state.capsChanged || self->priv->resetRequested.exchange(false)) {
+    state.capsChanged = false;
+    tracker.reset();
+    state.trails.clear();
+  }
+  if (requests.initBox) {
+    const InitBoxFit fit =
+        checkInitBox(self, *requests.initBox, view.size(), requests.initBoxWhileStreaming, snapshot.initBox);
+    if (fit == InitBoxFit::Error) return false;
+    if (fit == InitBoxFit::Fits) {
+      tracker.setTemplateFromBox(view, *requests.initBox);
+      targetChanged(state, "init-box '" + snapshot.initBox + "'");
+    }
+  }
+  if (requests.click) applyClick(self, state, *requests.click, snapshot.clickBoxSize, view);
+  return true;
+}
+
+TemplateReadiness templateReadiness(GstColorTrack *self, cv::Size frame) {
+  State &state = self->priv->state;
+  const colortrack::Tracker &tracker = *state.templateTracker;
+  if (!tracker.hasTemplate()) {
+    if (!state.warnedNoTemplate) {
+      state.warnedNoTemplate = true;
+      GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS,
+                          ("No template: set 'template-location' or 'init-box', or click the object in the "
+                           "video window. Passing video through."),
+                          (nullptr));
+    }
+    return TemplateReadiness::NoTemplate;
+  }
+  const cv::Size size = tracker.templateSize();
+  if (size.width > frame.width || size.height > frame.height) {
+    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
+                      ("The template from %s (%dx%d) is larger than the %dx%d frame.",
+                       state.templateOrigin.c_str(), size.width, size.height, frame.width, frame.height),
+                      (nullptr));
+    return TemplateReadiness::Error;
+  }
+  return TemplateReadiness::Ready;
+}
+
+}  // namespace colortrack_gst

@@ -1,0 +1,97 @@
+// The interface the element drives: both trackers, seen only as FrameTracker, report what their own outputs
+// say, with the primary target among the tracks, and forget their tracks on reset().
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <vector>
+
+#include "balls.hpp"
+#include "colortrack/frame_tracker.hpp"
+#include "colortrack/threshold_tracker.hpp"
+#include "colortrack/tracker.hpp"
+#include "scene.hpp"
+
+using namespace colortrack;
+
+namespace {
+
+// Two balls of different sizes moving apart over a cluttered background.
+balls::BallScene twoBalls() {
+  balls::Ball big, small;
+  big.hue = 0;
+  big.radius = 30;
+  big.path = {{0, {200, 240}}, {60, {260, 200}}};
+  small.hue = 220;
+  small.radius = 14;
+  small.path = {{0, {460, 240}}, {60, {420, 300}}};
+  balls::BallSceneConfig config;
+  config.clutterSaturation = 0.3;  // under the range's saturation: only the balls are selected
+  return balls::BallScene(config, {big, small});
+}
+
+BlobSettings saturatedColours() {
+  BlobSettings settings;
+  settings.range.lower = {0, 0.5, 0.25};
+  settings.range.upper = {360, 1, 1};
+  return settings;
+}
+
+}  // namespace
+
+TEST(ThresholdTracker, ReportsEveryBallWithTheLargestAsPrimary) {
+  const balls::BallScene scene = twoBalls();
+  ThresholdTracker threshold(saturatedColours());
+  FrameTracker &tracker = threshold;
+  FrameReport report;
+  for (int i = 0; i < 30; ++i) {
+    const cv::Mat frame = scene.render(i);
+    report = tracker.track(MatImageSource(frame), 1.0);
+  }
+  EXPECT_TRUE(report.listsTracks);
+  ASSERT_EQ(report.tracks.size(), 2u);
+  EXPECT_FALSE(report.mask.empty());
+  EXPECT_GE(report.maskStep, 1);
+  const balls::BallTruth big = scene.truthOf(0, 29), small = scene.truthOf(1, 29);
+  // The primary is the big ball, and each report's centre and area belong to its ball.
+  EXPECT_EQ(report.primary.state, TrackState::Tracking);
+  EXPECT_LT(cv::norm(report.primary.centre - big.centre), 3.0);
+  for (const TrackReport &t : report.tracks) {
+    ASSERT_TRUE(t.area.has_value());
+    const balls::BallTruth &truth =
+        cv::norm(t.centre - big.centre) < cv::norm(t.centre - small.centre) ? big : small;
+    EXPECT_LT(cv::norm(t.centre - truth.centre), 3.0);
+    EXPECT_NEAR(*t.area, CV_PI * truth.radius * truth.radius, 0.25 * CV_PI * truth.radius * truth.radius);
+    EXPECT_TRUE(t.verified);
+  }
+  EXPECT_NE(report.tracks[0].id, report.tracks[1].id);
+
+  tracker.reset();
+  const FrameReport afterReset = tracker.track(MatImageSource(scene.render(30)), 1.0);
+  EXPECT_TRUE(afterReset.tracks.empty()) << "new tracks must be confirmed again after a reset";
+  EXPECT_EQ(afterReset.primary.state, TrackState::Searching);
+  EXPECT_TRUE(afterReset.primary.box.empty());
+}
+
+TEST(TemplateTracker, ReportsItsTrackAsThePrimaryAndOnlyTrack) {
+  scene::SceneConfig config;
+  const scene::Scene scene(config);
+  Tracker templateTracker;
+  templateTracker.setTemplateFromBox(MatImageSource(scene.render(0).bgr), scene.initBox());
+  FrameTracker &tracker = templateTracker;
+  for (int i = 1; i < 20; ++i) {
+    const scene::SceneFrame frame = scene.render(i);
+    const FrameReport report = tracker.track(MatImageSource(frame.bgr), 1.0);
+    EXPECT_FALSE(report.listsTracks);
+    ASSERT_EQ(report.tracks.size(), 1u) << "frame " << i;
+    const TrackReport &t = report.tracks[0];
+    EXPECT_EQ(t.id, report.primary.id);
+    EXPECT_EQ(t.box, report.primary.box);
+    EXPECT_GT(scene::iou(t.box, frame.box), 0.6) << "frame " << i;
+    EXPECT_NEAR(t.centre.x, t.box.x + t.box.width / 2, 1e-9);
+    EXPECT_FALSE(t.area.has_value());
+    EXPECT_FALSE(report.searchRegion.empty());
+  }
+  // Lost on purpose: a reset forgets the track, and the next frame reports no box until it is found again.
+  tracker.reset();
+  EXPECT_TRUE(templateTracker.hasTemplate());
+}
