@@ -26,7 +26,9 @@
 /* GStreamer 1.22 drops the parameter structure when videoconvert, videoscale or a buffer copy transforms the
  * ROI meta. colortrack therefore also attaches one GstCustomMeta of this name per buffer (registered when the
  * plugin loads): its structure holds each track's parameter structure (GST_TYPE_STRUCTURE) in a field named
- * "id-<track id>", and it survives those elements. Read it with
+ * "id-<track id>.<element name>", and in "id-<track id>" for the first element that reports that id on the
+ * buffer; each entry adds "element" and the attached box ("roi-x", "roi-y", "roi-w", "roi-h"). It survives
+ * those elements. Read it with
  *   gst_buffer_get_custom_meta (buffer, COLORTRACK_PARAMS_META_NAME)
  * when gst_video_region_of_interest_meta_get_param () returns NULL. */
 #define COLORTRACK_PARAMS_META_NAME "GstColorTrackParamsMeta"

@@ -16,8 +16,8 @@
  * track id and whose "colortrack" parameter structure holds state (string), score, scale, vx, vy (double)
  * and verified (boolean). The meta follows the frame through videoconvert and videoscale, which scales its
  * box (GStreamer 1.22's transform of this meta drops the parameter structure, so each buffer also carries a
- * "GstColorTrackParamsMeta" custom meta with every track's parameters under "id-<track id>", which survives
- * those elements). With
+ * "GstColorTrackParamsMeta" custom meta with every track's parameters under "id-<track id>.<element name>",
+ * and under "id-<track id>" for the first element that reports that id, which survives those elements). With
  * #GstColorTrack:post-messages, an element message "colortrack" is posted for every frame with timestamp,
  * stream-time, running-time, duration, frame, state, x, y, width, height, score, verified and scale.
  *
@@ -394,7 +394,7 @@ static void report_frame(GstColorTrack *self, GstVideoFrame *frame, const Snapsh
   const cv::Size size(GST_VIDEO_FRAME_WIDTH(frame), GST_VIDEO_FRAME_HEIGHT(frame));
   state.trails.update(report.tracks, snapshot.trailLength);
   for (const colortrack::TrackReport &track : report.tracks)
-    colortrack_gst::attachTrackMeta(frame->buffer, track, size);
+    colortrack_gst::attachTrackMeta(GST_ELEMENT(self), frame->buffer, track, size);
   colortrack_gst::OverlayParts parts;
   parts.box = snapshot.draw & GST_COLOR_TRACK_DRAW_BOX;
   parts.trail = snapshot.draw & GST_COLOR_TRACK_DRAW_TRAIL;

@@ -423,9 +423,9 @@ void readTarget(GstBuffer *buffer, GQuark roiType, gint targetId, colortrack::Ob
       colortrack_find_roi_params(buffer, const_cast<GstVideoRegionOfInterestMeta *>(chosen));
   if (params) {
     // A missing or unknown state reads as tracking, like a box without params.
-    o.state = colortrack::parseTrackState(gst_structure_get_string(params, "state"))
+    o.state = colortrack::parseTrackState(gst_structure_get_string(params, COLORTRACK_PARAM_STATE))
                   .value_or(colortrack::TrackState::Tracking);
-    gst_structure_get_double(params, "score", &o.score);
+    gst_structure_get_double(params, COLORTRACK_PARAM_SCORE, &o.score);
   }
 }
 

@@ -1,5 +1,7 @@
 #include "robotctl-listener.h"
 
+#include "colortrack-meta.h"
+
 #define GST_CAT_DEFAULT category_
 
 namespace robotctl {
@@ -41,14 +43,14 @@ void ElementListener::reconnected(const std::string &port) {
 
 void ElementListener::post(const Command &command) {
   const colortrack::DriveOutput &out = command.output;
-  const bool stop = out.command == colortrack::DriveCommand::Stop;
+  const colortrack::SentSpeeds speeds = colortrack::sentSpeeds(out, outputScale_);
   GstStructure *s = gst_structure_new(
-      "robotctl", "command", G_TYPE_STRING, colortrack::toString(out.command), "left", G_TYPE_INT,
-      stop ? 0 : colortrack::scaledSpeed(out.left, outputScale_), "right", G_TYPE_INT,
-      stop ? 0 : colortrack::scaledSpeed(out.right, outputScale_), "linear", G_TYPE_DOUBLE, out.linear,
-      "angular", G_TYPE_DOUBLE, out.angular, "target-visible", G_TYPE_BOOLEAN,
-      static_cast<gboolean>(out.targetVisible), "timestamp", G_TYPE_UINT64,
-      static_cast<guint64>(command.timestamp), "reason", G_TYPE_STRING, command.reason, nullptr);
+      ROBOTCTL_MESSAGE_NAME, ROBOTCTL_MESSAGE_COMMAND, G_TYPE_STRING, colortrack::toString(out.command),
+      ROBOTCTL_MESSAGE_LEFT, G_TYPE_INT, speeds.left, ROBOTCTL_MESSAGE_RIGHT, G_TYPE_INT, speeds.right,
+      ROBOTCTL_MESSAGE_LINEAR, G_TYPE_DOUBLE, out.linear, ROBOTCTL_MESSAGE_ANGULAR, G_TYPE_DOUBLE,
+      out.angular, ROBOTCTL_MESSAGE_TARGET_VISIBLE, G_TYPE_BOOLEAN, static_cast<gboolean>(out.targetVisible),
+      ROBOTCTL_MESSAGE_TIMESTAMP, G_TYPE_UINT64, static_cast<guint64>(command.timestamp),
+      ROBOTCTL_MESSAGE_REASON, G_TYPE_STRING, command.reason, nullptr);
   gst_element_post_message(element_, gst_message_new_element(GST_OBJECT(element_), s));
 }
 

@@ -14,7 +14,8 @@ cv::Rect frameBox(const cv::Rect2d &box, cv::Size frame) {
   return cv::Rect(cv::Point(x0, y0), cv::Point(x1, y1)) & cv::Rect(cv::Point(), frame);
 }
 
-void attachTrackMeta(GstBuffer *buffer, const colortrack::TrackReport &track, cv::Size frame) {
+void attachTrackMeta(GstElement *element, GstBuffer *buffer, const colortrack::TrackReport &track,
+                     cv::Size frame) {
   const cv::Rect box = frameBox(track.box, frame);
   if (box.empty()) return;
   GstVideoRegionOfInterestMeta *meta = gst_buffer_add_video_region_of_interest_meta(
@@ -27,7 +28,7 @@ void attachTrackMeta(GstBuffer *buffer, const colortrack::TrackReport &track, cv
       static_cast<gboolean>(track.verified), COLORTRACK_PARAM_SCALE, G_TYPE_DOUBLE, track.scale,
       COLORTRACK_PARAM_VX, G_TYPE_DOUBLE, track.vx, COLORTRACK_PARAM_VY, G_TYPE_DOUBLE, track.vy, nullptr);
   if (track.area) gst_structure_set(params, COLORTRACK_PARAM_AREA, G_TYPE_DOUBLE, *track.area, nullptr);
-  colortrack_add_roi_params(buffer, meta, params);
+  colortrack_add_roi_params(buffer, meta, params, GST_ELEMENT_NAME(element));
 }
 
 namespace {

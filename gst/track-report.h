@@ -16,9 +16,10 @@ namespace colortrack_gst {
 // the frame (empty when it lies wholly outside).
 cv::Rect frameBox(const cv::Rect2d &box, cv::Size frame);
 
-// The ROI meta of `track` with its "colortrack" parameters (see track-params.h); none when its box lies
-// outside the `frame`-sized frame.
-void attachTrackMeta(GstBuffer *buffer, const colortrack::TrackReport &track, cv::Size frame);
+// The ROI meta of `track` with its "colortrack" parameters (see track-params.h), attached by `element`; none
+// when its box lies outside the `frame`-sized frame.
+void attachTrackMeta(GstElement *element, GstBuffer *buffer, const colortrack::TrackReport &track,
+                     cv::Size frame);
 
 // The "colortrack" element message for the frame `frame` (counted from 0) carried by `buffer`. Reports that
 // list their tracks add the "objects" list. `stateName` replaces the primary's state (e.g. "idle").

@@ -79,11 +79,13 @@ int scaledSpeed(double speed, int scale) {
   return static_cast<int>(std::clamp<long>(value, -scale, scale));
 }
 
+SentSpeeds sentSpeeds(const DriveOutput &output, int scale) {
+  if (output.command == DriveCommand::Stop) return SentSpeeds{};
+  return SentSpeeds{scaledSpeed(output.left, scale), scaledSpeed(output.right, scale)};
+}
+
 std::vector<std::uint8_t> ProtocolEncoder::encode(const DriveOutput &output) {
-  // A stop is exactly zero on every wire, whatever rounding the speeds had.
-  const bool stop = output.command == DriveCommand::Stop;
-  const int left = stop ? 0 : scaledSpeed(output.left, settings_.outputScale);
-  const int right = stop ? 0 : scaledSpeed(output.right, settings_.outputScale);
+  const auto [left, right] = sentSpeeds(output, settings_.outputScale);
 
   switch (settings_.protocol) {
     case Protocol::ZoneChar:

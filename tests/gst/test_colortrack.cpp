@@ -405,6 +405,51 @@ GST_START_TEST(test_meta_survives_videoscale_and_videoconvert) {
 }
 GST_END_TEST;
 
+// Two colortrack elements in series ("first", then "ct"), each with its own track of id 1: the params meta
+// keeps both (keyed by element and id), also after videoscale drops the ROI metas' own params, and the first
+// layout's "id-1" entry stays the first element's.
+GST_START_TEST(test_params_meta_keeps_two_elements_apart) {
+  SceneConfig config;
+  const Scene scene(config);
+  const cv::Rect object = scene.initBox();
+  const cv::Rect background(20, 20, 60, 60);
+  fail_unless((object & background).empty());
+  Harness pipeline("colortrack name=first init-box=" + boxString(object) +
+                       " ! colortrack name=ct init-box=" + boxString(background) +
+                       " ! videoscale ! capsfilter caps=video/x-raw,width=320,height=240",
+                   config.frameSize);
+  for (int i = 0; i < 5; ++i) {
+    const SceneFrame frame = scene.render(i);
+    GstBuffer *out = pipeline.process(frame.bgr, i);
+    GstCustomMeta *custom = gst_buffer_get_custom_meta(out, "GstColorTrackParamsMeta");
+    fail_unless(custom != nullptr, "frame %d: no params meta", i);
+    const GstStructure *entries = gst_custom_meta_get_structure(custom);
+    const GstStructure *firstEntry = nullptr, *secondEntry = nullptr, *sharedEntry = nullptr;
+    for (auto [name, target] : {std::pair{"id-1.first", &firstEntry}, std::pair{"id-1.ct", &secondEntry},
+                                std::pair{"id-1", &sharedEntry}}) {
+      const GValue *v = gst_structure_get_value(entries, name);
+      fail_unless(v && GST_VALUE_HOLDS_STRUCTURE(v), "frame %d: no entry %s", i, name);
+      *target = gst_value_get_structure(v);
+    }
+    fail_unless_equals_string(gst_structure_get_string(firstEntry, "element"), "first");
+    fail_unless_equals_string(gst_structure_get_string(secondEntry, "element"), "ct");
+    fail_unless_equals_string(gst_structure_get_string(sharedEntry, "element"), "first");
+    // Each entry holds its own element's box: the object for the firstEntry, the background patch for the
+    // secondEntry.
+    int x = 0, y = 0;
+    fail_unless(gst_structure_get_int(firstEntry, "roi-x", &x) &&
+                gst_structure_get_int(firstEntry, "roi-y", &y));
+    fail_unless(std::abs(x - frame.box.x) <= 12 && std::abs(y - frame.box.y) <= 12,
+                "frame %d: first element at %d,%d", i, x, y);
+    fail_unless(gst_structure_get_int(secondEntry, "roi-x", &x) &&
+                gst_structure_get_int(secondEntry, "roi-y", &y));
+    fail_unless(std::abs(x - background.x) <= 12 && std::abs(y - background.y) <= 12,
+                "frame %d: second element at %d,%d", i, x, y);
+    gst_buffer_unref(out);
+  }
+}
+GST_END_TEST;
+
 // "reset" restarts the search: a visible object is found again as a new track; a gone one is searched for.
 GST_START_TEST(test_reset_signal) {
   SceneConfig config;
@@ -451,6 +496,7 @@ static Suite *colortrack_suite(void) {
   tcase_add_test(tc, test_meta_and_message_fields);
   tcase_add_test(tc, test_meta_survives_videoscale_and_videoconvert);
   tcase_add_test(tc, test_reset_signal);
+  tcase_add_test(tc, test_params_meta_keeps_two_elements_apart);
   return s;
 }
 

@@ -47,6 +47,13 @@ std::uint8_t crc8(const std::uint8_t *data, std::size_t size);
 // A wheel speed in [-1, 1] as the integer sent: round(speed * scale), clamped to +-scale.
 int scaledSpeed(double speed, int scale);
 
+// The wheel speeds of `output` as sent: each scaled by scaledSpeed(), and exactly zero on a stop whatever
+// rounding the speeds had.
+struct SentSpeeds {
+  int left = 0, right = 0;
+};
+SentSpeeds sentSpeeds(const DriveOutput &output, int scale);
+
 class ProtocolEncoder {
  public:
   explicit ProtocolEncoder(const ProtocolSettings &settings = ProtocolSettings()) : settings_(settings) {}
