@@ -15,7 +15,7 @@ namespace colortrack_gst {
 
 // Template mode: tracker settings, a new template file, a reset, then init-box and clicks.
 bool prepareTemplateFrame(GstColorTrack *self, const Snapshot &snapshot, const Requests &requests,
-                          const colortrack::FrameView &view);
+                          const colortrack_gst::FrameView &view);
 
 // Whether the template tracker can take this frame: it has a template (else a warning, once) that fits in
 // the frame (else an error).
@@ -24,7 +24,7 @@ TemplateReadiness templateReadiness(GstColorTrack *self, cv::Size frame);
 
 // Threshold mode: blob and track settings, a reset, then a colour range learnt from an init-box or a click.
 bool prepareThresholdFrame(GstColorTrack *self, const Snapshot &snapshot, const Requests &requests,
-                           const colortrack::FrameView &view);
+                           const colortrack_gst::FrameView &view);
 
 // Reads a template file; on failure fills `why` and says whether the file exists at all.
 bool loadTemplateFile(const std::string &path, cv::Mat &bgr, cv::Mat &mask, std::string &why, bool &missing);

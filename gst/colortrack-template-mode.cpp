@@ -56,7 +56,7 @@ void reloadTemplate(GstColorTrack *self, State &state, const std::string &locati
 // A left click takes the template from the box around it and starts tracking there, exactly as init-box
 // does; a right click stops until a new target is given.
 void applyClick(GstColorTrack *self, State &state, const ClickRequest &click, int boxSize,
-                const colortrack::FrameView &view) {
+                const colortrack_gst::FrameView &view) {
   if (click.kind == ClickRequest::Kind::Stop) {
     state.templateTracker->reset();
     state.trails.clear();
@@ -77,7 +77,7 @@ void applyClick(GstColorTrack *self, State &state, const ClickRequest &click, in
 }  // namespace
 
 bool prepareTemplateFrame(GstColorTrack *self, const Snapshot &snapshot, const Requests &requests,
-                          const colortrack::FrameView &view) {
+                          const colortrack_gst::FrameView &view) {
   State &state = self->priv->state;
   colortrack::Tracker &tracker = *state.templateTracker;
 

@@ -23,7 +23,7 @@ colortrack::MultiTrackerSettings multiTrackerSettings(const Settings &settings) 
 // Learns hsv-lower/hsv-upper from the pixels of `box` and starts over with that range. This is the one place
 // the streaming thread writes a property: the properties then report the range, so it can be reused in a
 // launch line.
-void learnRange(GstColorTrack *self, const colortrack::FrameView &view, const cv::Rect &box,
+void learnRange(GstColorTrack *self, const colortrack_gst::FrameView &view, const cv::Rect &box,
                 const std::string &origin) {
   State &state = self->priv->state;
   const colortrack::HsvRange learnt = colortrack::learnRange(view, box);
@@ -48,7 +48,7 @@ void learnRange(GstColorTrack *self, const colortrack::FrameView &view, const cv
 
 // A left click learns the colour around it; a right click stops until a new target is given.
 void applyClick(GstColorTrack *self, State &state, const ClickRequest &click, int boxSize,
-                const colortrack::FrameView &view) {
+                const colortrack_gst::FrameView &view) {
   if (click.kind == ClickRequest::Kind::Stop) {
     state.thresholdTracker->reset();
     state.trails.clear();
@@ -68,7 +68,7 @@ void applyClick(GstColorTrack *self, State &state, const ClickRequest &click, in
 }  // namespace
 
 bool prepareThresholdFrame(GstColorTrack *self, const Snapshot &snapshot, const Requests &requests,
-                           const colortrack::FrameView &view) {
+                           const colortrack_gst::FrameView &view) {
   State &state = self->priv->state;
   colortrack::ThresholdTracker &tracker = *state.thresholdTracker;
   const cv::Size size = view.size();

@@ -2,7 +2,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-namespace colortrack {
+namespace colortrack_gst {
 
 bool isSupportedFormat(GstVideoFormat format) {
   switch (format) {
@@ -48,7 +48,7 @@ FrameView::FrameView(const GstVideoFrame *frame)
   if (GST_VIDEO_FORMAT_INFO_IS_RGB(frame->info.finfo)) packed_ = packedLayout(frame->info.finfo);
 }
 
-SampledFrame FrameView::channels(cv::Mat & /*scratch*/) const {
+colortrack::SampledFrame FrameView::channels(cv::Mat & /*scratch*/) const {
   const GstVideoFrame *frame = frame_;
   const int w = size_.width, h = size_.height;
   const int cw = (w + 1) / 2, ch = (h + 1) / 2;
@@ -56,34 +56,35 @@ SampledFrame FrameView::channels(cv::Mat & /*scratch*/) const {
     return cv::Mat(rows, rowBytes, CV_8UC1, GST_VIDEO_FRAME_PLANE_DATA(frame, plane),
                    static_cast<size_t>(GST_VIDEO_FRAME_PLANE_STRIDE(frame, plane)));
   };
-  SampledFrame out;
+  colortrack::SampledFrame out;
   out.size = cv::Size(w, h);
-  out.encoding = PixelEncoding::Yuv601;
+  out.encoding = colortrack::PixelEncoding::Yuv601;
   switch (format_) {
     case GST_VIDEO_FORMAT_I420:
-      out.channels = {ChannelSampler{bytes(0, h, w), 0, 1, 1, 1},
-                      ChannelSampler{bytes(1, ch, cw), 0, 1, 2, 2},
-                      ChannelSampler{bytes(2, ch, cw), 0, 1, 2, 2}};
+      out.channels = {colortrack::ChannelSampler{bytes(0, h, w), 0, 1, 1, 1},
+                      colortrack::ChannelSampler{bytes(1, ch, cw), 0, 1, 2, 2},
+                      colortrack::ChannelSampler{bytes(2, ch, cw), 0, 1, 2, 2}};
       break;
     case GST_VIDEO_FORMAT_NV12: {
       const cv::Mat uv = bytes(1, ch, 2 * cw);
-      out.channels = {ChannelSampler{bytes(0, h, w), 0, 1, 1, 1}, ChannelSampler{uv, 0, 2, 2, 2},
-                      ChannelSampler{uv, 1, 2, 2, 2}};
+      out.channels = {colortrack::ChannelSampler{bytes(0, h, w), 0, 1, 1, 1},
+                      colortrack::ChannelSampler{uv, 0, 2, 2, 2}, colortrack::ChannelSampler{uv, 1, 2, 2, 2}};
       break;
     }
     case GST_VIDEO_FORMAT_YUY2: {
       const cv::Mat packed = bytes(0, h, 4 * cw);  // Y0 U Y1 V per two pixels
-      out.channels = {ChannelSampler{packed, 0, 2, 1, 1}, ChannelSampler{packed, 1, 4, 2, 1},
-                      ChannelSampler{packed, 3, 4, 2, 1}};
+      out.channels = {colortrack::ChannelSampler{packed, 0, 2, 1, 1},
+                      colortrack::ChannelSampler{packed, 1, 4, 2, 1},
+                      colortrack::ChannelSampler{packed, 3, 4, 2, 1}};
       break;
     }
     default: {
       const PackedLayout &layout = packed_;
       const cv::Mat packed = bytes(0, h, w * layout.pixelBytes);
-      out.encoding = PixelEncoding::Rgb;
-      out.channels = {ChannelSampler{packed, layout.red, layout.pixelBytes, 1, 1},
-                      ChannelSampler{packed, layout.green, layout.pixelBytes, 1, 1},
-                      ChannelSampler{packed, layout.blue, layout.pixelBytes, 1, 1}};
+      out.encoding = colortrack::PixelEncoding::Rgb;
+      out.channels = {colortrack::ChannelSampler{packed, layout.red, layout.pixelBytes, 1, 1},
+                      colortrack::ChannelSampler{packed, layout.green, layout.pixelBytes, 1, 1},
+                      colortrack::ChannelSampler{packed, layout.blue, layout.pixelBytes, 1, 1}};
       break;
     }
   }
@@ -133,11 +134,11 @@ void FrameView::packedToBgr(const cv::Mat &roi, cv::Mat &out) const {
 void FrameView::sampledBgr(const cv::Rect &rect, int step, cv::Mat &out) const {
   CV_Assert((rect & cv::Rect(cv::Point(), size_)) == rect && !rect.empty());
   if (step <= 1) return bgr(rect, out);
-  const cv::Size target = sampledSize(rect, step);
+  const cv::Size target = colortrack::sampledSize(rect, step);
   if (GST_VIDEO_FORMAT_INFO_IS_RGB(frame_->info.finfo)) {
     cv::Mat sample;
-    cv::resize(planeMat(frame_, 0, size_, CV_8UC(packed_.pixelBytes))(sampledCover(rect, step)), sample,
-               target, 0, 0, cv::INTER_NEAREST);
+    cv::resize(planeMat(frame_, 0, size_, CV_8UC(packed_.pixelBytes))(colortrack::sampledCover(rect, step)),
+               sample, target, 0, 0, cv::INTER_NEAREST);
     packedToBgr(sample, out);
     return;
   }
@@ -249,4 +250,4 @@ void FrameView::yuy2ToBgr(const cv::Rect &rect, cv::Mat &out) const {
   }
 }
 
-}  // namespace colortrack
+}  // namespace colortrack_gst

@@ -7,7 +7,7 @@
 
 #include "colortrack/image_source.hpp"
 
-namespace colortrack {
+namespace colortrack_gst {
 
 // The caps formats the element accepts, as a caps-string list.
 #define COLORTRACK_VIDEO_FORMATS \
@@ -29,11 +29,12 @@ PackedLayout packedLayout(const GstVideoFormatInfo *finfo);
 // `type` gives the element type (CV_8UC1, CV_8UC2 for NV12's UV, CV_8UC4 for YUY2 macro-pixels ...).
 cv::Mat planeMat(const GstVideoFrame *frame, int plane, cv::Size size, int type);
 
-// ImageSource over a mapped frame. YUV formats are converted with OpenCV's fixed BT.601 limited-range
-// matrix (what cv::cvtColor implements), whatever the caps' colorimetry says: the tracker compares colours
-// against a template taken through the same path, so a consistent matrix matters more than the exact one.
-// (A template loaded from a file is RGB, so a BT.709 stream shifts hues slightly; the V weight absorbs it.)
-class FrameView : public ImageSource {
+// colortrack::ImageSource over a mapped frame. YUV formats are converted with OpenCV's fixed BT.601
+// limited-range matrix (what cv::cvtColor implements), whatever the caps' colorimetry says: the tracker
+// compares colours against a template taken through the same path, so a consistent matrix matters more than
+// the exact one. (A template loaded from a file is RGB, so a BT.709 stream shifts hues slightly; the V weight
+// absorbs it.)
+class FrameView : public colortrack::ImageSource {
  public:
   // `frame` must stay mapped for the lifetime of the view.
   explicit FrameView(const GstVideoFrame *frame);
@@ -44,7 +45,7 @@ class FrameView : public ImageSource {
   void sampledBgr(const cv::Rect &rect, int step, cv::Mat &out) const override;
   // The frame's bytes described channel by channel, read in place in every format (YUV ones through a YUV
   // lookup table): threshold mode segments the frame without converting it. `scratch` is not needed.
-  SampledFrame channels(cv::Mat &scratch) const override;
+  colortrack::SampledFrame channels(cv::Mat &scratch) const override;
 
  private:
   void packedToBgr(const cv::Rect &rect, cv::Mat &out) const;
@@ -58,4 +59,4 @@ class FrameView : public ImageSource {
   PackedLayout packed_;
 };
 
-}  // namespace colortrack
+}  // namespace colortrack_gst

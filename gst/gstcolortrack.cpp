@@ -296,7 +296,7 @@ static gboolean gst_color_track_stop(GstBaseTransform *trans) {
 static gboolean gst_color_track_set_info(GstVideoFilter *filter, GstCaps *, GstVideoInfo *in_info, GstCaps *,
                                          GstVideoInfo *) {
   GstColorTrack *self = GST_COLOR_TRACK(filter);
-  if (!colortrack::isSupportedFormat(GST_VIDEO_INFO_FORMAT(in_info))) return FALSE;
+  if (!colortrack_gst::isSupportedFormat(GST_VIDEO_INFO_FORMAT(in_info))) return FALSE;
   // Two fields woven into one frame move apart with the object: the tracker would see combed edges and a
   // doubled object. Said plainly instead of tracking badly.
   if (GST_VIDEO_INFO_IS_INTERLACED(in_info)) {
@@ -411,7 +411,7 @@ static void report_frame(GstColorTrack *self, GstVideoFrame *frame, const Snapsh
 static GstFlowReturn track_frame(GstColorTrack *self, GstVideoFrame *frame, const Snapshot &snapshot,
                                  const colortrack_gst::Requests &requests, guint64 frameNumber, double dt) {
   State &state = stateOf(self);
-  const colortrack::FrameView view(frame);
+  const colortrack_gst::FrameView view(frame);
   const bool threshold = snapshot.mode == GST_COLOR_TRACK_MODE_THRESHOLD;
   const bool prepared = threshold ? colortrack_gst::prepareThresholdFrame(self, snapshot, requests, view)
                                   : colortrack_gst::prepareTemplateFrame(self, snapshot, requests, view);

@@ -7,7 +7,7 @@
 
 #include "frame-view.h"
 
-namespace colortrack {
+namespace colortrack_gst {
 
 Rgb idColour(int id) {
   const double hue = std::fmod(id * 137.508, 360.0) / 60.0;  // golden angle: successive ids spread out
@@ -86,7 +86,7 @@ FrameCanvas::FrameCanvas(GstVideoFrame *frame)
 }
 
 cv::Scalar FrameCanvas::colourFor(const Plane &plane, const Rgb &colour) const {
-  const Yuv yuv = rgbToYuv601(colour.r, colour.g, colour.b);
+  const colortrack::Yuv yuv = colortrack::rgbToYuv601(colour.r, colour.g, colour.b);
   switch (plane.kind) {
     case PlaneKind::Packed: {
       cv::Scalar s;
@@ -186,4 +186,4 @@ void FrameCanvas::tintMask(const cv::Mat &mask, int step, const Rgb &colour) {
   }
 }
 
-}  // namespace colortrack
+}  // namespace colortrack_gst

@@ -10,7 +10,7 @@
 
 #include "colortrack/color.hpp"
 
-namespace colortrack {
+namespace colortrack_gst {
 
 struct Rgb {
   std::uint8_t r = 0, g = 0, b = 0;
@@ -64,4 +64,4 @@ class FrameCanvas {
   int packedBytes_ = 0, red_ = 0, green_ = 0, blue_ = 0, filler_ = -1;
 };
 
-}  // namespace colortrack
+}  // namespace colortrack_gst

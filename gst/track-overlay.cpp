@@ -38,15 +38,15 @@ void drawTracks(GstVideoFrame *frame, const colortrack::FrameReport &report, con
                 const OverlayParts &parts) {
   if (!parts.any()) return;
   using colortrack::TrackState;
-  namespace colors = colortrack::colors;
-  colortrack::FrameCanvas canvas(frame);
+  namespace colors = colortrack_gst::colors;
+  colortrack_gst::FrameCanvas canvas(frame);
   const cv::Size size(GST_VIDEO_FRAME_WIDTH(frame), GST_VIDEO_FRAME_HEIGHT(frame));
   if (parts.mask && !report.mask.empty()) canvas.tintMask(report.mask, report.maskStep, colors::kMagenta);
   if (parts.searchWindow && !report.searchRegion.empty())
     canvas.boxOutline(report.searchRegion, colors::kBlue, 1);
   const bool byId = report.listsTracks;
   for (const colortrack::TrackReport &t : report.tracks) {
-    const colortrack::Rgb idColour = colortrack::idColour(t.id);
+    const colortrack_gst::Rgb idColour = colortrack_gst::idColour(t.id);
     const std::deque<cv::Point2d> *trail = trails.of(t.id);
     if (parts.trail && trail && trail->size() >= 2) {
       std::vector<cv::Point> points;

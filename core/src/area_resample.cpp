@@ -31,21 +31,19 @@ void areaTaps(int inputs, int outputs, std::vector<Tap> &taps, std::vector<int> 
   first[outputs] = static_cast<int>(taps.size());
 }
 
-// Each output pixel of row sums `rows` (output rows, source columns x C values) from the source pixels its
-// column interval covers, rounded back to 8 bits. C is a template parameter so the channel loops unroll.
-template <int C>
-void shrinkColumns(const std::vector<float> &rows, int rowValues, const std::vector<Tap> &taps,
-                   const std::vector<int> &first, cv::Mat &out) {
-  for (int y = 0; y < out.rows; ++y) {
-    const float *sum = &rows[static_cast<size_t>(y) * rowValues];
-    uchar *o = out.ptr<uchar>(y);
-    for (int x = 0; x < out.cols; ++x) {
-      float value[C] = {};
-      for (int t = first[x]; t < first[x + 1]; ++t) {
-        const float *pixel = sum + taps[t].source * C;
-        for (int c = 0; c < C; ++c) value[c] += taps[t].weight * pixel[c];
-      }
-      for (int c = 0; c < C; ++c) o[x * C + c] = cv::saturate_cast<uchar>(value[c]);
+// Output row (or, on a transposed image, column) i as the weighted sum of the input rows its interval covers,
+// a whole row at a time so the compiler vectorises it. `In` is uchar for the source, float for row sums.
+template <typename In>
+void combineRows(const cv::Mat &input, const std::vector<Tap> &taps, const std::vector<int> &first,
+                 cv::Mat &output) {
+  const int values = input.cols * input.channels();
+  for (int i = 0; i + 1 < static_cast<int>(first.size()); ++i) {
+    float *sum = output.ptr<float>(i);
+    std::fill(sum, sum + values, 0.0f);
+    for (int t = first[i]; t < first[i + 1]; ++t) {
+      const In *in = input.ptr<In>(taps[t].source);
+      const float w = taps[t].weight;
+      for (int v = 0; v < values; ++v) sum[v] += w * in[v];
     }
   }
 }
@@ -55,40 +53,26 @@ void shrinkColumns(const std::vector<float> &rows, int rowValues, const std::vec
 // Written here rather than calling cv::resize(INTER_AREA): for a ratio that is not a whole number OpenCV 4.6
 // takes a generic path that works one channel value at a time, and the fused method's window (typically
 // 1.2-2 source pixels per output pixel) cost a quarter of its frame there. Separable (rows, then columns),
-// with the row pass vectorised over whole rows, this is several times faster and gives the same averages.
+// both passes vectorised over whole rows, this is several times faster and gives the same averages.
 void shrinkByArea(const cv::Mat &source, cv::Size size, cv::Mat &out) {
   CV_Assert(source.depth() == CV_8U && source.channels() <= 4 && size.width >= 1 && size.height >= 1 &&
             size.width <= source.cols && size.height <= source.rows);
-  const int channels = source.channels(), rowValues = source.cols * channels;
+  const int channels = source.channels();
   thread_local std::vector<Tap> rowTaps, columnTaps;
   thread_local std::vector<int> rowFirst, columnFirst;
-  thread_local std::vector<float> rows;
   areaTaps(source.rows, size.height, rowTaps, rowFirst);
   areaTaps(source.cols, size.width, columnTaps, columnFirst);
 
-  // Rows: output row y is the weighted sum of the source rows its interval covers, whole rows at a time
-  // (__restrict__: 8-bit pixels may otherwise alias the sums, which keeps the compiler from vectorising).
-  rows.assign(static_cast<size_t>(size.height) * rowValues, 0.0f);
-  for (int y = 0; y < size.height; ++y) {
-    float *__restrict__ sum = &rows[static_cast<size_t>(y) * rowValues];
-    for (int t = rowFirst[y]; t < rowFirst[y + 1]; ++t) {
-      const uchar *__restrict__ in = source.ptr<uchar>(rowTaps[t].source);
-      const float w = rowTaps[t].weight;
-      for (int v = 0; v < rowValues; ++v) sum[v] += w * in[v];
-    }
-  }
-
-  out.create(size, source.type());
-  switch (channels) {
-    case 1:
-      return shrinkColumns<1>(rows, rowValues, columnTaps, columnFirst, out);
-    case 2:
-      return shrinkColumns<2>(rows, rowValues, columnTaps, columnFirst, out);
-    case 3:
-      return shrinkColumns<3>(rows, rowValues, columnTaps, columnFirst, out);
-    default:
-      return shrinkColumns<4>(rows, rowValues, columnTaps, columnFirst, out);
-  }
+  // Rows, then columns as rows of the transposed row sums (pixels stay whole: CV_32FC(n) transposes by
+  // pixel). Each output value is sum_t weight_t * input_t in tap order, as OpenCV sums them.
+  thread_local cv::Mat rows, transposed, columns, result;
+  rows.create(size.height, source.cols, CV_32FC(channels));
+  combineRows<uchar>(source, rowTaps, rowFirst, rows);
+  cv::transpose(rows, transposed);
+  columns.create(size.width, size.height, CV_32FC(channels));
+  combineRows<float>(transposed, columnTaps, columnFirst, columns);
+  cv::transpose(columns, result);
+  result.convertTo(out, source.type());
 }
 
 }  // namespace colortrack

@@ -17,8 +17,10 @@ constexpr float kBinsPerDegree = kOrientations / 180.0f;
 const float kTextureScale = 1.0f / std::sqrt(2.0f * kOrientations);
 
 // One pixel's gradient vote: contrast-insensitive orientation (a and a + 180 degrees share a bin), the
-// magnitude shared linearly between the two nearest bins. `angle` in degrees, [0, 360).
-inline void vote(float magnitude, float angle, float *bins) {
+// magnitude shared linearly between the two nearest bins. `angle` in degrees, [0, 360). Each share is
+// computed in float whatever the bins hold (float cells, or the double running sums of the integral images).
+template <typename Bin>
+inline void vote(float magnitude, float angle, Bin *bins) {
   if (magnitude <= 0) return;
   if (angle >= 180) angle -= 180;
   const float position = angle * kBinsPerDegree - 0.5f;
@@ -45,28 +47,37 @@ void normaliseCells(const cv::Mat &hist, const cv::Mat &intensity, std::vector<c
   const int ch = intensity.rows, cw = intensity.cols;
   thread_local cv::Mat energy, inverseBlockNorm;
   energy.create(ch, cw, CV_32F);
-  for (int i = 0; i < ch * cw; ++i) {
-    const float *bins = hist.ptr<float>(i);
-    float e = 0;
-    for (int o = 0; o < kOrientations; ++o) e += bins[o] * bins[o];
-    energy.at<float>(i / cw, i % cw) = e;
+  for (int y = 0; y < ch; ++y) {
+    float *e = energy.ptr<float>(y);
+    for (int x = 0; x < cw; ++x) {
+      const float *bins = hist.ptr<float>(y * cw + x);
+      float sum = 0;
+      for (int o = 0; o < kOrientations; ++o) sum += bins[o] * bins[o];
+      e[x] = sum;
+    }
   }
-  auto energyAt = [&](int y, int x) {
-    return energy.at<float>(std::clamp(y, 0, ch - 1), std::clamp(x, 0, cw - 1));
-  };
-  // Block (by, bx) covers cells (by - 1 .. by, bx - 1 .. bx); each block's norm is shared by its four cells.
+  // Block (by, bx) covers cells (by - 1 .. by, bx - 1 .. bx), clamped to the grid; each block's norm is
+  // shared by its four cells.
   inverseBlockNorm.create(ch + 1, cw + 1, CV_32F);
-  for (int by = 0; by <= ch; ++by)
-    for (int bx = 0; bx <= cw; ++bx)
-      inverseBlockNorm.at<float>(by, bx) = 1.0f / std::sqrt(energyAt(by - 1, bx - 1) + energyAt(by - 1, bx) +
-                                                            energyAt(by, bx - 1) + energyAt(by, bx) + kEps);
+  for (int by = 0; by <= ch; ++by) {
+    const float *above = energy.ptr<float>(std::max(by - 1, 0)),
+                *below = energy.ptr<float>(std::min(by, ch - 1));
+    float *n = inverseBlockNorm.ptr<float>(by);
+    for (int bx = 0; bx <= cw; ++bx) {
+      const int left = std::max(bx - 1, 0), right = std::min(bx, cw - 1);
+      n[bx] = 1.0f / std::sqrt(above[left] + above[right] + below[left] + below[right] + kEps);
+    }
+  }
   channels.resize(kCellChannels);
   for (auto &c : channels) c.create(ch, cw, CV_32F);
-  for (int y = 0; y < ch; ++y)
+  float *out[kCellChannels];
+  for (int y = 0; y < ch; ++y) {
+    for (int c = 0; c < kCellChannels; ++c) out[c] = channels[c].ptr<float>(y);
+    const float *normsAbove = inverseBlockNorm.ptr<float>(y),
+                *normsBelow = inverseBlockNorm.ptr<float>(y + 1);
+    const float *mean = intensity.ptr<float>(y);
     for (int x = 0; x < cw; ++x) {
-      const float inverseNorm[4] = {inverseBlockNorm.at<float>(y, x), inverseBlockNorm.at<float>(y, x + 1),
-                                    inverseBlockNorm.at<float>(y + 1, x),
-                                    inverseBlockNorm.at<float>(y + 1, x + 1)};
+      const float inverseNorm[4] = {normsAbove[x], normsAbove[x + 1], normsBelow[x], normsBelow[x + 1]};
       const float *bins = hist.ptr<float>(y * cw + x);
       float texture[4] = {0, 0, 0, 0};
       for (int o = 0; o < kOrientations; ++o) {
@@ -76,11 +87,12 @@ void normaliseCells(const cv::Mat &hist, const cv::Mat &intensity, std::vector<c
           sum += v;
           texture[n] += v;
         }
-        channels[o].at<float>(y, x) = 0.5f * sum;
+        out[o][x] = 0.5f * sum;
       }
-      for (int n = 0; n < 4; ++n) channels[kOrientations + n].at<float>(y, x) = kTextureScale * texture[n];
-      channels[kOrientations + 4].at<float>(y, x) = intensity.at<float>(y, x) - 0.5f;
+      for (int n = 0; n < 4; ++n) out[kOrientations + n][x] = kTextureScale * texture[n];
+      out[kOrientations + 4][x] = mean[x] - 0.5f;
     }
+  }
 }
 
 }  // namespace
@@ -108,20 +120,19 @@ void CellFeatureIntegral::build(const cv::Mat &gray) {
   size_ = gray.size();
   thread_local cv::Mat magnitude, angle;
   orientedGradients(gray, magnitude, angle);
-  float votes[kPlanes];
   for (int y = 0; y < gray.rows; ++y) {
     const double *above = &sums_[static_cast<size_t>(y) * (gray.cols + 1) * stride];
     double *here = &sums_[static_cast<size_t>(y + 1) * (gray.cols + 1) * stride];
     const float *m = magnitude.ptr<float>(y), *a = angle.ptr<float>(y), *g = gray.ptr<float>(y);
     double rowSum[kPlanes] = {};
     for (int x = 0; x < gray.cols; ++x) {
-      std::fill(votes, votes + kPlanes, 0.0f);
-      vote(m[x], a[x], votes);
-      votes[kOrientations] = g[x];
-      for (int c = 0; c < kPlanes; ++c) {
-        rowSum[c] += votes[c];
-        here[(x + 1) * stride + c] = above[(x + 1) * stride + c] + rowSum[c];
-      }
+      // The pixel's two orientation votes go straight into the row's running sums (a vote of zero would not
+      // change them), then each plane's integral is the row above plus the running sum.
+      vote(m[x], a[x], rowSum);
+      rowSum[kOrientations] += g[x];
+      const double *up = above + (x + 1) * stride;
+      double *out = here + (x + 1) * stride;
+      for (int c = 0; c < kPlanes; ++c) out[c] = up[c] + rowSum[c];
     }
   }
 }
