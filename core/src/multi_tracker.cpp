@@ -176,39 +176,32 @@ TrackedObject MultiTracker::report(const Track &track) const {
   return o;
 }
 
-std::vector<TrackedObject> MultiTracker::update(const std::vector<Blob> &blobs, cv::Size frame, double dt) {
-  frame_ = frame;
-  for (Track &t : tracks_) {
-    predict(t, frame, dt);
-    t.measured = false;
-  }
+// Assigns the still-free blobs to the tracks that are (or are not yet) confirmed, by minimum total cost.
+void MultiTracker::associate(const std::vector<Blob> &blobs, bool confirmed,
+                             std::vector<int> &blobTrack) const {
+  std::vector<int> rows, cols;
+  for (int i = 0; i < static_cast<int>(tracks_.size()); ++i)
+    if (tracks_[i].confirmed == confirmed) rows.push_back(i);
+  for (int j = 0; j < static_cast<int>(blobs.size()); ++j)
+    if (blobTrack[j] < 0) cols.push_back(j);
+  if (rows.empty() || cols.empty()) return;
+  cv::Mat costs(static_cast<int>(rows.size()), static_cast<int>(cols.size()), CV_64FC1);
+  for (int r = 0; r < costs.rows; ++r)
+    for (int c = 0; c < costs.cols; ++c) costs.at<double>(r, c) = cost(tracks_[rows[r]], blobs[cols[c]]);
+  const std::vector<int> assignment = solveAssignment(costs);
+  for (int r = 0; r < costs.rows; ++r)
+    if (assignment[r] >= 0 && costs.at<double>(r, assignment[r]) < kForbidden)
+      blobTrack[cols[assignment[r]]] = rows[r];
+}
 
-  // Confirmed tracks choose first, so a noise blob next to a real object never steals it; tentative tracks
-  // get what is left; the rest start new tentative tracks.
-  std::vector<int> blobTrack(blobs.size(), -1);
-  const auto associate = [&](bool confirmed) {
-    std::vector<int> rows, cols;
-    for (int i = 0; i < static_cast<int>(tracks_.size()); ++i)
-      if (tracks_[i].confirmed == confirmed) rows.push_back(i);
-    for (int j = 0; j < static_cast<int>(blobs.size()); ++j)
-      if (blobTrack[j] < 0) cols.push_back(j);
-    if (rows.empty() || cols.empty()) return;
-    cv::Mat costs(static_cast<int>(rows.size()), static_cast<int>(cols.size()), CV_64FC1);
-    for (int r = 0; r < costs.rows; ++r)
-      for (int c = 0; c < costs.cols; ++c) costs.at<double>(r, c) = cost(tracks_[rows[r]], blobs[cols[c]]);
-    const std::vector<int> assignment = solveAssignment(costs);
-    for (int r = 0; r < costs.rows; ++r)
-      if (assignment[r] >= 0 && costs.at<double>(r, assignment[r]) < kForbidden)
-        blobTrack[cols[assignment[r]]] = rows[r];
-  };
-  associate(true);
-
-  // Two objects crossing make one blob whose centroid lies between them. Correcting the track it was given
-  // would drag that track towards the other object and swap ids when they part, so while a blob is much
-  // larger than its track and also lies in another reported track's gate, both tracks ride on their
-  // predictions.
-  // The merged objects are still seen, so these tracks coast without counting misses.
-  std::vector<char> merged(blobs.size(), 0), occluded(tracks_.size(), 0);
+// Two objects crossing make one blob whose centroid lies between them. Correcting the track it was given
+// would drag that track towards the other object and swap ids when they part, so while a blob is much larger
+// than its track and also lies in another reported track's gate, both tracks ride on their predictions. The
+// merged objects are still seen, so these tracks coast without counting misses.
+void MultiTracker::findMerges(const std::vector<Blob> &blobs, const std::vector<int> &blobTrack,
+                              std::vector<char> &merged, std::vector<char> &occluded) const {
+  merged.assign(blobs.size(), 0);
+  occluded.assign(tracks_.size(), 0);
   for (int j = 0; j < static_cast<int>(blobs.size()); ++j) {
     const int owner = blobTrack[j];
     if (owner < 0 || blobs[j].area < settings_.mergeAreaRatio * tracks_[owner].area) continue;
@@ -222,29 +215,62 @@ std::vector<TrackedObject> MultiTracker::update(const std::vector<Blob> &blobs, 
       }
     }
   }
-  associate(false);
+}
+
+void MultiTracker::correct(Track &t, const Blob &b) {
+  const double side = std::sqrt(static_cast<double>(b.box.area()));
+  t.filter.correct(b.centroid.x, b.centroid.y, side / t.referenceSide);
+  t.aspect += kAspectRate * (static_cast<double>(b.box.width) / std::max(1, b.box.height) - t.aspect);
+  t.area += kAreaRate * (b.area - t.area);
+  t.lastArea = b.area;
+  t.score = b.fill;
+  t.measured = true;
+  ++t.hits;
+  t.misses = 0;
+  if (!t.confirmed && t.hits >= settings_.confirmFrames) {
+    t.confirmed = true;
+    t.id = nextId_++;
+  }
+}
+
+void MultiTracker::startTrack(const Blob &b) {
+  Track t;
+  t.filter.setParams(settings_.kalman);
+  t.referenceSide = std::max(1.0, std::sqrt(static_cast<double>(b.box.area())));
+  t.filter.init(b.centroid.x, b.centroid.y, 1.0);
+  t.aspect = static_cast<double>(b.box.width) / std::max(1, b.box.height);
+  t.area = t.lastArea = b.area;
+  t.score = b.fill;
+  t.measured = true;
+  t.hits = 1;
+  if (settings_.confirmFrames <= 1) {
+    t.confirmed = true;
+    t.id = nextId_++;
+  }
+  tracks_.push_back(t);
+}
+
+std::vector<TrackedObject> MultiTracker::update(const std::vector<Blob> &blobs, cv::Size frame, double dt) {
+  frame_ = frame;
+  for (Track &t : tracks_) {
+    predict(t, frame, dt);
+    t.measured = false;
+  }
+
+  // Confirmed tracks choose first, so a noise blob next to a real object never steals it; tentative tracks
+  // get what is left; the rest start new tentative tracks.
+  std::vector<int> blobTrack(blobs.size(), -1);
+  associate(blobs, true, blobTrack);
+  std::vector<char> merged, occluded;
+  findMerges(blobs, blobTrack, merged, occluded);
+  associate(blobs, false, blobTrack);
 
   std::vector<char> used(blobs.size(), 0);
   for (int j = 0; j < static_cast<int>(blobs.size()); ++j) {
     const int owner = blobTrack[j];
     if (owner < 0) continue;
     used[j] = 1;
-    if (merged[j]) continue;  // the owner coasts, see above
-    Track &t = tracks_[owner];
-    const Blob &b = blobs[j];
-    const double side = std::sqrt(static_cast<double>(b.box.area()));
-    t.filter.correct(b.centroid.x, b.centroid.y, side / t.referenceSide);
-    t.aspect += kAspectRate * (static_cast<double>(b.box.width) / std::max(1, b.box.height) - t.aspect);
-    t.area += kAreaRate * (b.area - t.area);
-    t.lastArea = b.area;
-    t.score = b.fill;
-    t.measured = true;
-    ++t.hits;
-    t.misses = 0;
-    if (!t.confirmed && t.hits >= settings_.confirmFrames) {
-      t.confirmed = true;
-      t.id = nextId_++;
-    }
+    if (!merged[j]) correct(tracks_[owner], blobs[j]);  // a merged blob's owner coasts, see findMerges
   }
   for (int i = 0; i < static_cast<int>(tracks_.size()); ++i)
     if (!tracks_[i].measured && !occluded[i]) ++tracks_[i].misses;
@@ -255,25 +281,8 @@ std::vector<TrackedObject> MultiTracker::update(const std::vector<Blob> &blobs, 
                                  return t.confirmed ? t.misses > settings_.maxCoastFrames : t.misses > 0;
                                }),
                 tracks_.end());
-
-  for (int j = 0; j < static_cast<int>(blobs.size()); ++j) {
-    if (used[j]) continue;
-    const Blob &b = blobs[j];
-    Track t;
-    t.filter.setParams(settings_.kalman);
-    t.referenceSide = std::max(1.0, std::sqrt(static_cast<double>(b.box.area())));
-    t.filter.init(b.centroid.x, b.centroid.y, 1.0);
-    t.aspect = static_cast<double>(b.box.width) / std::max(1, b.box.height);
-    t.area = t.lastArea = b.area;
-    t.score = b.fill;
-    t.measured = true;
-    t.hits = 1;
-    if (settings_.confirmFrames <= 1) {
-      t.confirmed = true;
-      t.id = nextId_++;
-    }
-    tracks_.push_back(t);
-  }
+  for (int j = 0; j < static_cast<int>(blobs.size()); ++j)
+    if (!used[j]) startTrack(blobs[j]);
 
   std::vector<TrackedObject> out;
   for (const Track &t : tracks_)

@@ -73,6 +73,12 @@ class MultiTracker {
   double gateRadius(const Track &track) const;
   double cost(const Track &track, const Blob &blob) const;
   TrackedObject report(const Track &track) const;
+  // The steps of update().
+  void associate(const std::vector<Blob> &blobs, bool confirmed, std::vector<int> &blobTrack) const;
+  void findMerges(const std::vector<Blob> &blobs, const std::vector<int> &blobTrack,
+                  std::vector<char> &merged, std::vector<char> &occluded) const;
+  void correct(Track &track, const Blob &blob);
+  void startTrack(const Blob &blob);
 
   MultiTrackerSettings settings_;
   std::vector<Track> tracks_;
