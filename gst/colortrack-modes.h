@@ -31,6 +31,11 @@ bool loadTemplateFile(const std::string &path, cv::Mat &bgr, cv::Mat &mask, std:
 
 // --- Shared by both modes (colortrack-targets.cpp) ---
 
+// After new caps or the "reset" signal: the tracks and their trails are forgotten (the target stays).
+void resetIfRequested(GstColorTrack *self, colortrack::FrameTracker &tracker);
+// A right click: no target until a new one is given.
+void stopTracking(State &state, colortrack::FrameTracker &tracker);
+
 // The square of side `side` centred on `point`, clipped to the frame; empty when the point lies outside.
 cv::Rect boxAround(const cv::Point2d &point, int side, cv::Size frame);
 // "the click at x,y (box x,y,w,h)", for messages and the template's origin.

@@ -1,4 +1,5 @@
-// Where a target comes from, in either mode: the init-box and the click-to-track square.
+// What both modes do alike: where a target comes from (the init-box, the click-to-track square), a reset
+// and a stop.
 #include <cmath>
 #include <cstdio>
 
@@ -7,6 +8,20 @@
 #define GST_CAT_DEFAULT gst_color_track_debug
 
 namespace colortrack_gst {
+
+void resetIfRequested(GstColorTrack *self, colortrack::FrameTracker &tracker) {
+  State &state = self->priv->state;
+  if (!state.capsChanged && !self->priv->resetRequested.exchange(false)) return;
+  state.capsChanged = false;
+  tracker.reset();
+  state.trails.clear();
+}
+
+void stopTracking(State &state, colortrack::FrameTracker &tracker) {
+  tracker.reset();
+  state.trails.clear();
+  state.idle = true;
+}
 
 // Clipped rather than moved, so it stays centred on what was clicked, only smaller, near an edge. A click on
 // a sink's letterbox border lies outside the frame.

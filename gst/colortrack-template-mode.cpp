@@ -57,12 +57,7 @@ void reloadTemplate(GstColorTrack *self, State &state, const std::string &locati
 // does; a right click stops until a new target is given.
 void applyClick(GstColorTrack *self, State &state, const ClickRequest &click, int boxSize,
                 const colortrack_gst::FrameView &view) {
-  if (click.kind == ClickRequest::Kind::Stop) {
-    state.templateTracker->reset();
-    state.trails.clear();
-    state.idle = true;
-    return;
-  }
+  if (click.kind == ClickRequest::Kind::Stop) return stopTracking(state, *state.templateTracker);
   const cv::Rect box = boxAround(click.point, boxSize, view.size());
   if (box.empty()) {
     GST_INFO_OBJECT(self, "click at %.1f,%.1f lies outside the %dx%d frame: ignored", click.point.x,
@@ -89,11 +84,7 @@ bool prepareTemplateFrame(GstColorTrack *self, const Snapshot &snapshot, const R
     state.appliedTemplateGeneration = snapshot.templateGeneration;
     if (!snapshot.templateLocation.empty()) reloadTemplate(self, state, snapshot.templateLocation);
   }
-  if (state.capsChanged || self->priv->resetRequested.exchange(false)) {
-    state.capsChanged = false;
-    tracker.reset();
-    state.trails.clear();
-  }
+  resetIfRequested(self, tracker);
   if (requests.initBox) {
     const InitBoxFit fit =
         checkInitBox(self, *requests.initBox, view.size(), requests.initBoxWhileStreaming, snapshot.initBox);

@@ -49,12 +49,7 @@ void learnRange(GstColorTrack *self, const colortrack_gst::FrameView &view, cons
 // A left click learns the colour around it; a right click stops until a new target is given.
 void applyClick(GstColorTrack *self, State &state, const ClickRequest &click, int boxSize,
                 const colortrack_gst::FrameView &view) {
-  if (click.kind == ClickRequest::Kind::Stop) {
-    state.thresholdTracker->reset();
-    state.trails.clear();
-    state.idle = true;
-    return;
-  }
+  if (click.kind == ClickRequest::Kind::Stop) return stopTracking(state, *state.thresholdTracker);
   // The colour is sampled from the middle half of the box: a click lands near an object's centre, and a
   // sample that reached past a small object's edge would learn the background's colours too.
   const cv::Rect sample = boxAround(click.point, std::max(1, boxSize / 2), view.size());
@@ -90,11 +85,7 @@ bool prepareThresholdFrame(GstColorTrack *self, const Snapshot &snapshot, const 
     state.idle = false;  // a new range is a new target
   }
   tracker.setTrackSettings(multiTrackerSettings(snapshot));
-  if (state.capsChanged || self->priv->resetRequested.exchange(false)) {
-    state.capsChanged = false;
-    tracker.reset();
-    state.trails.clear();
-  }
+  resetIfRequested(self, tracker);
   if (requests.initBox) {
     const InitBoxFit fit =
         checkInitBox(self, *requests.initBox, size, requests.initBoxWhileStreaming, snapshot.initBox);
