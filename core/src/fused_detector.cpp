@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 
 namespace colortrack {
@@ -127,17 +128,22 @@ FusedDetector::Estimate FusedDetector::locate(const ImageSource &frame, cv::Poin
                                               const BinMapper &colors, const ColorLikelihood &likelihood,
                                               bool withScale) {
   windowFeatures(frame, centre, size);
-  cv::Mat response;
-  translation_.respond(channels_, response);
   // Normalised px per frame px, and where the window actually lies (its position snapped to whole pixels).
   const double zx = window_.width / windowRect_.width, zy = window_.height / windowRect_.height;
   const cv::Point2d windowCentre(windowRect_.x + windowRect_.width / 2,
                                  windowRect_.y + windowRect_.height / 2);
-  cv::Mat colour;
-  if (!likelihood.empty()) {
-    colourResponse(colors, likelihood, cv::Size2d(size.width * zx, size.height * zy), colour);
-    cv::addWeighted(response, 1 - kColourWeight, colour, kColourWeight, 0, response);
-  }
+  // The two cues read the same window and write nothing the other reads, so with a second core (OpenCV's
+  // thread pool) they run side by side; with one thread, one after the other. The result is the same.
+  cv::Mat response, colour;
+  cv::parallel_for_(cv::Range(0, 2), [&](const cv::Range &cues) {
+    for (int cue = cues.start; cue < cues.end; ++cue) {
+      if (cue == 0)
+        translation_.respond(channels_, response);
+      else if (!likelihood.empty())
+        colourResponse(colors, likelihood, cv::Size2d(size.width * zx, size.height * zy), colour);
+    }
+  });
+  if (!colour.empty()) cv::addWeighted(response, 1 - kColourWeight, colour, kColourWeight, 0, response);
   cv::Point peak;
   cv::minMaxLoc(response, nullptr, nullptr, nullptr, &peak);
   const cv::Point2d at = subCellPeak(response, peak);
