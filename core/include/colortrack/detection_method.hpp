@@ -39,7 +39,8 @@ class DetectionMethod {
   // start, lose it) and set the output's score and search region. The Tracker reports the track afterwards.
   virtual void process(const ImageSource &frame, double dt, TrackOutput &out) = 0;
   // The template or the colour model changed: drop whatever was learnt from the old one. (Tracker::reset()
-  // does not call the method: no method keeps anything a new search must not see.)
+  // leaves the method alone: it forgets the track, not the target; the fused method's re-detection after a
+  // reset still uses its filters.)
   virtual void forget() = 0;
 };
 
