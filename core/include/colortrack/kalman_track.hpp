@@ -1,0 +1,51 @@
+// The template tracker's one track: a Kalman filter on centre and scale, the box's aspect, the state and the
+// counters every detection method moves. Plain data with the steps all methods share.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include "colortrack/kalman.hpp"
+#include "colortrack/track.hpp"
+#include "colortrack/tracker.hpp"
+
+namespace colortrack {
+
+struct KalmanTrack {
+  KalmanFilter9 kalman;
+  TrackState state = TrackState::Searching;
+  int id = 0;
+  int coastFrames = 0;
+  int unverifiedFrames = 0;  // colour-only detections since the last verified one
+  int searchFrames = 0;      // frames searched since the track was lost (picks the scale to try)
+  double lastScale = 1.0;    // last measured scale
+  bool lastVerified = false;
+  double aspect = 1.0;    // (box width / height) / (template width / height)
+  cv::Size templateSize;  // boxes are measured relative to it
+
+  bool active() const { return state == TrackState::Tracking || state == TrackState::Coasting; }
+  // A box of `scale` at the current aspect.
+  cv::Size2d windowSize(double scale) const;
+  // The filtered box.
+  cv::Rect2d box() const;
+  // The search region around the prediction: the window grown by `margin` box sizes and by three standard
+  // deviations of the predicted position.
+  cv::Rect predictionRegion(double margin) const;
+
+  // A new template: shape and scale start from it.
+  void newTemplate(cv::Size size);
+  // Forgets the track (keeps the id count and the shape).
+  void reset(const KalmanParams &params);
+  // A new track at `box` (a new id).
+  void start(const cv::Rect2d &box, const KalmanParams &params);
+  // The track measured at `box`.
+  void update(const cv::Rect2d &box);
+  // A frame without detection: coasting, lost after `maxCoastFrames`.
+  void coast(int maxCoastFrames);
+  // The output's track fields: state, id, and box, scale and motion when there is a track.
+  void report(TrackOutput &out) const;
+
+ private:
+  void measureShape(const cv::Rect2d &box, double aspectRate);
+};
+
+}  // namespace colortrack

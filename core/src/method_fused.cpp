@@ -1,0 +1,241 @@
+// Method::Fused: the colour search (with the likelihood cue) until the first detection, then a correlation
+// filter over orientation cells fused with the colour likelihood (FusedDetector), judged by its
+// peak-to-sidelobe confidence against the track's usual one, with re-detection over the whole frame.
+#include <algorithm>
+#include <optional>
+#include <vector>
+
+#include "colortrack/box.hpp"
+#include "colortrack/color_search.hpp"
+#include "colortrack/fused_detector.hpp"
+#include "colortrack/method_discriminative.hpp"
+
+namespace colortrack {
+
+namespace {
+
+// The confidence is the fused response's peak-to-sidelobe ratio (PSR). A frame is a detection when its PSR is
+// at least kLostConfidence, at least kLostRatio of the track's usual PSR, and its colour cue at least
+// kLostColourRatio of the usual colour cue (a target that left takes its colours with it, while the shape
+// filter can still find some texture where it was); only detections are learnt from. The usual values are
+// running means (rate kConfidenceRate) over learnt frames, skipping the first kConfidenceSkip frames after
+// the filters start (they match their single training view unusually well), trusted after kConfidenceWarmUp
+// frames, and capped at kConfidentPsr (a video that starts with still frames would otherwise set the bar out
+// of reach once things move). Chosen on the tune half of ../shared/sequences (docs/benchmarks.md).
+constexpr double kLostConfidence = 4.0;
+constexpr double kLostRatio = 0.5;
+constexpr double kLostColourRatio = 0.5;
+constexpr double kConfidenceRate = 0.1;
+constexpr double kConfidentPsr = 12;
+constexpr int kConfidenceSkip = 2;
+constexpr int kConfidenceWarmUp = 5;
+// Re-detection, once coasting or lost: every kRedetectPeriod frames the kRedetectCandidates strongest places
+// of the colour likelihood over the whole frame and the last position are searched with both cues; the best
+// is taken when its PSR reaches kRedetectConfidence and kRedetectRatio of the usual, and its colour cue
+// kLostColourRatio of the usual.
+constexpr double kRedetectConfidence = 6.0;
+constexpr double kRedetectRatio = 0.6;
+constexpr int kRedetectPeriod = 3;
+constexpr int kRedetectCandidates = 4;
+
+class FusedMethod : public DetectionMethod {
+ public:
+  explicit FusedMethod(const MethodContext &context)
+      : context_(context), colourCue_(context), colourSearch_(context, colourCue_) {}
+
+  void start(const ImageSource &frame, const cv::Rect2d &box) override {
+    colourCue_.learn(frame, box);
+    startFilters(frame, box);
+  }
+  void process(const ImageSource &frame, double dt, TrackOutput &out) override;
+  // The filters were learnt from the old template or with the old colour model: the next detection of the
+  // colour search starts them again.
+  void forget() override { stopFilters(); }
+
+ private:
+  void follow(const ImageSource &frame, double dt, TrackOutput &out);
+  void acquire(const ImageSource &frame, TrackOutput &out);
+  void startFilters(const ImageSource &frame, const cv::Rect2d &box);
+  void stopFilters();
+  bool accepted(const FusedDetector::Estimate &e) const;
+  double relativeConfidence(double confidence) const;
+  double relativeColour(double colour) const;
+  void noteConfidence(const FusedDetector::Estimate &e);
+  cv::Size2d fitSize(cv::Size2d size, cv::Size frameSize) const;
+  Detection detectionOf(const ImageSource &frame, const FusedDetector::Estimate &e);
+  std::optional<FusedDetector::Estimate> redetect(const ImageSource &frame);
+
+  MethodContext context_;
+  LikelihoodCue colourCue_;
+  ColorSearch colourSearch_;
+
+  // The detector and where it last found the target.
+  FusedDetector fused_;
+  cv::Point2d centre_;
+  cv::Size2d size_;
+  cv::Size2d minSize_;          // the box never shrinks below this (8 px, or the start size if smaller)
+  double usualConfidence_ = 0;  // running mean of the confidence of learnt frames
+  int confidenceSamples_ = 0;   // how many frames the mean has seen
+  int framesLearnt_ = 0;        // since the filters started
+  int redetectAttempts_ = 0;    // since the last detection (picks the size to try)
+  double usualColour_ = 0;      // running mean of the colour cue at the peak of learnt frames
+};
+
+void FusedMethod::process(const ImageSource &frame, double dt, TrackOutput &out) {
+  if (fused_.started()) {
+    if (context_.track.active())
+      follow(frame, dt, out);
+    else
+      acquire(frame, out);
+    return;
+  }
+  colourSearch_.process(frame, dt, out);
+  // A template given as an image starts the filters on the colour search's first detection.
+  if (context_.track.state == TrackState::Tracking) startFilters(frame, context_.track.box());
+}
+
+// Tracking or coasting: the window at the last position, re-detection now and then while coasting.
+void FusedMethod::follow(const ImageSource &frame, double dt, TrackOutput &out) {
+  KalmanTrack &track = context_.track;
+  const cv::Rect frameRect(cv::Point(), frame.size());
+  track.kalman.predict(dt);
+  // Searched around the last measured position, not the Kalman prediction: the filter's window is wide
+  // enough for the motion between frames, and the prediction overshoots when the target stops or turns
+  // (tune half: 0.626 from the last position, 0.605 from the prediction).
+  const cv::Point2d centre = centre_;
+  FusedDetector::Estimate e =
+      fused_.locate(frame, centre, size_, context_.model.mapper(), context_.model.likelihood());
+  out.searchRegion = roundRect(centredBox(centre.x, centre.y, fused_.windowFor(size_))) & frameRect;
+  if (!accepted(e) && track.state == TrackState::Coasting && track.coastFrames % kRedetectPeriod == 0) {
+    if (const auto found = redetect(frame)) e = *found;
+    out.searchRegion = frameRect;
+  }
+  out.score = std::min(1.0, relativeConfidence(e.confidence));
+  if (!accepted(e)) {
+    track.coast(context_.settings.maxCoastFrames);
+    return;
+  }
+  e.size = fitSize(e.size, frame.size());
+  redetectAttempts_ = 0;
+  const Detection d = detectionOf(frame, e);
+  track.update(d.box);
+  track.lastVerified = d.verified;
+  centre_ = e.centre;
+  size_ = e.size;
+  noteConfidence(e);
+  fused_.learn(frame, e);
+  colourCue_.learn(frame, d.box);
+}
+
+// Searching: re-detection over the whole frame every kRedetectPeriod frames.
+void FusedMethod::acquire(const ImageSource &frame, TrackOutput &out) {
+  KalmanTrack &track = context_.track;
+  out.searchRegion = cv::Rect(cv::Point(), frame.size());
+  if (track.searchFrames++ % kRedetectPeriod != 0) return;
+  auto found = redetect(frame);
+  if (!found) return;
+  found->size = fitSize(found->size, frame.size());
+  const Detection d = detectionOf(frame, *found);
+  track.start(d.box, context_.settings.kalman);
+  track.lastVerified = d.verified;
+  centre_ = found->centre;
+  size_ = found->size;
+  redetectAttempts_ = 0;
+  out.score = std::min(1.0, relativeConfidence(found->confidence));
+}
+
+// Starts the filters on a detection (a box of at least a pixel).
+void FusedMethod::startFilters(const ImageSource &frame, const cv::Rect2d &box) {
+  const cv::Rect2d fitted(box.x, box.y, std::max(1.0, box.width), std::max(1.0, box.height));
+  stopFilters();
+  fused_.start(frame, fitted);
+  centre_ = cv::Point2d(fitted.x + fitted.width / 2, fitted.y + fitted.height / 2);
+  size_ = fitted.size();
+  minSize_ = cv::Size2d(std::min(8.0, size_.width), std::min(8.0, size_.height));
+}
+
+void FusedMethod::stopFilters() {
+  fused_.stop();
+  usualConfidence_ = 0;
+  confidenceSamples_ = 0;
+  framesLearnt_ = 0;
+  usualColour_ = 0;
+  redetectAttempts_ = 0;
+}
+
+bool FusedMethod::accepted(const FusedDetector::Estimate &e) const {
+  return e.confidence >= kLostConfidence && relativeConfidence(e.confidence) >= kLostRatio &&
+         relativeColour(e.colourPeak) >= kLostColourRatio;
+}
+
+// A frame's confidence relative to the track's usual one. Until that is known, relative to the lowest usual
+// PSR a detection could have, so that the same 0.5 separates detections from the rest.
+double FusedMethod::relativeConfidence(double confidence) const {
+  return confidenceSamples_ >= kConfidenceWarmUp ? confidence / std::min(usualConfidence_, kConfidentPsr)
+                                                 : confidence * kLostRatio / kLostConfidence;
+}
+
+double FusedMethod::relativeColour(double colour) const {
+  return confidenceSamples_ >= kConfidenceWarmUp && usualColour_ > 0 ? colour / usualColour_ : 1.0;
+}
+
+void FusedMethod::noteConfidence(const FusedDetector::Estimate &e) {
+  // The first frames after the filters start match their single training view unusually well.
+  if (++framesLearnt_ <= kConfidenceSkip) return;
+  ++confidenceSamples_;
+  const double rate = std::max(kConfidenceRate, 1.0 / confidenceSamples_);
+  usualConfidence_ = (1 - rate) * usualConfidence_ + rate * e.confidence;
+  usualColour_ = (1 - rate) * usualColour_ + rate * e.colourPeak;
+}
+
+// A size kept between the minimum and the frame.
+cv::Size2d FusedMethod::fitSize(cv::Size2d size, cv::Size frameSize) const {
+  return cv::Size2d(
+      std::clamp(size.width, std::min(minSize_.width, double(frameSize.width)), double(frameSize.width)),
+      std::clamp(size.height, std::min(minSize_.height, double(frameSize.height)), double(frameSize.height)));
+}
+
+// An estimate as a detection: the box, its confidence as the score, the edge check.
+Detection FusedMethod::detectionOf(const ImageSource &frame, const FusedDetector::Estimate &e) {
+  Detection d;
+  d.box = centredBox(e.centre.x, e.centre.y, e.size);
+  d.score = e.confidence;
+  d.verified =
+      context_.model.verify(frame, roundRect(d.box) & cv::Rect(cv::Point(), frame.size()), context_.settings);
+  return d;
+}
+
+// The best re-detection over the whole frame (colour candidates and the last position, each searched with
+// both cues), if it is confident enough.
+std::optional<FusedDetector::Estimate> FusedMethod::redetect(const ImageSource &frame) {
+  const BinMapper &mapper = context_.model.mapper();
+  const ColorLikelihood &likelihood = context_.model.likelihood();
+  // The target may come back at another size: each attempt tries the next size of a short list (the last
+  // one first), as the colour search does.
+  const double factor = kSearchScales[redetectAttempts_++ % kSearchScaleCount];
+  const cv::Size2d size = fitSize(size_ * factor, frame.size());
+  std::vector<cv::Point2d> candidates =
+      fused_.colourCandidates(frame, size, mapper, likelihood, kRedetectCandidates);
+  candidates.push_back(centre_);
+  std::optional<FusedDetector::Estimate> best;
+  for (const cv::Point2d &c : candidates) {
+    const FusedDetector::Estimate e = fused_.locate(frame, c, size, mapper, likelihood, false);
+    if (!best || e.confidence > best->confidence) best = e;
+  }
+  // The filter's window tapers towards its edges: judge the best candidate again with the window centred
+  // where it was found.
+  if (best) best = fused_.locate(frame, best->centre, size, mapper, likelihood, false);
+  if (!best || best->confidence < kRedetectConfidence ||
+      relativeConfidence(best->confidence) < kRedetectRatio ||
+      relativeColour(best->colourPeak) < kLostColourRatio)
+    return std::nullopt;
+  return best;
+}
+
+}  // namespace
+
+std::unique_ptr<DetectionMethod> makeFusedMethod(const MethodContext &context) {
+  return std::make_unique<FusedMethod>(context);
+}
+
+}  // namespace colortrack
