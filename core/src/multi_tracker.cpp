@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace colortrack {
 
@@ -13,6 +14,8 @@ constexpr double kForbidden = 1e9;
 // How fast the box's aspect ratio follows the blobs (the Kalman state has one size, not two).
 constexpr double kAspectRate = 0.3;
 constexpr double kAreaRate = 0.5;
+// How far (px per frame) from where it left an object may come back in and still be taken for the same.
+constexpr double kExitDrift = 2.0;
 
 }  // namespace
 
@@ -27,6 +30,8 @@ struct MultiTracker::Track {
   double lastArea = 0;
   double score = 0;
   int hits = 0, misses = 0;
+  bool left = false;               // coasting, and its prediction has left the frame
+  std::optional<int> returningId;  // the id of the track whose object this one seems to be, back in the frame
 
   double side() const { return filter.scale() * referenceSide; }
   cv::Size2d size() const {
@@ -119,19 +124,17 @@ void MultiTracker::setSettings(const MultiTrackerSettings &settings) {
 
 void MultiTracker::reset() {
   tracks_.clear();
+  exits_.clear();
 }
 
 void MultiTracker::predict(Track &track, cv::Size frame, double dt) const {
   // A track not measured last frame (coasting or merged) keeps velocity and size but no acceleration.
   if (!track.measured) track.filter.holdForCoasting();
   track.filter.predict(dt);
-  // An object that left the frame is most likely to come back where it left: a coasting track whose
-  // prediction runs out of the frame waits at the border instead (position clamped, velocity dropped).
-  if (!track.measured) {
-    const double x = track.filter.x(), y = track.filter.y();
-    const double cx = std::clamp(x, 0.0, frame.width - 1.0), cy = std::clamp(y, 0.0, frame.height - 1.0);
-    if (cx != x || cy != y) track.filter.init(cx, cy, track.filter.scale());
-  }
+  // A coasting track whose prediction runs out of the frame has followed its object out: it ends (see
+  // update()) rather than waiting at the border, where it would grab the next object to come in.
+  const double x = track.filter.x(), y = track.filter.y();
+  track.left = !track.measured && (x < 0 || y < 0 || x >= frame.width || y >= frame.height);
 }
 
 double MultiTracker::gateRadius(const Track &track) const {
@@ -142,6 +145,11 @@ double MultiTracker::gateRadius(const Track &track) const {
          settings_.coastGrowth * halfDiagonal * track.misses;
 }
 
+bool MultiTracker::touchesBorder(const Blob &blob) const {
+  return blob.box.x <= 0 || blob.box.y <= 0 || blob.box.x + blob.box.width >= frame_.width ||
+         blob.box.y + blob.box.height >= frame_.height;
+}
+
 double MultiTracker::cost(const Track &track, const Blob &blob) const {
   const double gate = gateRadius(track);
   const double distance = std::hypot(blob.centroid.x - track.filter.x(), blob.centroid.y - track.filter.y());
@@ -149,9 +157,7 @@ double MultiTracker::cost(const Track &track, const Blob &blob) const {
   const double ratio = std::max(blob.area, 1.0) / std::max(track.area, 1.0);
   const double logLimit = std::log(std::max(settings_.maxAreaRatio, 1.0001));
   // A blob cut by the frame's edge (an object leaving or coming back) may be any amount smaller.
-  const bool clipped = blob.box.x <= 0 || blob.box.y <= 0 || blob.box.x + blob.box.width >= frame_.width ||
-                       blob.box.y + blob.box.height >= frame_.height;
-  const double logRatio = clipped && ratio < 1 ? 0.0 : std::abs(std::log(ratio));
+  const double logRatio = touchesBorder(blob) && ratio < 1 ? 0.0 : std::abs(std::log(ratio));
   if (logRatio > logLimit) return kForbidden;
   // Distance dominates; size breaks ties between blobs at similar distances.
   const double d = distance / gate, a = logRatio / logLimit;
@@ -227,10 +233,35 @@ void MultiTracker::correct(Track &t, const Blob &b) {
   t.measured = true;
   ++t.hits;
   t.misses = 0;
-  if (!t.confirmed && t.hits >= settings_.confirmFrames) {
-    t.confirmed = true;
-    t.id = nextId_++;
+  if (!t.confirmed && t.hits >= settings_.confirmFrames) confirm(t);
+}
+
+// A new blob may be an object that left the frame a moment ago (no more than maxCoastFrames, the time a track
+// may go unseen), coming back in where it left and about its size: it is given that track's id when it is
+// confirmed. Otherwise it gets a new id.
+std::optional<int> MultiTracker::returningId(const Blob &blob) {
+  auto best = exits_.end();
+  double bestDistance = 0;
+  for (auto e = exits_.begin(); e != exits_.end(); ++e) {
+    // Coming in, the object is cut by the frame's edge: it may be any amount smaller, not larger.
+    const double ratio = blob.area / std::max(1.0, e->area);
+    const double distance = cv::norm(blob.centroid - e->position);
+    if ((ratio < 0.5 && !touchesBorder(blob)) || ratio > 2.0 || distance > 2 * e->side + kExitDrift * e->age)
+      continue;
+    if (best == exits_.end() || distance < bestDistance) {
+      best = e;
+      bestDistance = distance;
+    }
   }
+  if (best == exits_.end()) return std::nullopt;
+  const int id = best->id;
+  exits_.erase(best);
+  return id;
+}
+
+void MultiTracker::confirm(Track &t) {
+  t.confirmed = true;
+  t.id = t.returningId ? *t.returningId : nextId_++;
 }
 
 void MultiTracker::startTrack(const Blob &b) {
@@ -243,11 +274,9 @@ void MultiTracker::startTrack(const Blob &b) {
   t.score = b.fill;
   t.measured = true;
   t.hits = 1;
-  if (settings_.confirmFrames <= 1) {
-    t.confirmed = true;
-    t.id = nextId_++;
-  }
+  t.returningId = returningId(b);
   tracks_.push_back(t);
+  if (settings_.confirmFrames <= 1) confirm(tracks_.back());
 }
 
 std::vector<TrackedObject> MultiTracker::update(const std::vector<Blob> &blobs, cv::Size frame, double dt) {
@@ -275,10 +304,19 @@ std::vector<TrackedObject> MultiTracker::update(const std::vector<Blob> &blobs, 
   for (int i = 0; i < static_cast<int>(tracks_.size()); ++i)
     if (!tracks_[i].measured && !occluded[i]) ++tracks_[i].misses;
 
-  // Tentative tracks must be seen every frame; reported ones may coast for maxCoastFrames.
+  // Tentative tracks must be seen every frame; reported ones may coast for maxCoastFrames, and end when their
+  // prediction leaves the frame (remembered for a while, in case the object comes back where it left).
+  for (Exit &e : exits_) ++e.age;
+  exits_.erase(std::remove_if(exits_.begin(), exits_.end(),
+                              [&](const Exit &e) { return e.age > settings_.maxCoastFrames; }),
+               exits_.end());
+  for (const Track &t : tracks_)
+    if (t.confirmed && t.left && t.misses <= settings_.maxCoastFrames)
+      exits_.push_back(Exit{t.id, cv::Point2d(t.filter.x(), t.filter.y()), t.area, t.side(), 0});
   tracks_.erase(std::remove_if(tracks_.begin(), tracks_.end(),
                                [&](const Track &t) {
-                                 return t.confirmed ? t.misses > settings_.maxCoastFrames : t.misses > 0;
+                                 return t.left ||
+                                        (t.confirmed ? t.misses > settings_.maxCoastFrames : t.misses > 0);
                                }),
                 tracks_.end());
   for (int j = 0; j < static_cast<int>(blobs.size()); ++j)

@@ -1,5 +1,7 @@
 #include "colortrack/threshold_tracker.hpp"
 
+#include <algorithm>
+
 namespace colortrack {
 
 namespace {
@@ -29,8 +31,18 @@ FrameReport ThresholdTracker::track(const ImageSource &frame, double dt) {
   const std::vector<TrackedObject> objects = tracks_.update(blobs, frame.size(), dt);
   FrameReport report;
   report.listsTracks = true;
-  for (const TrackedObject &o : objects) report.tracks.push_back(reportOf(o));
-  const int primary = primaryIndex(objects);
+  // Reported as they lie in the frame: a box clipped to the frame, and only where at least min-area pixels
+  // of it remain (a track running out of the frame is not reported as a sliver on the edge).
+  const cv::Rect2d frameRect(cv::Point2d(), cv::Size2d(frame.size()));
+  const double minArea = std::max(1, detector_.settings().minArea);
+  std::vector<TrackedObject> shown;
+  for (TrackedObject o : objects) {
+    o.box &= frameRect;
+    if (o.box.area() < minArea) continue;
+    shown.push_back(o);
+    report.tracks.push_back(reportOf(o));
+  }
+  const int primary = primaryIndex(shown);
   if (primary >= 0) report.primary = report.tracks[primary];
   report.mask = detector_.mask();
   report.maskStep = detector_.lastDecimation();

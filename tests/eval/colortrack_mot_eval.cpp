@@ -33,7 +33,7 @@ SceneResult runScene(const MotScene &scene, const std::string &framesOut) {
   std::ofstream csv;
   if (!framesOut.empty()) {
     csv.open(framesOut + "/" + scene.name + ".csv");
-    csv << "frame,id,x,y,w,h,state\n";
+    csv << "frame,kind,id,x,y,w,h,state\n";
   }
   for (int i = 0; i < scene.frames; ++i) {
     MotFrame f;
@@ -45,8 +45,16 @@ SceneResult runScene(const MotScene &scene, const std::string &framesOut) {
       if (t.box.area() < minArea) ++r.tooSmall;
       f.tracks.push_back({t.id, t.box});
       if (csv)
-        csv << i << "," << t.id << "," << t.box.x << "," << t.box.y << "," << t.box.width << ","
+        csv << i << ",track," << t.id << "," << t.box.x << "," << t.box.y << "," << t.box.width << ","
             << t.box.height << "," << toString(t.state) << "\n";
+    }
+    if (csv) {
+      for (const MotBox &g : f.truth)
+        csv << i << ",truth," << g.id << "," << g.box.x << "," << g.box.y << "," << g.box.width << ","
+            << g.box.height << ",\n";
+      for (const MotBox &g : f.ignored)
+        csv << i << ",ignored," << g.id << "," << g.box.x << "," << g.box.y << "," << g.box.width << ","
+            << g.box.height << ",\n";
     }
     frames.push_back(f);
   }

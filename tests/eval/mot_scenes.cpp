@@ -28,13 +28,14 @@ MotScene makeScene(std::string name, balls::BallSceneConfig config, std::vector<
 MotScene crossing() {
   balls::BallSceneConfig config;
   config.seed = 11;
-  MotScene s = makeScene("crossing", config,
-                         {ball(kRed, 42, {{0, {120, 240}}, {240, {520, 240}}}),
-                          ball(kRed, 14, {{0, {520, 200}}, {240, {120, 280}}}),
-                          ball(kRed, 24, {{0, {320, 60}}, {240, {320, 420}}}),
-                          ball(kRed, 24, {{0, {80, 420}}, {240, {560, 60}}})},
-                         {true, true, true, true});
-  return s;
+  // A small ball passes over a big one (frame 120, middle of the frame); two equal balls cross earlier,
+  // higher up (frame 60).
+  return makeScene("crossing", config,
+                   {ball(kRed, 42, {{0, {100, 320}}, {240, {540, 320}}}),
+                    ball(kRed, 14, {{0, {540, 305}}, {240, {100, 305}}}),
+                    ball(kRed, 24, {{0, {320, -20}}, {120, {320, 240}}}),
+                    ball(kRed, 24, {{0, {180, 40}}, {120, {460, 180}}})},
+                   {true, true, true, true});
 }
 
 MotScene eightAtRandom() {

@@ -2,6 +2,7 @@
 // ids through crossings and short disappearances.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -72,6 +73,7 @@ class MultiTracker {
   void predict(Track &track, cv::Size frame, double dt) const;
   double gateRadius(const Track &track) const;
   double cost(const Track &track, const Blob &blob) const;
+  bool touchesBorder(const Blob &blob) const;
   TrackedObject report(const Track &track) const;
   // The steps of update().
   void associate(const std::vector<Blob> &blobs, bool confirmed, std::vector<int> &blobTrack) const;
@@ -79,9 +81,20 @@ class MultiTracker {
                   std::vector<char> &merged, std::vector<char> &occluded) const;
   void correct(Track &track, const Blob &blob);
   void startTrack(const Blob &blob);
+  void confirm(Track &track);
+  std::optional<int> returningId(const Blob &blob);
+
+  // A confirmed track that followed its object out of the frame.
+  struct Exit {
+    int id;
+    cv::Point2d position;  // where its prediction left the frame
+    double area, side;
+    int age;  // frames since
+  };
 
   MultiTrackerSettings settings_;
   std::vector<Track> tracks_;
+  std::vector<Exit> exits_;
   cv::Size frame_;
   int nextId_ = 1;
 };
