@@ -11,7 +11,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "gst-test-util.hpp"
+#include "gst_test_util.hpp"
 #include "scene.hpp"
 
 #include <glib/gstdio.h>

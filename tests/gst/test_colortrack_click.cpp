@@ -13,7 +13,7 @@
 #include <opencv2/core.hpp>
 
 #include "balls.hpp"
-#include "gst-test-util.hpp"
+#include "gst_test_util.hpp"
 #include "scene.hpp"
 
 #include <gst/check/gstcheck.h>

@@ -8,7 +8,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "gst-test-util.hpp"
+#include "gst_test_util.hpp"
 #include "scene.hpp"
 
 #include <glib/gstdio.h>

@@ -9,7 +9,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "gst-test-util.hpp"
+#include "gst_test_util.hpp"
 #include "scene.hpp"
 
 #include <gst/check/gstcheck.h>

@@ -12,7 +12,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "balls.hpp"
-#include "gst-test-util.hpp"
+#include "gst_test_util.hpp"
 
 #include <gst/app/gstappsink.h>
 #include <gst/app/gstappsrc.h>

@@ -14,7 +14,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "gst-test-util.hpp"
+#include "gst_test_util.hpp"
 #include "robot_sim.hpp"
 
 #include <gst/app/gstappsrc.h>

@@ -18,7 +18,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "gst-test-util.hpp"
+#include "gst_test_util.hpp"
 
 #include <glib/gstdio.h>
 #include <gst/app/gstappsrc.h>
