@@ -23,7 +23,7 @@ using colortrack::scene::Scene;
 using colortrack::scene::SceneConfig;
 using colortrack::scene::SceneFrame;
 
-using namespace colortrack::testutil;
+using namespace colortrack::gst_test_util;
 
 struct FormatCase {
   const char *format;

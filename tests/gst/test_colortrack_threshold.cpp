@@ -26,7 +26,7 @@ using colortrack::balls::Ball;
 using colortrack::balls::BallScene;
 using colortrack::balls::BallSceneConfig;
 using colortrack::balls::BallTruth;
-using namespace colortrack::testutil;
+using namespace colortrack::gst_test_util;
 
 // A BGR frame as a buffer of `format` (BGR or I420) with GStreamer's strides and frame `index`'s timestamps.
 GstBuffer *frameBuffer(const cv::Mat &bgr, int index, GstVideoFormat format = GST_VIDEO_FORMAT_BGR) {
