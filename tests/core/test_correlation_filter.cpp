@@ -204,7 +204,7 @@ TEST(FusedDetector, RecoversKnownShiftAndScale) {
   const cv::Mat image = texture(cv::Size(320, 240), 7);
   const cv::Rect2d box(130, 90, 60, 50);
   const cv::Point2d centre(box.x + box.width / 2, box.y + box.height / 2);
-  const BinMapper colors(ColorSpace::Hsv, BinLayout());
+  const BinMapper colours(ColorSpace::Hsv, BinLayout());
   const ColorLikelihood noColour;
   struct Case {
     double dx, dy, scale;
@@ -214,10 +214,10 @@ TEST(FusedDetector, RecoversKnownShiftAndScale) {
     FusedDetector detector;
     detector.start(MatImageSource(image), box);
     const cv::Mat moved = warped(image, centre, c.scale, c.dx, c.dy);
-    FusedDetector::Estimate e = detector.locate(MatImageSource(moved), centre, box.size(), colors, noColour);
+    FusedDetector::Estimate e = detector.locate(MatImageSource(moved), centre, box.size(), colours, noColour);
     // The scale filter measures at most one step of its range per frame; a second frame at the new place
     // refines it, as in tracking.
-    e = detector.locate(MatImageSource(moved), e.centre, e.size, colors, noColour);
+    e = detector.locate(MatImageSource(moved), e.centre, e.size, colours, noColour);
     const double error = std::hypot(e.centre.x - (centre.x + c.dx), e.centre.y - (centre.y + c.dy));
     const double scale = std::sqrt(e.size.area() / box.area());
     std::printf("shift (%.2f, %.2f) scale %.2f: position error %.2f px, scale %.3f, confidence %.1f\n", c.dx,
@@ -234,15 +234,16 @@ TEST(FusedDetector, ConfidenceFallsWhenTheTargetIsGone) {
   const cv::Point2d centre(box.x + box.width / 2, box.y + box.height / 2);
   FusedDetector detector;
   detector.start(MatImageSource(image), box);
-  const BinMapper colors(ColorSpace::Hsv, BinLayout());
+  const BinMapper colours(ColorSpace::Hsv, BinLayout());
   const ColorLikelihood noColour;
   // The target a little moved, resized and darker, with sensor noise: a normal next frame.
   cv::Mat next = warped(image, centre, 1.03, 2.5, -1.5) * 0.9, noise(image.size(), CV_8UC3);
   cv::RNG(11).fill(noise, cv::RNG::UNIFORM, 0, 12);
   next += noise;
-  const double seen = detector.locate(MatImageSource(next), centre, box.size(), colors, noColour).confidence;
+  const double seen = detector.locate(MatImageSource(next), centre, box.size(), colours, noColour).confidence;
   const cv::Mat other = texture(cv::Size(320, 240), 99);  // another texture where the target was
-  const double gone = detector.locate(MatImageSource(other), centre, box.size(), colors, noColour).confidence;
+  const double gone =
+      detector.locate(MatImageSource(other), centre, box.size(), colours, noColour).confidence;
   std::printf("confidence with the target %.1f, without %.1f\n", seen, gone);
   // The tracker stops trusting a frame whose confidence is under half its usual one.
   EXPECT_LT(gone, 0.5 * seen);

@@ -11,7 +11,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "gst-test-util.hpp"
+#include "gst_test_util.hpp"
 #include "scene.hpp"
 
 #include <glib/gstdio.h>
@@ -26,7 +26,7 @@ using colortrack::scene::Scene;
 using colortrack::scene::SceneConfig;
 using colortrack::scene::SceneFrame;
 
-using namespace colortrack::testutil;
+using namespace colortrack::gst_test_util;
 
 // The colortrack ROI meta of a buffer, read back.
 struct TrackMeta {

@@ -13,7 +13,7 @@
 #include <opencv2/core.hpp>
 
 #include "balls.hpp"
-#include "gst-test-util.hpp"
+#include "gst_test_util.hpp"
 #include "scene.hpp"
 
 #include <gst/check/gstcheck.h>
@@ -28,7 +28,7 @@ using colortrack::balls::BallScene;
 using colortrack::balls::BallSceneConfig;
 using colortrack::scene::Scene;
 using colortrack::scene::SceneConfig;
-using namespace colortrack::testutil;
+using namespace colortrack::gst_test_util;
 
 const cv::Size kFrame(640, 480);
 const cv::Size kWindow(320, 240);  // what the sink shows: videoscale halves the frame

@@ -8,7 +8,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "gst-test-util.hpp"
+#include "gst_test_util.hpp"
 #include "scene.hpp"
 
 #include <glib/gstdio.h>
@@ -22,7 +22,7 @@ namespace {
 using colortrack::scene::iou;
 using colortrack::scene::Scene;
 using colortrack::scene::SceneConfig;
-using namespace colortrack::testutil;
+using namespace colortrack::gst_test_util;
 
 // How a run ended, and the warnings on the way.
 using Outcome = BusOutcome;
@@ -74,7 +74,7 @@ class Pipeline {
     return waitForEnd();
   }
 
-  Outcome waitForEnd() { return colortrack::testutil::waitForEnd(bus_); }
+  Outcome waitForEnd() { return colortrack::gst_test_util::waitForEnd(bus_); }
 
   // Output buffers so far (new references).
   std::vector<GstBuffer *> outputs() {

@@ -9,7 +9,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "gst-test-util.hpp"
+#include "gst_test_util.hpp"
 #include "scene.hpp"
 
 #include <gst/check/gstcheck.h>
@@ -23,7 +23,7 @@ using colortrack::scene::Scene;
 using colortrack::scene::SceneConfig;
 using colortrack::scene::SceneFrame;
 
-using namespace colortrack::testutil;
+using namespace colortrack::gst_test_util;
 
 struct FormatCase {
   const char *format;

@@ -12,7 +12,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "balls.hpp"
-#include "gst-test-util.hpp"
+#include "gst_test_util.hpp"
 
 #include <gst/app/gstappsink.h>
 #include <gst/app/gstappsrc.h>
@@ -26,7 +26,7 @@ using colortrack::balls::Ball;
 using colortrack::balls::BallScene;
 using colortrack::balls::BallSceneConfig;
 using colortrack::balls::BallTruth;
-using namespace colortrack::testutil;
+using namespace colortrack::gst_test_util;
 
 // A BGR frame as a buffer of `format` (BGR or I420) with GStreamer's strides and frame `index`'s timestamps.
 GstBuffer *frameBuffer(const cv::Mat &bgr, int index, GstVideoFormat format = GST_VIDEO_FORMAT_BGR) {

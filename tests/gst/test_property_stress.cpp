@@ -10,7 +10,7 @@
 #include <opencv2/core.hpp>
 
 #include "balls.hpp"
-#include "gst-test-util.hpp"
+#include "gst_test_util.hpp"
 #include "scene.hpp"
 
 #include <glib/gstdio.h>
@@ -20,7 +20,7 @@
 
 namespace {
 
-using namespace colortrack::testutil;
+using namespace colortrack::gst_test_util;
 using Clock = std::chrono::steady_clock;
 
 // Long enough for thousands of flips across many frames, short enough to keep the binary near 10 s.

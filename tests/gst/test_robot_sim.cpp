@@ -14,7 +14,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "gst-test-util.hpp"
+#include "gst_test_util.hpp"
 #include "robot_sim.hpp"
 
 #include <gst/app/gstappsrc.h>
@@ -23,14 +23,14 @@
 
 namespace {
 
-using colortrack::sim::CommandDecoder;
-using colortrack::sim::Pose;
-using colortrack::sim::RobotSim;
-using colortrack::sim::RobotSimConfig;
-using colortrack::sim::WheelCommand;
-using colortrack::testutil::bgrBuffer;
-using colortrack::testutil::kFps;
-using colortrack::testutil::waitForCommandOf;
+using colortrack::gst_test_util::bgrBuffer;
+using colortrack::gst_test_util::kFps;
+using colortrack::gst_test_util::waitForCommandOf;
+using colortrack::robot_sim::CommandDecoder;
+using colortrack::robot_sim::Pose;
+using colortrack::robot_sim::RobotSim;
+using colortrack::robot_sim::RobotSimConfig;
+using colortrack::robot_sim::WheelCommand;
 
 constexpr double kSetPoint = 0.3;
 constexpr guint kLostTimeoutMs = 500;

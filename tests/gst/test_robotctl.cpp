@@ -18,7 +18,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "gst-test-util.hpp"
+#include "gst_test_util.hpp"
 
 #include <glib/gstdio.h>
 #include <gst/app/gstappsrc.h>
@@ -30,7 +30,7 @@ namespace {
 
 using Bytes = std::vector<std::uint8_t>;
 using Clock = std::chrono::steady_clock;
-using colortrack::testutil::waitForCommandOf;
+using colortrack::gst_test_util::waitForCommandOf;
 constexpr int kWidth = 320, kHeight = 240, kFps = 30;
 
 struct Pty {

@@ -14,7 +14,7 @@
 #include <gst/check/gstharness.h>
 #include <gst/video/video.h>
 
-namespace colortrack::testutil {
+namespace colortrack::gst_test_util {
 
 // Every test stream runs at this frame rate (timestamps and caps agree on it).
 constexpr int kFps = 30;
@@ -191,4 +191,4 @@ inline void preloadPlugins(std::initializer_list<const char *> plugins) {
   }
 }
 
-}  // namespace colortrack::testutil
+}  // namespace colortrack::gst_test_util

@@ -9,7 +9,7 @@
 
 #include <opencv2/core.hpp>
 
-namespace colortrack::sim {
+namespace colortrack::robot_sim {
 
 struct RobotSimConfig {
   cv::Size frameSize{320, 240};
@@ -78,4 +78,4 @@ class CommandDecoder {
   int rejected_ = 0;
 };
 
-}  // namespace colortrack::sim
+}  // namespace colortrack::robot_sim

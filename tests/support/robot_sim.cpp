@@ -5,7 +5,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-namespace colortrack::sim {
+namespace colortrack::robot_sim {
 
 RobotSim::RobotSim(const RobotSimConfig &config, const Pose &start)
     : config_(config),
@@ -179,4 +179,4 @@ std::vector<WheelCommand> CommandDecoder::feed(const std::uint8_t *data, std::si
   return out;
 }
 
-}  // namespace colortrack::sim
+}  // namespace colortrack::robot_sim
