@@ -93,6 +93,25 @@ colortrack::SampledFrame FrameView::channels(cv::Mat & /*scratch*/) const {
 
 void FrameView::bgr(const cv::Rect &rect, cv::Mat &out) const {
   CV_Assert((rect & cv::Rect(cv::Point(), size_)) == rect && !rect.empty());
+  // The tracker reads several regions of one frame, most of them inside the first (the search window): those
+  // are cut from its conversion. Each pixel converts on its own (chroma is shared by whole 2x2 or 2x1
+  // blocks, and the conversions keep block alignment), so a cut is exactly what converting it would give.
+  {
+    const std::lock_guard<std::mutex> lock(cacheMutex_);
+    if ((rect & cachedRect_) == rect) {
+      cached_(rect - cachedRect_.tl()).copyTo(out);
+      return;
+    }
+  }
+  convert(rect, out);
+  const std::lock_guard<std::mutex> lock(cacheMutex_);
+  if (rect.area() > cachedRect_.area()) {
+    out.copyTo(cached_);
+    cachedRect_ = rect;
+  }
+}
+
+void FrameView::convert(const cv::Rect &rect, cv::Mat &out) const {
   switch (format_) {
     case GST_VIDEO_FORMAT_I420:
     case GST_VIDEO_FORMAT_NV12:

@@ -1,6 +1,8 @@
 // Read access to a mapped GstVideoFrame for the tracker: converts only the rectangles the tracker asks for.
 #pragma once
 
+#include <mutex>
+
 #include <gst/video/video.h>
 
 #include <opencv2/core.hpp>
@@ -48,6 +50,7 @@ class FrameView : public colortrack::ImageSource {
   colortrack::SampledFrame channels(cv::Mat &scratch) const override;
 
  private:
+  void convert(const cv::Rect &rect, cv::Mat &out) const;
   void packedToBgr(const cv::Rect &rect, cv::Mat &out) const;
   void planarToBgr(const cv::Rect &rect, cv::Mat &out) const;  // I420 and NV12
   void yuy2ToBgr(const cv::Rect &rect, cv::Mat &out) const;
@@ -57,6 +60,10 @@ class FrameView : public colortrack::ImageSource {
   GstVideoFormat format_;
   cv::Size size_;
   PackedLayout packed_;
+  // The largest region converted so far, for the regions inside it (the tracker may read from two threads).
+  mutable std::mutex cacheMutex_;
+  mutable cv::Rect cachedRect_;
+  mutable cv::Mat cached_;
 };
 
 }  // namespace colortrack_gst

@@ -14,6 +14,9 @@ constexpr double kForbidden = 1e9;
 // How fast the box's aspect ratio follows the blobs (the Kalman state has one size, not two).
 constexpr double kAspectRate = 0.3;
 constexpr double kAreaRate = 0.5;
+// Frames a track may ride inside another object's blob without counting misses: long enough for one object
+// to pass over another, not so long that a track whose object has gone lives on inside a neighbour.
+constexpr int kMaxMergedFrames = 40;
 // How far (px per frame) from where it left an object may come back in and still be taken for the same.
 constexpr double kExitDrift = 2.0;
 
@@ -30,6 +33,7 @@ struct MultiTracker::Track {
   double lastArea = 0;
   double score = 0;
   int hits = 0, misses = 0;
+  int mergedFrames = 0;            // frames coasted inside a merged blob since last measured
   bool left = false;               // coasting, and its prediction has left the frame
   std::optional<int> returningId;  // the id of the track whose object this one seems to be, back in the frame
 
@@ -200,24 +204,30 @@ void MultiTracker::associate(const std::vector<Blob> &blobs, bool confirmed,
       blobTrack[cols[assignment[r]]] = rows[r];
 }
 
-// Two objects crossing make one blob whose centroid lies between them. Correcting the track it was given
-// would drag that track towards the other object and swap ids when they part, so while a blob is much larger
-// than its track and also lies in another reported track's gate, both tracks ride on their predictions. The
-// merged objects are still seen, so these tracks coast without counting misses.
+// Two objects crossing make one blob. When the blob is much larger than the track it was given (two objects
+// of similar size), its centroid lies between them: correcting that track would drag it towards the other
+// object and swap ids when they part, so both tracks ride on their predictions. When a small object passes
+// over a large one, the blob is the large one's and corrects it, and the small one's track, whose prediction
+// lies inside the blob, rides on its prediction. Either way the objects are still seen, so these tracks
+// coast without counting misses (for a while: see kMaxMergedFrames).
 void MultiTracker::findMerges(const std::vector<Blob> &blobs, const std::vector<int> &blobTrack,
                               std::vector<char> &merged, std::vector<char> &occluded) const {
   merged.assign(blobs.size(), 0);
   occluded.assign(tracks_.size(), 0);
   for (int j = 0; j < static_cast<int>(blobs.size()); ++j) {
     const int owner = blobTrack[j];
-    if (owner < 0 || blobs[j].area < settings_.mergeAreaRatio * tracks_[owner].area) continue;
+    if (owner < 0) continue;
+    const bool muchLarger = blobs[j].area >= settings_.mergeAreaRatio * tracks_[owner].area;
+    const cv::Rect2d blobBox(blobs[j].box);
     for (int i = 0; i < static_cast<int>(tracks_.size()); ++i) {
       if (i == owner || !tracks_[i].confirmed) continue;
       if (std::find(blobTrack.begin(), blobTrack.end(), i) != blobTrack.end()) continue;  // has its own blob
-      if (std::hypot(blobs[j].centroid.x - tracks_[i].filter.x(),
-                     blobs[j].centroid.y - tracks_[i].filter.y()) < gateRadius(tracks_[i])) {
+      const cv::Point2d predicted(tracks_[i].filter.x(), tracks_[i].filter.y());
+      if (muchLarger && cv::norm(blobs[j].centroid - predicted) < gateRadius(tracks_[i])) {
         merged[j] = 1;
         occluded[owner] = occluded[i] = 1;
+      } else if (blobBox.contains(predicted)) {
+        occluded[i] = 1;
       }
     }
   }
@@ -233,6 +243,7 @@ void MultiTracker::correct(Track &t, const Blob &b) {
   t.measured = true;
   ++t.hits;
   t.misses = 0;
+  t.mergedFrames = 0;
   if (!t.confirmed && t.hits >= settings_.confirmFrames) confirm(t);
 }
 
@@ -302,7 +313,8 @@ std::vector<TrackedObject> MultiTracker::update(const std::vector<Blob> &blobs, 
     if (!merged[j]) correct(tracks_[owner], blobs[j]);  // a merged blob's owner coasts, see findMerges
   }
   for (int i = 0; i < static_cast<int>(tracks_.size()); ++i)
-    if (!tracks_[i].measured && !occluded[i]) ++tracks_[i].misses;
+    if (!tracks_[i].measured && !(occluded[i] && ++tracks_[i].mergedFrames <= kMaxMergedFrames))
+      ++tracks_[i].misses;
 
   // Tentative tracks must be seen every frame; reported ones may coast for maxCoastFrames, and end when their
   // prediction leaves the frame (remembered for a while, in case the object comes back where it left).
