@@ -235,6 +235,7 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
 
   try {
     state = State{};
+    colortrack::startWorkerThreads();  // here rather than on the first frame
     state.templateTracker = std::make_unique<colortrack::Tracker>(snapshot.tracker);
     state.appliedTrackerGeneration = snapshot.trackerGeneration;
     state.appliedTemplateGeneration = snapshot.templateGeneration;

@@ -1,7 +1,9 @@
 #include "colortrack/tracker.hpp"
 
+#include <algorithm>
 #include <string>
 
+#include <opencv2/core/utility.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -130,6 +132,10 @@ FrameReport Tracker::track(const ImageSource &frame, double dt) {
   if (out.hasBox) report.tracks.push_back(r);
   report.searchRegion = out.searchRegion;
   return report;
+}
+
+void startWorkerThreads() {
+  cv::parallel_for_(cv::Range(0, std::max(1, cv::getNumThreads())), [](const cv::Range &) {});
 }
 
 void loadTemplate(const std::string &path, cv::Mat &bgr, cv::Mat &mask) {

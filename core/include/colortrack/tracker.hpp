@@ -116,4 +116,8 @@ class Tracker : public FrameTracker {
 // Throws TrackerError naming the file when it cannot be read.
 void loadTemplate(const std::string &path, cv::Mat &bgr, cv::Mat &mask);
 
+// Starts OpenCV's worker threads now. The first parallel loop of a process starts them, which costs a few
+// milliseconds: called before streaming, that cost is not paid on the first frame.
+void startWorkerThreads();
+
 }  // namespace colortrack
