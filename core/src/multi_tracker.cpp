@@ -14,6 +14,8 @@ constexpr double kForbidden = 1e9;
 // How fast the box's aspect ratio follows the blobs (the Kalman state has one size, not two).
 constexpr double kAspectRate = 0.3;
 constexpr double kAreaRate = 0.5;
+// For this many frames after its object was last seen, a track may also take a blob near where it was seen.
+constexpr int kLastSeenFrames = 2;
 // Frames a track may ride inside another object's blob without counting misses: long enough for one object
 // to pass over another, not so long that a track whose object has gone lives on inside a neighbour.
 constexpr int kMaxMergedFrames = 40;
@@ -33,6 +35,7 @@ struct MultiTracker::Track {
   double lastArea = 0;
   double score = 0;
   int hits = 0, misses = 0;
+  cv::Point2d lastSeen;            // the centroid of the last blob that fed the track
   int mergedFrames = 0;            // frames coasted inside a merged blob since last measured
   bool left = false;               // coasting, and its prediction has left the frame
   std::optional<int> returningId;  // the id of the track whose object this one seems to be, back in the frame
@@ -133,7 +136,9 @@ void MultiTracker::reset() {
 
 void MultiTracker::predict(Track &track, cv::Size frame, double dt) const {
   // A track not measured last frame (coasting or merged) keeps velocity and size but no acceleration.
-  if (!track.measured) track.filter.holdForCoasting();
+  if (!track.measured) {
+    track.filter.holdForCoasting();
+  }
   track.filter.predict(dt);
   // A coasting track whose prediction runs out of the frame has followed its object out: it ends (see
   // update()) rather than waiting at the border, where it would grab the next object to come in.
@@ -156,7 +161,11 @@ bool MultiTracker::touchesBorder(const Blob &blob) const {
 
 double MultiTracker::cost(const Track &track, const Blob &blob) const {
   const double gate = gateRadius(track);
-  const double distance = std::hypot(blob.centroid.x - track.filter.x(), blob.centroid.y - track.filter.y());
+  // From the prediction, or, for a track seen a moment ago on its own, from where it was seen: an object that
+  // stopped or turned back is near there while the prediction runs on.
+  double distance = std::hypot(blob.centroid.x - track.filter.x(), blob.centroid.y - track.filter.y());
+  if (track.misses <= kLastSeenFrames && track.mergedFrames == 0)
+    distance = std::min(distance, cv::norm(blob.centroid - track.lastSeen));
   if (distance > gate) return kForbidden;
   const double ratio = std::max(blob.area, 1.0) / std::max(track.area, 1.0);
   const double logLimit = std::log(std::max(settings_.maxAreaRatio, 1.0001));
@@ -236,6 +245,7 @@ void MultiTracker::findMerges(const std::vector<Blob> &blobs, const std::vector<
 void MultiTracker::correct(Track &t, const Blob &b) {
   const double side = std::sqrt(static_cast<double>(b.box.area()));
   t.filter.correct(b.centroid.x, b.centroid.y, side / t.referenceSide);
+  t.lastSeen = b.centroid;
   t.aspect += kAspectRate * (static_cast<double>(b.box.width) / std::max(1, b.box.height) - t.aspect);
   t.area += kAreaRate * (b.area - t.area);
   t.lastArea = b.area;
@@ -280,6 +290,7 @@ void MultiTracker::startTrack(const Blob &b) {
   t.filter.setParams(settings_.kalman);
   t.referenceSide = std::max(1.0, std::sqrt(static_cast<double>(b.box.area())));
   t.filter.init(b.centroid.x, b.centroid.y, 1.0);
+  t.lastSeen = b.centroid;
   t.aspect = static_cast<double>(b.box.width) / std::max(1, b.box.height);
   t.area = t.lastArea = b.area;
   t.score = b.fill;

@@ -123,6 +123,11 @@ cv::Mat MotScene::render(int index, MotFrame &truth, double minVisibleFraction, 
         ++total;
         const cv::Point p(x, y);
         if (!frameRect.contains(p) || board.contains(p)) continue;
+        // Balls are drawn in order: a later one covers this one.
+        bool covered = false;
+        for (size_t j = i + 1; j < balls.size() && !covered; ++j)
+          covered = std::hypot(x + 0.5 - balls[j].centre.x, y + 0.5 - balls[j].centre.y) <= balls[j].radius;
+        if (covered) continue;
         ++visible;
         x0 = std::min(x0, x);
         y0 = std::min(y0, y);

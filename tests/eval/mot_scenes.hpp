@@ -24,7 +24,8 @@ struct MotScene {
   int frames = 240;
 
   // Frame `index` with its ground truth: targets at least `minVisibleFraction` visible and `minArea` pixels
-  // in `truth` (box: their visible pixels), the other targets in `ignored` when any part of them lies in the
+  // in `truth` (box: their visible pixels, not behind the board, the frame's edge or a ball drawn over them),
+  // the other targets in `ignored` when any part of them lies in the
   // frame (a box there is neither right nor wrong).
   cv::Mat render(int index, MotFrame &truth, double minVisibleFraction = 0.25, int minArea = 50) const;
 };
