@@ -2,11 +2,15 @@
 // the scenes of mot_scenes.hpp, scored with CLEAR-MOT and IDF1 (IoU >= 0.3). Also counts reported boxes that
 // break the element's promises: outside the frame, or smaller than min-area allows.
 //
-//   colortrack-mot-eval [--frames-out DIR]
+//   colortrack-mot-eval [--frames-out DIR] [--min-mota X] [--min-idf1 X]
 //
-// Prints one row per scene and the mean; --frames-out writes each scene's per-frame tracks as CSV.
+// Prints one row per scene and the mean; --frames-out writes each scene's per-frame tracks and ground truth
+// as CSV. With --min-mota / --min-idf1 (the test suite's regression guard) it exits 1 when a mean falls
+// below them or when any reported box lies outside the frame or under min-area.
 
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -66,12 +70,20 @@ SceneResult runScene(const MotScene &scene, const std::string &framesOut) {
 
 int main(int argc, char **argv) {
   std::string framesOut;
+  double minMota = 0, minIdf1 = 0;
+  bool guard = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--frames-out" && i + 1 < argc) {
       framesOut = argv[++i];
+    } else if (arg == "--min-mota" && i + 1 < argc) {
+      minMota = std::atof(argv[++i]);
+      guard = true;
+    } else if (arg == "--min-idf1" && i + 1 < argc) {
+      minIdf1 = std::atof(argv[++i]);
+      guard = true;
     } else {
-      std::fprintf(stderr, "usage: %s [--frames-out DIR]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--frames-out DIR] [--min-mota X] [--min-idf1 X]\n", argv[0]);
       return 2;
     }
   }
@@ -97,5 +109,12 @@ int main(int argc, char **argv) {
   std::printf(
       "%-18s %6.3f %6.3f   (worst scene: MOTA %.3f, IDF1 %.3f; boxes outside the frame %d, too small %d)\n",
       "mean", mota / n, idf1 / n, worstMota, worstIdf1, outside, small);
+  if (guard && (mota / n < minMota || idf1 / n < minIdf1 || outside > 0 || small > 0)) {
+    std::fprintf(stderr,
+                 "FAIL: mean MOTA %.3f (at least %.3f), IDF1 %.3f (at least %.3f), %d boxes outside the "
+                 "frame, %d under min-area (none allowed)\n",
+                 mota / n, minMota, idf1 / n, minIdf1, outside, small);
+    return 1;
+  }
   return 0;
 }
