@@ -2,39 +2,15 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <string_view>
 
 #include <opencv2/imgproc.hpp>
 
 namespace colortrack {
 
 namespace {
-
-std::string_view trimmed(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
-  return s;
-}
-
-// Locale independent (an application's locale may use a decimal comma).
-bool parseDouble(std::string_view field, double &value) {
-  field = trimmed(field);
-  if (field.empty()) return false;
-  const char *end = field.data() + field.size();
-  const auto [ptr, ec] = std::from_chars(field.data(), end, value);
-  return ec == std::errc() && ptr == end && std::isfinite(value);
-}
-
-std::string formatNumber(double value) {
-  std::array<char, 32> buffer{};
-  const auto result =
-      std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::general, 4);
-  return std::string(buffer.data(), result.ptr);
-}
 
 // HSV of a colour given as doubles in [0, 255] (LUT cell centres fall between 8-bit values). Not rgbToHsv():
 // the hue is rounded differently ((60 * x) / d against 60 * (x / d)), and merging the two would move hues on
@@ -72,32 +48,6 @@ bool HsvRange::contains(const Hsv &hsv) const {
   if (upper.h - lower.h >= 360.0) return true;
   if (lower.h <= upper.h) return hsv.h >= lower.h && hsv.h <= upper.h;
   return hsv.h >= lower.h || hsv.h <= upper.h;  // wraps through 0
-}
-
-std::optional<Hsv> parseHsv(const std::string &text, std::string *error) {
-  const auto fail = [&](const std::string &message) -> std::optional<Hsv> {
-    if (error) *error = message;
-    return std::nullopt;
-  };
-  std::array<double, 3> values{};
-  std::string_view rest = text;
-  for (int i = 0; i < 3; ++i) {
-    const auto comma = rest.find(',');
-    if ((i < 2) != (comma != std::string_view::npos) || !parseDouble(rest.substr(0, comma), values[i]))
-      return fail("expected \"h,s,v\" (h in degrees 0-360, s and v 0-1), got \"" + text + "\"");
-    rest.remove_prefix(comma == std::string_view::npos ? rest.size() : comma + 1);
-  }
-  if (values[0] < 0 || values[0] > 360)
-    return fail("hue must be 0-360 degrees, got " + formatNumber(values[0]) + " in \"" + text + "\"");
-  if (values[1] < 0 || values[1] > 1)
-    return fail("saturation must be 0-1, got " + formatNumber(values[1]) + " in \"" + text + "\"");
-  if (values[2] < 0 || values[2] > 1)
-    return fail("value must be 0-1, got " + formatNumber(values[2]) + " in \"" + text + "\"");
-  return Hsv{values[0], values[1], values[2]};
-}
-
-std::string formatHsv(const Hsv &hsv) {
-  return formatNumber(hsv.h) + "," + formatNumber(hsv.s) + "," + formatNumber(hsv.v);
 }
 
 std::string validateRange(const HsvRange &range) {

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <charconv>
+#include <cmath>
 #include <limits>
 #include <string_view>
 #include <vector>
@@ -116,6 +117,34 @@ std::string formatWeights(const ChannelWeights &weights) {
 std::string formatBox(const cv::Rect &box) {
   return std::to_string(box.x) + "," + std::to_string(box.y) + "," + std::to_string(box.width) + "," +
          std::to_string(box.height);
+}
+
+std::string formatNumber(double value) {
+  std::array<char, 32> buffer{};
+  const auto result =
+      std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::general, 4);
+  return std::string(buffer.data(), result.ptr);
+}
+
+std::optional<Hsv> parseHsv(const std::string &text, std::string *error) {
+  const auto fields = splitFields(text);
+  std::array<double, 3> values{};
+  bool numbers = fields.size() == 3;
+  for (std::size_t i = 0; numbers && i < 3; ++i)
+    numbers = parseNumber(fields[i], values[i]) && std::isfinite(values[i]);
+  if (!numbers)
+    return fail(error, "expected \"h,s,v\" (h in degrees 0-360, s and v 0-1), got \"" + text + "\"");
+  if (values[0] < 0 || values[0] > 360)
+    return fail(error, "hue must be 0-360 degrees, got " + formatNumber(values[0]) + " in \"" + text + "\"");
+  if (values[1] < 0 || values[1] > 1)
+    return fail(error, "saturation must be 0-1, got " + formatNumber(values[1]) + " in \"" + text + "\"");
+  if (values[2] < 0 || values[2] > 1)
+    return fail(error, "value must be 0-1, got " + formatNumber(values[2]) + " in \"" + text + "\"");
+  return Hsv{values[0], values[1], values[2]};
+}
+
+std::string formatHsv(const Hsv &hsv) {
+  return formatNumber(hsv.h) + "," + formatNumber(hsv.s) + "," + formatNumber(hsv.v);
 }
 
 }  // namespace colortrack

@@ -13,6 +13,7 @@
 
 #include "colortrack/color.hpp"
 #include "colortrack/image_source.hpp"
+#include "colortrack/settings.hpp"  // parseHsv, formatHsv
 
 namespace colortrack {
 
@@ -26,9 +27,6 @@ struct HsvRange {
   bool wrapsHue() const { return lower.h > upper.h; }
 };
 
-// "h,s,v" with h in 0..360 and s, v in 0..1.
-std::optional<Hsv> parseHsv(const std::string &text, std::string *error = nullptr);
-std::string formatHsv(const Hsv &hsv);
 // Both ends together: s and v of `lower` must not exceed those of `upper` (hue may wrap). Empty when valid.
 std::string validateRange(const HsvRange &range);
 

@@ -19,8 +19,14 @@ std::optional<ChannelWeights> parseWeights(const std::string &text, std::string 
 // "x,y,w,h": integers, x,y >= 0, w,h > 0.
 std::optional<cv::Rect> parseBox(const std::string &text, std::string *error = nullptr);
 
+// "h,s,v" with h in 0..360 and s, v in 0..1 (threshold mode's hsv-lower / hsv-upper).
+std::optional<Hsv> parseHsv(const std::string &text, std::string *error = nullptr);
+
 std::string formatBins(const BinLayout &layout);
 std::string formatWeights(const ChannelWeights &weights);
 std::string formatBox(const cv::Rect &box);
+std::string formatHsv(const Hsv &hsv);
+// A number as short text (up to 4 significant digits), for settings and messages.
+std::string formatNumber(double value);
 
 }  // namespace colortrack
