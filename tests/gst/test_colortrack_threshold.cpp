@@ -3,6 +3,7 @@
 // under +-30% brightness, the mask overlay, and bad settings (clear errors; warnings and old values while
 // playing).
 // C++ headers first: gstcheck.h defines macros (fail, ...) that clash with names in the standard library.
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <string>
@@ -208,6 +209,59 @@ GST_START_TEST(test_three_balls_crossing_i420) {
 }
 GST_END_TEST;
 
+// Balls crossing, leaving and coming in at the frame's edges (issue 12): on every frame the bus message lists
+// exactly the tracks that have a ROI meta, with the same ids and boxes, and every box lies inside the frame.
+GST_START_TEST(test_meta_and_message_agree_through_exits) {
+  BallSceneConfig config;
+  config.clutterHueClearance = 0;
+  config.clutterSaturation = 0.35;
+  std::vector<Ball> balls(4);
+  balls[0].path = {{0, {40, 240}}, {60, {700, 240}}, {120, {300, 240}}};  // leaves right, comes back
+  balls[1].hue = 20;
+  balls[1].radius = 14;
+  balls[1].path = {{0, {600, 230}}, {120, {-40, 250}}};  // passes over ball 0, leaves left
+  balls[2].path = {{0, {320, -30}}, {120, {320, 520}}};  // enters at the top, leaves at the bottom
+  balls[3].radius = 30;
+  balls[3].path = {{0, {100, 400}}, {120, {560, 80}}};
+  const BallScene scene(config, balls);
+  const cv::Size size = config.frameSize;
+  Harness h("mode=threshold hsv-lower=345,0.5,0.25 hsv-upper=30,1,1 post-messages=true draw=0", size);
+  int compared = 0;
+  for (int i = 0; i < 120; ++i) {
+    GstBuffer *out = h.process(frameBuffer(scene.render(i), i));
+    const std::vector<ObjectMeta> metas = readMetas(out);
+    gst_buffer_unref(out);
+    GstMessage *msg = h.popTrackMessage();
+    fail_unless(msg != nullptr, "no message for frame %d", i);
+    const GValue *objects = gst_structure_get_value(gst_message_get_structure(msg), "objects");
+    fail_unless(objects != nullptr && GST_VALUE_HOLDS_LIST(objects));
+    const guint listed = gst_value_list_get_size(objects);
+    fail_unless_equals_int(listed, metas.size());
+    for (guint k = 0; k < listed; ++k) {
+      const GstStructure *o = gst_value_get_structure(gst_value_list_get_value(objects, k));
+      int id = 0;
+      double x = 0, y = 0, w = 0, h2 = 0;
+      fail_unless(gst_structure_get_int(o, "id", &id) && gst_structure_get_double(o, "x", &x) &&
+                  gst_structure_get_double(o, "y", &y) && gst_structure_get_double(o, "width", &w) &&
+                  gst_structure_get_double(o, "height", &h2));
+      const auto meta =
+          std::find_if(metas.begin(), metas.end(), [&](const ObjectMeta &m) { return m.id == id; });
+      fail_unless(meta != metas.end(), "frame %d: track %d in the message has no meta", i, id);
+      // The meta's box is the message's rounded to whole pixels.
+      fail_unless(std::abs(meta->box.x - x) <= 1 && std::abs(meta->box.y - y) <= 1 &&
+                      std::abs(meta->box.width - w) <= 1.5 && std::abs(meta->box.height - h2) <= 1.5,
+                  "frame %d: track %d meta %d,%d %dx%d, message %.1f,%.1f %.1fx%.1f", i, id, meta->box.x,
+                  meta->box.y, meta->box.width, meta->box.height, x, y, w, h2);
+      fail_unless(x >= 0 && y >= 0 && x + w <= size.width + 1e-6 && y + h2 <= size.height + 1e-6,
+                  "frame %d: track %d outside the frame", i, id);
+      ++compared;
+    }
+    gst_message_unref(msg);
+  }
+  fail_unless(compared > 200, "only %d tracks compared", compared);
+}
+GST_END_TEST;
+
 // init-box on the ball: the element learns a range (readable back from the properties, hue wrapping
 // through 0) that follows the ball while the scene gets 30% darker and brighter.
 GST_START_TEST(test_init_box_learns_range) {
@@ -377,6 +431,7 @@ static Suite *colortrack_threshold_suite(void) {
   suite_add_tcase(s, tc);
   tcase_add_test(tc, test_red_ball_meta_and_message);
   tcase_add_test(tc, test_three_balls_crossing_i420);
+  tcase_add_test(tc, test_meta_and_message_agree_through_exits);
   tcase_add_test(tc, test_init_box_learns_range);
   tcase_add_test(tc, test_mask_overlay);
   tcase_add_test(tc, test_bad_settings_are_clear_errors);
