@@ -132,16 +132,6 @@ struct Evaluation {
 // ---------------------------------------------------------------------------------------------------------
 // Small helpers
 
-std::string format(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
-std::string format(const char *fmt, ...) {
-  char buffer[1024];
-  va_list args;
-  va_start(args, fmt);
-  std::vsnprintf(buffer, sizeof buffer, fmt, args);
-  va_end(args);
-  return buffer;
-}
-
 std::string fpsText(double fps) {
   if (fps <= 0) return "-";
   return fps >= 100 ? format("%.0f", fps) : format("%.1f", fps);

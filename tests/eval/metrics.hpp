@@ -26,6 +26,9 @@ using GroundTruthBox = std::optional<cv::Rect2d>;
 bool parseGroundTruth(const std::string &text, double originOffset, std::vector<GroundTruthBox> &boxes,
                       std::string *error);
 
+// printf into a std::string (up to 1023 characters), for the tools' tables.
+std::string format(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
 // Intersection over union; 0 when either box is empty.
 double overlap(const cv::Rect2d &a, const cv::Rect2d &b);
 // Distance between the box centres.
