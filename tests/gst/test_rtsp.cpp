@@ -44,9 +44,6 @@ using colortrack::scene::SceneConfig;
 using Clock = std::chrono::steady_clock;
 
 constexpr int kFps = 30;
-// The scene holds still on frame 0 for this long after the server's first frame, so the client's first
-// frame is frame 0 and the init-box (frame 0's box) is exact.
-constexpr double kHoldSeconds = 0.75;
 constexpr int kCell = 8;  // one JPEG block: a flat block survives compression untouched
 constexpr int kIndexBits = 16, kCheckBits = 8;
 constexpr const char *kMount = "/scene";
@@ -92,10 +89,14 @@ gint64 monotonicNs() {
 // Server side (child process)
 
 // Pushes scene frames into the media's appsrc at kFps, the frame index following the wall clock from a
-// shared epoch, as a live camera would: after a restart the scene has moved on.
+// shared epoch, as a live camera would: after a restart the scene has moved on. Until the epoch is set the
+// scene holds still on frame 0; the first server sets it when the test says it has seen a frame ("GO" on the
+// server's stdin), so the client's first frame is frame 0 and the init-box (frame 0's box) is exact however
+// slowly the client connects.
 class SceneFeeder {
  public:
-  SceneFeeder(GstAppSrc *appsrc, gint64 &epochNs) : appsrc_(appsrc), epochNs_(epochNs) {
+  SceneFeeder(GstAppSrc *appsrc, gint64 &epochNs, const std::atomic<bool> &go)
+      : appsrc_(appsrc), epochNs_(epochNs), go_(go) {
     thread_ = std::thread([this] { run(); });
   }
   ~SceneFeeder() {
@@ -115,12 +116,12 @@ class SceneFeeder {
     while (!stop_) {
       const auto wakeUp = Clock::now() + std::chrono::nanoseconds(period);
       const gint64 now = monotonicNs();
-      if (epochNs_ == 0 && delivered) {
+      if (epochNs_ == 0 && go_) {
         epochNs_ = now;
         std::printf("EPOCH %" G_GINT64_FORMAT "\n", epochNs_);
         std::fflush(stdout);
       }
-      const double sinceEpoch = epochNs_ == 0 ? 0 : (now - epochNs_) / 1e9 - kHoldSeconds;
+      const double sinceEpoch = epochNs_ == 0 ? 0 : (now - epochNs_) / 1e9;
       const int index = sinceEpoch <= 0 ? 0 : static_cast<int>(sinceEpoch * kFps);
 
       cv::Mat bgr = scene.render(index).bgr;
@@ -143,12 +144,14 @@ class SceneFeeder {
 
   GstAppSrc *appsrc_;
   gint64 &epochNs_;
+  const std::atomic<bool> &go_;
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };
 
 struct ServerState {
   gint64 epochNs = 0;
+  std::atomic<bool> go{false};
   std::vector<std::unique_ptr<SceneFeeder>> feeders;
 };
 
@@ -157,12 +160,21 @@ void onMediaConfigure(GstRTSPMediaFactory *, GstRTSPMedia *media, gpointer data)
   GstElement *bin = gst_rtsp_media_get_element(media);
   GstElement *appsrc = gst_bin_get_by_name_recurse_up(GST_BIN(bin), "scene");
   gst_object_unref(bin);
-  state->feeders.push_back(std::make_unique<SceneFeeder>(GST_APP_SRC(appsrc), state->epochNs));
+  state->feeders.push_back(std::make_unique<SceneFeeder>(GST_APP_SRC(appsrc), state->epochNs, state->go));
 }
 
-// `--serve PORT EPOCH_NS`: PORT 0 takes an ephemeral port; EPOCH_NS 0 starts the scene clock at the first
-// frame delivered and prints it ("EPOCH n") so a restarted server can continue the same scene. Prints
-// "PORT n" once listening. Runs until killed.
+// Any line on stdin ("GO") starts the scene clock.
+gboolean onCommand(GIOChannel *channel, GIOCondition, gpointer data) {
+  gchar *line = nullptr;
+  const GIOStatus status = g_io_channel_read_line(channel, &line, nullptr, nullptr, nullptr);
+  g_free(line);
+  if (status == G_IO_STATUS_NORMAL) static_cast<ServerState *>(data)->go = true;
+  return status == G_IO_STATUS_NORMAL || status == G_IO_STATUS_AGAIN;
+}
+
+// `--serve PORT EPOCH_NS`: PORT 0 takes an ephemeral port; EPOCH_NS 0 holds frame 0 until a line on stdin,
+// then starts the scene clock and prints it ("EPOCH n") so a restarted server can continue the same scene.
+// Prints "PORT n" once listening. Runs until killed.
 int serve(int port, gint64 epochNs) {
   gst_init(nullptr, nullptr);
   ServerState state;
@@ -194,6 +206,8 @@ int serve(int port, gint64 epochNs) {
   }
   std::printf("PORT %d\n", gst_rtsp_server_get_bound_port(server));
   std::fflush(stdout);
+  GIOChannel *commands = g_io_channel_unix_new(STDIN_FILENO);
+  g_io_add_watch(commands, static_cast<GIOCondition>(G_IO_IN | G_IO_HUP), onCommand, &state);
   GMainLoop *loop = g_main_loop_new(nullptr, FALSE);
   g_main_loop_run(loop);  // until SIGKILL: the test simulates a crash, not a clean shutdown
   return 0;
@@ -215,7 +229,7 @@ class ServerProcess {
     auto dieWithParent = [](gpointer) { prctl(PR_SET_PDEATHSIG, SIGKILL); };
     const gboolean spawned =
         g_spawn_async_with_pipes(nullptr, argv, nullptr, G_SPAWN_DO_NOT_REAP_CHILD, dieWithParent, nullptr,
-                                 &pid_, nullptr, &stdout_, nullptr, &error);
+                                 &pid_, &stdin_, &stdout_, nullptr, &error);
     g_free(self);
     fail_unless(spawned, "cannot start the RTSP server process: %s", error ? error->message : "?");
   }
@@ -242,12 +256,20 @@ class ServerProcess {
     }
   }
 
+  // Sends one line to the server's stdin.
+  void send(const std::string &line) {
+    const std::string text = line + "\n";
+    fail_unless(::write(stdin_, text.data(), text.size()) == static_cast<ssize_t>(text.size()),
+                "cannot write to the RTSP server process");
+  }
+
   void kill() {
     if (pid_ <= 0) return;
     ::kill(pid_, SIGKILL);
     waitpid(pid_, nullptr, 0);
     g_spawn_close_pid(pid_);
     close(stdout_);
+    close(stdin_);
     pid_ = 0;
   }
 
@@ -261,7 +283,7 @@ class ServerProcess {
   }
 
   GPid pid_ = 0;
-  int stdout_ = -1;
+  int stdin_ = -1, stdout_ = -1;
   std::string pending_;
 };
 
@@ -539,6 +561,7 @@ GST_START_TEST(test_track_over_rtsp_and_survive_server_restart) {
   // Phase 1: connect, track for 3 s of motion.
   auto frames = [&] { return client.observations().size(); };
   fail_unless(client.runUntil([&] { return frames() > 0; }, 10.0), "no frame from %s", location.c_str());
+  server->send("GO");
   const gint64 epoch = server->read("EPOCH", 2000);
   fail_unless(epoch > 0, "the server did not report its scene clock");
   const double firstFrameAt = client.observations().front().seconds;
