@@ -1,0 +1,46 @@
+// Which of several tracked objects a robot follows, and keeping to it: once locked onto a track, robotctl
+// follows that track's id until the track is gone, instead of switching whenever another object becomes the
+// lowest id or the largest.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "colortrack/track.hpp"
+
+namespace colortrack {
+
+// How a new target is chosen when there is none (or the locked one is gone).
+enum class LockOn {
+  FirstConfirmed,  // the oldest track (lowest id): the object that was there first
+  Largest,         // the largest box
+  NearestCentre,   // the box whose centre is nearest the frame's centre
+};
+
+struct TargetCandidate {
+  int id = 0;
+  cv::Rect2d box;
+  TrackState state = TrackState::Tracking;
+};
+
+class TargetLock {
+ public:
+  explicit TargetLock(LockOn policy = LockOn::FirstConfirmed) : policy_(policy) {}
+  void setPolicy(LockOn policy) { policy_ = policy; }
+
+  // The index in `candidates` of the target to follow this frame, or -1 when there is none. `fixedId` >= 0
+  // follows that id only. Otherwise the locked id while it is among the candidates; when it is gone, a new
+  // lock by the policy. Candidates that are `lost` are never chosen.
+  int choose(const std::vector<TargetCandidate> &candidates, cv::Size frame, int fixedId = -1);
+
+  std::optional<int> locked() const { return locked_; }
+  void release() { locked_.reset(); }
+
+ private:
+  LockOn policy_;
+  std::optional<int> locked_;
+};
+
+}  // namespace colortrack

@@ -1,0 +1,52 @@
+// robotctl's choice of target among several tracks: each policy picks as it says, and a lock holds while its
+// track is there, whatever the other tracks do.
+#include <gtest/gtest.h>
+
+#include "colortrack/target_lock.hpp"
+
+using namespace colortrack;
+
+namespace {
+
+const cv::Size kFrame(640, 480);
+
+TargetCandidate candidate(int id, double x, double y, double side) {
+  return TargetCandidate{id, cv::Rect2d(x - side / 2, y - side / 2, side, side), TrackState::Tracking};
+}
+
+}  // namespace
+
+TEST(TargetLock, EachPolicyPicksItsTarget) {
+  const std::vector<TargetCandidate> tracks = {candidate(5, 100, 100, 20), candidate(3, 600, 400, 30),
+                                               candidate(8, 330, 250, 10)};
+  EXPECT_EQ(TargetLock(LockOn::FirstConfirmed).choose(tracks, kFrame), 1);  // id 3
+  EXPECT_EQ(TargetLock(LockOn::Largest).choose(tracks, kFrame), 1);         // side 30
+  EXPECT_EQ(TargetLock(LockOn::NearestCentre).choose(tracks, kFrame), 2);   // next to (320, 240)
+}
+
+TEST(TargetLock, HoldsTheLockedTrackUntilItIsGone) {
+  TargetLock lock(LockOn::Largest);
+  std::vector<TargetCandidate> tracks = {candidate(1, 100, 100, 40)};
+  ASSERT_EQ(lock.choose(tracks, kFrame), 0);
+  // A larger object appears, or passes in front: the lock stays on track 1.
+  tracks.push_back(candidate(2, 120, 110, 80));
+  EXPECT_EQ(lock.choose(tracks, kFrame), 0);
+  std::swap(tracks[0], tracks[1]);
+  EXPECT_EQ(lock.choose(tracks, kFrame), 1);
+  EXPECT_EQ(lock.locked(), 1);
+  // Coasting still counts; lost or gone does not, and a new lock is taken by the policy.
+  tracks[1].state = TrackState::Coasting;
+  EXPECT_EQ(lock.choose(tracks, kFrame), 1);
+  tracks[1].state = TrackState::Lost;
+  EXPECT_EQ(lock.choose(tracks, kFrame), 0);
+  EXPECT_EQ(lock.locked(), 2);
+  EXPECT_EQ(lock.choose({}, kFrame), -1);
+  EXPECT_FALSE(lock.locked().has_value());
+}
+
+TEST(TargetLock, AFixedIdIsFollowedAndNothingElse) {
+  TargetLock lock;
+  const std::vector<TargetCandidate> tracks = {candidate(1, 100, 100, 40), candidate(4, 300, 200, 40)};
+  EXPECT_EQ(lock.choose(tracks, kFrame, 4), 1);
+  EXPECT_EQ(lock.choose(tracks, kFrame, 7), -1);
+}
