@@ -3,8 +3,11 @@
  * @title: robotctl
  *
  * Drives a robot towards a tracked target. Each video buffer's #GstVideoRegionOfInterestMeta (by default
- * the "colortrack" ROI with the lowest id, see #GstRobotCtl:roi-type and #GstRobotCtl:target-id) gives where
- * the target is; a controller turns that into a drive command and the command goes out on a serial port
+ * the "colortrack" ROIs, see #GstRobotCtl:roi-type) gives where the target is. With several tracks,
+ * robotctl locks onto one (#GstRobotCtl:lock-on: the oldest, the largest or the one nearest the centre, or a
+ * fixed #GstRobotCtl:target-id) and keeps following it while its track lives, even when another object
+ * passes in front; it chooses again only when that track is lost or gone; a controller turns that into a
+ * drive command and the command goes out on a serial port
  * (#GstRobotCtl:device) or to a file, FIFO, pseudo-terminal or stdout (#GstRobotCtl:location).
  *
  * Two controllers (#GstRobotCtl:controller): "zone" splits the frame into left / centre / right by the
@@ -63,6 +66,7 @@
 #include <atomic>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <gst/video/video.h>
 
@@ -144,6 +148,7 @@ struct State {
   guint64 appliedControllerGeneration = 0;
   cv::Size frameSize;
   std::string roiType;
+  colortrack::TargetLock lock;  // the track followed; released on a flush
 };
 
 }  // namespace
@@ -192,6 +197,12 @@ COLORTRACK_DEFINE_ENUM_TYPE(gst_robot_ctl_flow_control_get_type, "GstRobotCtlFlo
                             {GST_ROBOT_CTL_FLOW_CONTROL_XONXOFF, "Software (XON/XOFF)", "xonxoff"},
                             {GST_ROBOT_CTL_FLOW_CONTROL_RTSCTS, "Hardware (RTS/CTS)", "rtscts"},
                             {GST_ROBOT_CTL_FLOW_CONTROL_DTRDSR, "Hardware (DTR/DSR)", "dtrdsr"})
+COLORTRACK_DEFINE_ENUM_TYPE(gst_robot_ctl_lock_on_get_type, "GstRobotCtlLockOn",
+                            {GST_ROBOT_CTL_LOCK_ON_FIRST_CONFIRMED, "The oldest track (lowest id)",
+                             "first-confirmed"},
+                            {GST_ROBOT_CTL_LOCK_ON_LARGEST, "The largest box", "largest"},
+                            {GST_ROBOT_CTL_LOCK_ON_NEAREST_CENTRE, "The box nearest the frame's centre",
+                             "nearest-centre"})
 
 // ---------------------------------------------------------------------------------------------------------
 // GObject
@@ -403,30 +414,49 @@ static gboolean gst_robot_ctl_event(GstBaseSink *sink, GstEvent *event) {
 
 namespace {
 
-// The selected ROI of a buffer: of type `roiType`, with id `targetId` (or the lowest id when it is < 0).
-// Other elements' boxes carry no state or score: they count as tracking with score 1.
-void readTarget(GstBuffer *buffer, GQuark roiType, gint targetId, colortrack::Observation &o) {
-  const GstVideoRegionOfInterestMeta *chosen = nullptr;
+// One ROI of the followed type, as robotctl sees it.
+struct Region {
+  colortrack::TargetCandidate candidate;
+  double score = 1.0;
+};
+
+// The buffer's ROIs of type `roiType`. Other elements' boxes carry no state or score: they count as tracking
+// with score 1.
+std::vector<Region> readRegions(GstBuffer *buffer, GQuark roiType) {
+  std::vector<Region> regions;
   gpointer iter = nullptr;
   while (GstMeta *meta =
              gst_buffer_iterate_meta_filtered(buffer, &iter, GST_VIDEO_REGION_OF_INTEREST_META_API_TYPE)) {
     auto *roi = reinterpret_cast<GstVideoRegionOfInterestMeta *>(meta);
     if (roi->roi_type != roiType) continue;
-    if (targetId >= 0 ? roi->id == targetId : (!chosen || roi->id < chosen->id)) chosen = roi;
+    Region region;
+    region.candidate.id = roi->id;
+    region.candidate.box = cv::Rect2d(roi->x, roi->y, roi->w, roi->h);
+    // Also found after videoconvert / videoscale, which drop the ROI meta's own parameters in GStreamer 1.22.
+    if (const GstStructure *params = colortrack_find_roi_params(buffer, roi)) {
+      // A missing or unknown state reads as tracking, like a box without params.
+      region.candidate.state =
+          colortrack::parseTrackState(gst_structure_get_string(params, COLORTRACK_PARAM_STATE))
+              .value_or(colortrack::TrackState::Tracking);
+      gst_structure_get_double(params, COLORTRACK_PARAM_SCORE, &region.score);
+    }
+    regions.push_back(region);
   }
-  if (!chosen) return;
-  o.box = cv::Rect2d(chosen->x, chosen->y, chosen->w, chosen->h);
-  o.state = colortrack::TrackState::Tracking;
-  o.score = 1.0;
-  // Also found after videoconvert / videoscale, which drop the ROI meta's own parameters in GStreamer 1.22.
-  const GstStructure *params =
-      colortrack_find_roi_params(buffer, const_cast<GstVideoRegionOfInterestMeta *>(chosen));
-  if (params) {
-    // A missing or unknown state reads as tracking, like a box without params.
-    o.state = colortrack::parseTrackState(gst_structure_get_string(params, COLORTRACK_PARAM_STATE))
-                  .value_or(colortrack::TrackState::Tracking);
-    gst_structure_get_double(params, COLORTRACK_PARAM_SCORE, &o.score);
-  }
+  return regions;
+}
+
+// The target of this frame: the locked track (or `targetId`), chosen again by the lock's policy when it is
+// lost or gone.
+void readTarget(GstBuffer *buffer, GQuark roiType, gint targetId, colortrack::TargetLock &lock,
+                colortrack::Observation &o) {
+  const std::vector<Region> regions = readRegions(buffer, roiType);
+  std::vector<colortrack::TargetCandidate> candidates;
+  for (const Region &region : regions) candidates.push_back(region.candidate);
+  const int chosen = lock.choose(candidates, o.frameSize, targetId);
+  if (chosen < 0) return;
+  o.box = regions[chosen].candidate.box;
+  o.state = regions[chosen].candidate.state;
+  o.score = regions[chosen].score;
 }
 
 }  // namespace
@@ -447,6 +477,7 @@ static GstFlowReturn gst_robot_ctl_render(GstBaseSink *sink, GstBuffer *buffer) 
   const colortrack::FailsafeSettings failsafeSettings = shared.failsafe;
   const GQuark roiType = g_quark_from_string(shared.roiType.c_str());
   const gint targetId = shared.targetId;
+  state.lock.setPolicy(shared.lockOn);
   GST_OBJECT_UNLOCK(self);
 
   if (generation != state.appliedControllerGeneration) {
@@ -460,7 +491,10 @@ static GstFlowReturn gst_robot_ctl_render(GstBaseSink *sink, GstBuffer *buffer) 
     writer->setStallTimeout(failsafeSettings.lostTimeout);
     state.appliedControllerGeneration = generation;
   }
-  if (self->priv->resetRequested.exchange(false)) state.controller->reset();
+  if (self->priv->resetRequested.exchange(false)) {
+    state.controller->reset();
+    state.lock.release();
+  }
 
   colortrack::Observation o;
   o.frameSize = state.frameSize;
@@ -470,7 +504,7 @@ static GstFlowReturn gst_robot_ctl_render(GstBaseSink *sink, GstBuffer *buffer) 
                                    ? gst_segment_to_running_time(&sink->segment, GST_FORMAT_TIME, pts)
                                    : GST_CLOCK_TIME_NONE;
   o.time = GST_CLOCK_TIME_IS_VALID(running) ? static_cast<double>(running) / GST_SECOND : monotonicSeconds();
-  readTarget(buffer, roiType, targetId, o);
+  readTarget(buffer, roiType, targetId, state.lock, o);
 
   Command command;
   command.output = state.controller->update(o);

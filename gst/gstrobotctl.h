@@ -73,16 +73,30 @@ typedef enum {
   GST_ROBOT_CTL_FLOW_CONTROL_DTRDSR = 3,
 } GstRobotCtlFlowControl;
 
+/**
+ * GstRobotCtlLockOn:
+ * @GST_ROBOT_CTL_LOCK_ON_FIRST_CONFIRMED: the oldest track (lowest id)
+ * @GST_ROBOT_CTL_LOCK_ON_LARGEST: the largest box
+ * @GST_ROBOT_CTL_LOCK_ON_NEAREST_CENTRE: the box nearest the frame's centre
+ */
+typedef enum {
+  GST_ROBOT_CTL_LOCK_ON_FIRST_CONFIRMED = 0,
+  GST_ROBOT_CTL_LOCK_ON_LARGEST = 1,
+  GST_ROBOT_CTL_LOCK_ON_NEAREST_CENTRE = 2,
+} GstRobotCtlLockOn;
+
 GType gst_robot_ctl_protocol_get_type(void);
 GType gst_robot_ctl_controller_get_type(void);
 GType gst_robot_ctl_distance_cue_get_type(void);
 GType gst_robot_ctl_parity_get_type(void);
 GType gst_robot_ctl_flow_control_get_type(void);
+GType gst_robot_ctl_lock_on_get_type(void);
 #define GST_TYPE_ROBOT_CTL_PROTOCOL (gst_robot_ctl_protocol_get_type())
 #define GST_TYPE_ROBOT_CTL_CONTROLLER (gst_robot_ctl_controller_get_type())
 #define GST_TYPE_ROBOT_CTL_DISTANCE_CUE (gst_robot_ctl_distance_cue_get_type())
 #define GST_TYPE_ROBOT_CTL_PARITY (gst_robot_ctl_parity_get_type())
 #define GST_TYPE_ROBOT_CTL_FLOW_CONTROL (gst_robot_ctl_flow_control_get_type())
+#define GST_TYPE_ROBOT_CTL_LOCK_ON (gst_robot_ctl_lock_on_get_type())
 
 typedef struct _GstRobotCtl GstRobotCtl;
 typedef struct _GstRobotCtlClass GstRobotCtlClass;

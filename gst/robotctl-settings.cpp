@@ -60,6 +60,30 @@ GstRobotCtlDistanceCue fromDistanceCue(colortrack::DistanceCue cue) {
   return GST_ROBOT_CTL_DISTANCE_CUE_SIZE;
 }
 
+colortrack::LockOn toLockOn(GstRobotCtlLockOn lockOn) {
+  switch (lockOn) {
+    case GST_ROBOT_CTL_LOCK_ON_LARGEST:
+      return colortrack::LockOn::Largest;
+    case GST_ROBOT_CTL_LOCK_ON_NEAREST_CENTRE:
+      return colortrack::LockOn::NearestCentre;
+    case GST_ROBOT_CTL_LOCK_ON_FIRST_CONFIRMED:
+      break;
+  }
+  return colortrack::LockOn::FirstConfirmed;
+}
+
+GstRobotCtlLockOn fromLockOn(colortrack::LockOn lockOn) {
+  switch (lockOn) {
+    case colortrack::LockOn::Largest:
+      return GST_ROBOT_CTL_LOCK_ON_LARGEST;
+    case colortrack::LockOn::NearestCentre:
+      return GST_ROBOT_CTL_LOCK_ON_NEAREST_CENTRE;
+    case colortrack::LockOn::FirstConfirmed:
+      break;
+  }
+  return GST_ROBOT_CTL_LOCK_ON_FIRST_CONFIRMED;
+}
+
 // Accessors of a field, by type; `field` is a pointer to a member of Settings (text: gstglue's).
 template <auto field>
 void getInt(const Settings &s, GValue *v) {
@@ -340,10 +364,21 @@ const Def kProperties[] = {
     {Apply::Live, false,
      [](GParamFlags f) {
        return g_param_spec_int("target-id", "Target id",
-                               "Id of the region of interest to follow; -1 = the lowest id", -1, G_MAXINT,
-                               Settings{}.targetId, f);
+                               "Id of the region of interest to follow, and no other; -1 = choose by lock-on",
+                               -1, G_MAXINT, Settings{}.targetId, f);
      },
      getInt<&Settings::targetId>, setInt<&Settings::targetId>},
+    {Apply::Live, false,
+     [](GParamFlags f) {
+       return g_param_spec_enum("lock-on", "Lock on",
+                                "With target-id=-1, which region to follow when there is none yet or the "
+                                "followed one is lost or gone; the choice is kept while its track lives",
+                                GST_TYPE_ROBOT_CTL_LOCK_ON, fromLockOn(Settings{}.lockOn), f);
+     },
+     [](const Settings &s, GValue *v) { g_value_set_enum(v, fromLockOn(s.lockOn)); },
+     [](Settings &s, const GValue *v) {
+       s.lockOn = toLockOn(static_cast<GstRobotCtlLockOn>(g_value_get_enum(v)));
+     }},
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_boolean(

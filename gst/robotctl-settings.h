@@ -4,6 +4,7 @@
 #include <string>
 
 #include "colortrack/controller.hpp"
+#include "colortrack/target_lock.hpp"
 #include "gstrobotctl.h"
 #include "property-table.h"
 
@@ -27,6 +28,7 @@ struct Settings {
   colortrack::FailsafeSettings failsafe;
   std::string roiType = "colortrack";
   gint targetId = -1;
+  colortrack::LockOn lockOn = colortrack::LockOn::FirstConfirmed;
   bool postMessages = false;
 };
 

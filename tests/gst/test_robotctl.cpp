@@ -629,6 +629,50 @@ GST_START_TEST(test_roi_selection) {
 }
 GST_END_TEST;
 
+// The lock: the followed track is kept while it lives, whatever else appears; a new one is chosen by lock-on
+// only when it is lost or gone.
+GST_START_TEST(test_lock_on_keeps_the_target_until_its_track_ends) {
+  {
+    Ctl ctl("rate=100");  // first-confirmed
+    fail_unless_equals_int(ctl.decide({roi(kRight, 5)}).back(), 'R');
+    // A newer object with a lower id (a restarted tracker) does not steal the robot.
+    fail_unless_equals_int(ctl.decide({roi(kLeft, 3), roi(kRight, 5)}).back(), 'R');
+    // While the followed track coasts (an object passes in front), its id is kept: the last command is held.
+    Roi coasting = roi(kRight, 5);
+    coasting.state = "coasting";
+    fail_unless_equals_int(ctl.decide({roi(kLeft, 3), coasting}).back(), 'R');
+    fail_unless_equals_int(ctl.decide({roi(kLeft, 3), roi(kRight, 5)}).back(), 'R');
+    // Lost: the lock moves on, to the oldest of the others.
+    Roi lost = roi(kRight, 5);
+    lost.state = "lost";
+    fail_unless_equals_int(ctl.decide({roi(kLeft, 3), lost, roi(kRight, 7)}).back(), 'L');
+    // Gone, then back under its old id: the lock stays on the new choice.
+    fail_unless_equals_int(ctl.decide({roi(kRight, 5), roi(kLeft, 3)}).back(), 'L');
+  }
+  {
+    Ctl ctl("rate=100 lock-on=largest");
+    fail_unless_equals_int(ctl.decide({roi(kLeft, 1), roi(kCentreNear, 2)}).back(), 'B');
+    fail_unless_equals_int(ctl.decide({roi(cv::Rect(0, 0, 200, 200), 1), roi(kCentreNear, 2)}).back(), 'B');
+  }
+  {
+    Ctl ctl("rate=100 lock-on=nearest-centre");
+    fail_unless_equals_int(ctl.decide({roi(kLeft, 1), roi(kCentreFar, 2)}).back(), 'F');
+    // A flush starts again: the choice is made afresh (id 2 is no longer the nearest).
+    fail_unless(gst_harness_push_event(ctl.h, gst_event_new_flush_start()));
+    fail_unless(gst_harness_push_event(ctl.h, gst_event_new_flush_stop(TRUE)));
+    GstSegment segment;
+    gst_segment_init(&segment, GST_FORMAT_TIME);
+    fail_unless(gst_harness_push_event(ctl.h, gst_event_new_segment(&segment)));
+    fail_unless_equals_int(ctl.decide({roi(kCentreNear, 1), roi(kRight, 2)}).back(), 'B');
+  }
+  {
+    Ctl ctl("rate=100 target-id=2 lock-on=largest");  // a fixed id wins over the policy
+    fail_unless_equals_int(ctl.decide({roi(kCentreNear, 1), roi(kLeft, 2)}).back(), 'L');
+    fail_unless_equals_int(ctl.decide({roi(kCentreNear, 1)}).back(), 'L');  // held, never switched
+  }
+}
+GST_END_TEST;
+
 GST_START_TEST(test_follows_cvtracker) {
   GstElementFactory *factory = gst_element_factory_find("cvtracker");
   if (!factory) {
@@ -760,6 +804,7 @@ Suite *robotctl_suite(void) {
   tcase_add_test(tc, test_cut_frames_are_completed_before_the_next);
   tcase_add_test(tc, test_start_settings_warn_when_changed);
   tcase_add_test(tc, test_roi_selection);
+  tcase_add_test(tc, test_lock_on_keeps_the_target_until_its_track_ends);
   tcase_add_test(tc, test_follows_cvtracker);
   tcase_add_test(tc, test_message_fields);
   tcase_add_test(tc, test_bad_settings_give_clear_errors);

@@ -27,7 +27,8 @@ struct TargetCandidate {
 
 class TargetLock {
  public:
-  explicit TargetLock(LockOn policy = LockOn::FirstConfirmed) : policy_(policy) {}
+  TargetLock() = default;
+  explicit TargetLock(LockOn policy) : policy_(policy) {}
   void setPolicy(LockOn policy) { policy_ = policy; }
 
   // The index in `candidates` of the target to follow this frame, or -1 when there is none. `fixedId` >= 0
@@ -39,7 +40,7 @@ class TargetLock {
   void release() { locked_.reset(); }
 
  private:
-  LockOn policy_;
+  LockOn policy_ = LockOn::FirstConfirmed;
   std::optional<int> locked_;
 };
 
