@@ -197,6 +197,7 @@ std::vector<Blob> BlobDetector::detect(const SampledFrame &frame) {
     if (c.count == 0 || area < settings_.minArea) continue;
     Blob blob;
     blob.area = area;
+    blob.label = label;
     // Grid sample (x, y) is frame pixel (x d, y d): centroids scale without offset.
     blob.centroid =
         cv::Point2d(static_cast<double>(c.sumX) / c.count * d, static_cast<double>(c.sumY) / c.count * d);

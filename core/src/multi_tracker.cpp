@@ -1,5 +1,7 @@
 #include "colortrack/multi_tracker.hpp"
 
+#include "colortrack/blob_split.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -21,6 +23,9 @@ constexpr int kLastSeenFrames = 2;
 constexpr int kMaxMergedFrames = 40;
 // How far (px per frame) from where it left an object may come back in and still be taken for the same.
 constexpr double kExitDrift = 2.0;
+// A track's share of a split blob corrects it only when it is at least this part of the track's area; a
+// smaller share (an object almost wholly behind another) says little about where it is.
+constexpr double kMinShare = 0.25;
 
 }  // namespace
 
@@ -33,6 +38,7 @@ struct MultiTracker::Track {
   double aspect = 1;         // box width / height, smoothed
   double area = 0;           // smoothed blob area
   double lastArea = 0;
+  double lastScale = 1;  // the scale last measured on a blob of its own
   double score = 0;
   int hits = 0, misses = 0;
   cv::Point2d lastSeen;            // the centroid of the last blob that fed the track
@@ -220,9 +226,9 @@ void MultiTracker::associate(const std::vector<Blob> &blobs, bool confirmed,
 // lies inside the blob, rides on its prediction. Either way the objects are still seen, so these tracks
 // coast without counting misses (for a while: see kMaxMergedFrames).
 void MultiTracker::findMerges(const std::vector<Blob> &blobs, const std::vector<int> &blobTrack,
-                              std::vector<char> &merged, std::vector<char> &occluded) const {
+                              std::vector<char> &merged, std::vector<int> &occludedIn) const {
   merged.assign(blobs.size(), 0);
-  occluded.assign(tracks_.size(), 0);
+  occludedIn.assign(tracks_.size(), -1);
   for (int j = 0; j < static_cast<int>(blobs.size()); ++j) {
     const int owner = blobTrack[j];
     if (owner < 0) continue;
@@ -234,21 +240,73 @@ void MultiTracker::findMerges(const std::vector<Blob> &blobs, const std::vector<
       const cv::Point2d predicted(tracks_[i].filter.x(), tracks_[i].filter.y());
       if (muchLarger && cv::norm(blobs[j].centroid - predicted) < gateRadius(tracks_[i])) {
         merged[j] = 1;
-        occluded[owner] = occluded[i] = 1;
+        occludedIn[owner] = occludedIn[i] = j;
       } else if (blobBox.contains(predicted)) {
-        occluded[i] = 1;
+        occludedIn[i] = j;
       }
     }
   }
 }
 
-void MultiTracker::correct(Track &t, const Blob &b) {
-  const double side = std::sqrt(static_cast<double>(b.box.area()));
-  t.filter.correct(b.centroid.x, b.centroid.y, side / t.referenceSide);
+// A blob shared by its owner and the tracks occluded in it, split between them by their pixels: each track
+// whose share is large enough is corrected by it; the others ride on their predictions. False when there is
+// nothing to split (no other track in the blob, or no pixels).
+bool MultiTracker::correctShared(int blob, const std::vector<Blob> &blobs, const BlobLabels &labels,
+                                 int owner, const std::vector<int> &occludedIn) {
+  // Only tracks predicted inside the blob's box share it: one merely near it (a long-coasting track with a
+  // wide gate) has no claim on its pixels.
+  const cv::Rect2d box(blobs[blob].box);
+  std::vector<int> members{owner};
+  for (int i = 0; i < static_cast<int>(tracks_.size()); ++i)
+    if (i != owner && occludedIn[i] == blob &&
+        box.contains(cv::Point2d(tracks_[i].filter.x(), tracks_[i].filter.y())))
+      members.push_back(i);
+  if (members.size() < 2 || labels.empty()) return false;
+  std::vector<SplitSeed> seeds;
+  for (int i : members)
+    seeds.push_back(
+        SplitSeed{cv::Point2d(tracks_[i].filter.x(), tracks_[i].filter.y()), tracks_[i].side() / 2});
+  const std::vector<BlobShare> shares = splitBlob(blobs[blob], labels, seeds);
+  for (size_t m = 0; m < members.size(); ++m) {
+    Track &t = tracks_[members[m]];
+    // Only a share with enough pixels that no other object could have made says where this object is: one
+    // wholly behind another leaves a share of the other's pixels, which would drag it along.
+    if (shares[m].ownArea < kMinShare * t.area) continue;
+    Blob part = shares[m].blob;
+    // The share's centroid lies off the object's centre when a neighbour covers part of it; the edge away
+    // from the nearest neighbour is still the object's own, so the centre is placed a half size from it.
+    size_t nearest = m == 0 ? 1 : 0;
+    for (size_t o = 0; o < seeds.size(); ++o)
+      if (o != m &&
+          cv::norm(seeds[o].centre - seeds[m].centre) < cv::norm(seeds[nearest].centre - seeds[m].centre))
+        nearest = o;
+    const cv::Size2d size = t.size();
+    const cv::Point2d away = seeds[m].centre - seeds[nearest].centre;
+    if (part.box.width < 0.9 * size.width)
+      part.centroid.x =
+          away.x >= 0 ? part.box.x + part.box.width - size.width / 2 : part.box.x + size.width / 2;
+    if (part.box.height < 0.9 * size.height)
+      part.centroid.y =
+          away.y >= 0 ? part.box.y + part.box.height - size.height / 2 : part.box.y + size.height / 2;
+    correct(t, part, true);
+  }
+  return true;
+}
+
+void MultiTracker::correct(Track &t, const Blob &b, bool shared) {
   t.lastSeen = b.centroid;
-  t.aspect += kAspectRate * (static_cast<double>(b.box.width) / std::max(1, b.box.height) - t.aspect);
-  t.area += kAreaRate * (b.area - t.area);
-  t.lastArea = b.area;
+  if (shared) {
+    // Part of the object may be hidden: its size is kept (a shrinking share would shrink the track, which
+    // would then take fewer pixels still).
+    t.filter.correct(b.centroid.x, b.centroid.y, t.lastScale);
+  } else {
+    const double side = std::sqrt(static_cast<double>(b.box.area()));
+    t.lastScale = side / t.referenceSide;
+    t.filter.correct(b.centroid.x, b.centroid.y, t.lastScale);
+    t.aspect += kAspectRate * (static_cast<double>(b.box.width) / std::max(1, b.box.height) - t.aspect);
+    t.area += kAreaRate * (b.area - t.area);
+    t.lastArea = b.area;
+  }
   t.score = b.fill;
   t.measured = true;
   ++t.hits;
@@ -301,7 +359,8 @@ void MultiTracker::startTrack(const Blob &b) {
   if (settings_.confirmFrames <= 1) confirm(tracks_.back());
 }
 
-std::vector<TrackedObject> MultiTracker::update(const std::vector<Blob> &blobs, cv::Size frame, double dt) {
+std::vector<TrackedObject> MultiTracker::update(const std::vector<Blob> &blobs, cv::Size frame, double dt,
+                                                const BlobLabels &labels) {
   frame_ = frame;
   for (Track &t : tracks_) {
     predict(t, frame, dt);
@@ -312,8 +371,9 @@ std::vector<TrackedObject> MultiTracker::update(const std::vector<Blob> &blobs, 
   // get what is left; the rest start new tentative tracks.
   std::vector<int> blobTrack(blobs.size(), -1);
   associate(blobs, true, blobTrack);
-  std::vector<char> merged, occluded;
-  findMerges(blobs, blobTrack, merged, occluded);
+  std::vector<char> merged;
+  std::vector<int> occludedIn;
+  findMerges(blobs, blobTrack, merged, occludedIn);
   associate(blobs, false, blobTrack);
 
   std::vector<char> used(blobs.size(), 0);
@@ -321,10 +381,11 @@ std::vector<TrackedObject> MultiTracker::update(const std::vector<Blob> &blobs, 
     const int owner = blobTrack[j];
     if (owner < 0) continue;
     used[j] = 1;
+    if (merged[j] && correctShared(j, blobs, labels, owner, occludedIn)) continue;
     if (!merged[j]) correct(tracks_[owner], blobs[j]);  // a merged blob's owner coasts, see findMerges
   }
   for (int i = 0; i < static_cast<int>(tracks_.size()); ++i)
-    if (!tracks_[i].measured && !(occluded[i] && ++tracks_[i].mergedFrames <= kMaxMergedFrames))
+    if (!tracks_[i].measured && !(occludedIn[i] >= 0 && ++tracks_[i].mergedFrames <= kMaxMergedFrames))
       ++tracks_[i].misses;
 
   // Tentative tracks must be seen every frame; reported ones may coast for maxCoastFrames, and end when their

@@ -28,7 +28,7 @@ ThresholdTracker::ThresholdTracker(const BlobSettings &blobs, const MultiTracker
 
 FrameReport ThresholdTracker::track(const ImageSource &frame, double dt) {
   const std::vector<Blob> blobs = detector_.detect(frame.channels(converted_));
-  const std::vector<TrackedObject> objects = tracks_.update(blobs, frame.size(), dt);
+  const std::vector<TrackedObject> objects = tracks_.update(blobs, frame.size(), dt, detector_.labels());
   FrameReport report;
   report.listsTracks = true;
   // Reported as they lie in the frame: a box clipped to the frame, and only where at least min-area pixels

@@ -69,6 +69,15 @@ struct Blob {
   cv::Point2d centroid;  // centre of mass
   cv::Rect box;          // bounding box: x1 = box.x, x2 = box.x + box.width - 1 (and y alike)
   double fill = 0;       // area / box area
+  int label = 0;         // its component in BlobDetector::labels() (0: not from a detector)
+};
+
+// Where each blob's pixels are: the detector's component labels on its (decimated) grid, grid sample (x, y)
+// being frame pixel (x step, y step). Empty when unknown.
+struct BlobLabels {
+  cv::Mat labels;  // CV_32S
+  int step = 1;
+  bool empty() const { return labels.empty(); }
 };
 
 int autoDecimation(cv::Size frame);
@@ -86,6 +95,8 @@ class BlobDetector {
   // The cleaned mask of the last frame (255 = inside) on the decimated grid, and that grid's step.
   const cv::Mat &mask() const { return mask_; }
   int lastDecimation() const { return lastDecimation_; }
+  // The last frame's component labels, which Blob::label refers to.
+  BlobLabels labels() const { return BlobLabels{labels_, lastDecimation_}; }
 
  private:
   const RangeLut &lutFor(PixelEncoding encoding);

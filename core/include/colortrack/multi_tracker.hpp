@@ -59,8 +59,11 @@ class MultiTracker {
   const MultiTrackerSettings &settings() const { return settings_; }
 
   // Advances every track by dt frames, assigns the blobs (confirmed tracks first, then tentative ones, each
-  // by minimum total cost), corrects, creates and drops tracks. Returns the confirmed tracks, by id.
-  std::vector<TrackedObject> update(const std::vector<Blob> &blobs, cv::Size frame, double dt = 1.0);
+  // by minimum total cost), corrects, creates and drops tracks. Returns the confirmed tracks, by id. With the
+  // blobs' `labels`, a blob that several tracks share (objects touching or passing over each other) is split
+  // between them; without, those tracks ride on their predictions until the objects part.
+  std::vector<TrackedObject> update(const std::vector<Blob> &blobs, cv::Size frame, double dt = 1.0,
+                                    const BlobLabels &labels = BlobLabels());
 
   // Every live track, tentative ones included (tests, debugging).
   std::vector<TrackedObject> allTracks() const;
@@ -78,8 +81,11 @@ class MultiTracker {
   // The steps of update().
   void associate(const std::vector<Blob> &blobs, bool confirmed, std::vector<int> &blobTrack) const;
   void findMerges(const std::vector<Blob> &blobs, const std::vector<int> &blobTrack,
-                  std::vector<char> &merged, std::vector<char> &occluded) const;
-  void correct(Track &track, const Blob &blob);
+                  std::vector<char> &merged, std::vector<int> &occludedIn) const;
+  bool correctShared(int blob, const std::vector<Blob> &blobs, const BlobLabels &labels, int owner,
+                     const std::vector<int> &occludedIn);
+  // shared: the blob is the track's share of a split blob, which says where the object is but not how big.
+  void correct(Track &track, const Blob &blob, bool shared = false);
   void startTrack(const Blob &blob);
   void confirm(Track &track);
   std::optional<int> returningId(const Blob &blob);
