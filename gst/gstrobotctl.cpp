@@ -587,6 +587,7 @@ static void gst_robot_ctl_class_init(GstRobotCtlClass *klass) {
   gst_type_mark_as_plugin_api(GST_TYPE_ROBOT_CTL_DISTANCE_CUE, static_cast<GstPluginAPIFlags>(0));
   gst_type_mark_as_plugin_api(GST_TYPE_ROBOT_CTL_PARITY, static_cast<GstPluginAPIFlags>(0));
   gst_type_mark_as_plugin_api(GST_TYPE_ROBOT_CTL_FLOW_CONTROL, static_cast<GstPluginAPIFlags>(0));
+  gst_type_mark_as_plugin_api(GST_TYPE_ROBOT_CTL_LOCK_ON, static_cast<GstPluginAPIFlags>(0));
 }
 
 static void gst_robot_ctl_init(GstRobotCtl *self) {

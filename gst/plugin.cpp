@@ -3,6 +3,7 @@
 
 #include "gstcolortrack.h"
 #include "gstrobotctl.h"
+#include "gsttrackpublish.h"
 #include "track-params.h"
 
 static gboolean plugin_init(GstPlugin *plugin) {
@@ -10,6 +11,7 @@ static gboolean plugin_init(GstPlugin *plugin) {
   gboolean ok = FALSE;
   ok |= GST_ELEMENT_REGISTER(colortrack, plugin);
   ok |= GST_ELEMENT_REGISTER(robotctl, plugin);
+  ok |= GST_ELEMENT_REGISTER(trackpublish, plugin);
   return ok;
 }
 

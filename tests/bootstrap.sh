@@ -23,13 +23,14 @@ esac
 demo_packages=(
   g++ meson ninja-build pkg-config
   libgstreamer1.0-dev libgstreamer-plugins-base1.0-dev gstreamer1.0-plugins-base gstreamer1.0-plugins-good
-  libopencv-dev libeigen3-dev libserialport-dev
+  libopencv-dev libeigen3-dev libserialport-dev libpaho-mqtt-dev libjson-glib-dev
 )
 # The tests, benchmarks and examples on top: gst-inspect-1.0, cvtracker (-bad and -opencv) for the
-# evaluation, GoogleTest, gst-rtsp-server for the RTSP test, PyGObject for the Python example.
+# evaluation, GoogleTest, gst-rtsp-server for the RTSP test, PyGObject for the Python example, the mosquitto
+# broker the trackpublish tests start on loopback.
 test_packages=(
   gstreamer1.0-tools gstreamer1.0-plugins-bad gstreamer1.0-opencv libgtest-dev libgstrtspserver-1.0-dev
-  python3-gi gir1.2-gstreamer-1.0 gir1.2-gst-plugins-base-1.0
+  python3-gi gir1.2-gstreamer-1.0 gir1.2-gst-plugins-base-1.0 mosquitto
 )
 packages=("${demo_packages[@]}")
 [ "$mode" = demo ] || packages+=("${test_packages[@]}")

@@ -1,0 +1,345 @@
+#include "mqtt-publisher.h"
+
+#include <MQTTAsync.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <utility>
+
+namespace trackpublish {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using std::chrono::milliseconds;
+
+// Documents sent and not yet acknowledged at once: enough to keep a remote broker busy at a frame rate, few
+// enough that a reconnect resends little, and under Paho's own limit of buffered messages (100 by default).
+constexpr std::size_t kWindow = 32;
+constexpr milliseconds kFirstBackoff{250}, kMaxBackoff{5000};
+constexpr int kConnectTimeoutSeconds = 5;
+constexpr int kKeepAliveSeconds = 20;
+
+std::string textOf(const char *text, int code) {
+  if (text && *text) return text;
+  const char *known = MQTTAsync_strerror(code);
+  return known ? known : "error " + std::to_string(code);
+}
+
+}  // namespace
+
+std::string checkAddress(const std::string &address) {
+  const std::size_t scheme = address.find("://");
+  if (scheme == std::string::npos) return "it must look like tcp://HOST:PORT or ssl://HOST:PORT";
+  const std::string kind = address.substr(0, scheme);
+  if (kind != "tcp" && kind != "ssl" && kind != "mqtt" && kind != "mqtts")
+    return "unknown scheme '" + kind + "://' (use tcp:// or ssl://)";
+  const std::string rest = address.substr(scheme + 3);
+  const std::size_t colon = rest.rfind(':');
+  if (colon == std::string::npos || colon == 0) return "it needs a host and a port: " + kind + "://HOST:PORT";
+  const std::string port = rest.substr(colon + 1);
+  char *end = nullptr;
+  const long number = std::strtol(port.c_str(), &end, 10);
+  if (port.empty() || *end != '\0' || number < 1 || number > 65535)
+    return "the port '" + port + "' is not a number from 1 to 65535";
+  return "";
+}
+
+std::string checkTopic(const std::string &topic) {
+  if (topic.empty()) return "a topic must not be empty";
+  if (topic.find_first_of("+#") != std::string::npos)
+    return "a topic to publish to must not contain the wildcards + or #";
+  if (topic.find('\0') != std::string::npos) return "a topic must not contain NUL";
+  return "";
+}
+
+struct MqttPublisher::SendContext {
+  MqttPublisher *publisher;
+  std::uint64_t sequence;
+};
+
+// Paho's C callbacks, which reach the publisher's private members.
+struct MqttPublisher::Callback {
+  using Send = SendContext;
+
+  static void connected(void *context, MQTTAsync_successData *) {
+    static_cast<MqttPublisher *>(context)->connectDone(true, "");
+  }
+  static void connectFailed(void *context, MQTTAsync_failureData *data) {
+    static_cast<MqttPublisher *>(context)->connectDone(
+        false, data ? textOf(data->message, data->code) : "connection failed");
+  }
+  static void lost(void *context, char *cause) {
+    static_cast<MqttPublisher *>(context)->lost(cause && *cause ? cause : "the broker closed the connection");
+  }
+  static void sent(void *context, MQTTAsync_successData *) {
+    const Send send = take(context);
+    send.publisher->sent(send.sequence);
+  }
+  static void sendFailed(void *context, MQTTAsync_failureData *) {
+    const Send send = take(context);
+    send.publisher->sendFailed(send.sequence);
+  }
+
+  static Send take(void *context) {
+    auto *send = static_cast<Send *>(context);
+    const Send copy = *send;
+    {
+      std::lock_guard<std::mutex> lock(copy.publisher->mutex_);
+      copy.publisher->sends_.erase(send);
+    }
+    delete send;
+    return copy;
+  }
+};
+
+MqttPublisher::MqttPublisher(const MqttConfig &config, MqttListener &listener)
+    : config_(config), listener_(listener), backoff_(kFirstBackoff) {}
+
+MqttPublisher::~MqttPublisher() {
+  stop(milliseconds(0));
+}
+
+bool MqttPublisher::start(std::string &why) {
+  why = checkAddress(config_.address);
+  if (!why.empty()) return false;
+  MQTTAsync client = nullptr;
+  MQTTAsync_createOptions options = MQTTAsync_createOptions_initializer;
+  options.sendWhileDisconnected = 0;  // the queue is ours
+  const int rc = MQTTAsync_createWithOptions(&client, config_.address.c_str(), config_.clientId.c_str(),
+                                             MQTTCLIENT_PERSISTENCE_NONE, nullptr, &options);
+  if (rc != MQTTASYNC_SUCCESS) {
+    why = textOf(nullptr, rc);
+    return false;
+  }
+  client_ = client;
+  MQTTAsync_setConnectionLostCallback(client, this, &Callback::lost);
+  nextAttempt_ = Clock::now();
+  worker_ = std::thread([this] { run(); });
+  return true;
+}
+
+bool MqttPublisher::waitFirstAttempt(milliseconds timeout, std::string &why) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  wake_.wait_for(lock, timeout, [this] { return attempted_ || connected_; });
+  why = connected_
+            ? ""
+            : (attempted_ ? lastError_ : "no answer within " + std::to_string(timeout.count()) + " ms");
+  return connected_;
+}
+
+void MqttPublisher::publish(std::string topic, std::string payload) {
+  std::uint64_t droppedNow = 0;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    queue_.push_back(Document{nextSequence_++, std::move(topic), std::move(payload)});
+    // In-flight documents may still be acknowledged: only waiting ones are dropped.
+    if (queue_.size() + inFlight_.size() > config_.maxQueued && queue_.size() > 1) {
+      queue_.pop_front();
+      droppedNow = ++dropped_;
+    }
+  }
+  wake_.notify_all();
+  if (droppedNow) listener_.dropped(droppedNow, config_.maxQueued);
+}
+
+bool MqttPublisher::waitDelivered(milliseconds timeout) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  return wake_.wait_for(lock, timeout, [this] { return queue_.empty() && inFlight_.empty(); });
+}
+
+void MqttPublisher::stop(milliseconds drain) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (stopping_ && !worker_.joinable()) return;
+    stopping_ = true;
+    drainUntil_ = Clock::now() + drain;
+  }
+  wake_.notify_all();
+  if (worker_.joinable()) worker_.join();
+  if (client_) {
+    MQTTAsync client = client_;
+    if (MQTTAsync_isConnected(client)) {
+      MQTTAsync_disconnectOptions options = MQTTAsync_disconnectOptions_initializer;
+      options.timeout = 0;
+      MQTTAsync_disconnect(client, &options);
+    }
+    MQTTAsync_destroy(&client);  // no callback runs after this
+    client_ = nullptr;
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (SendContext *send : sends_) delete send;  // sends Paho discarded unanswered
+  sends_.clear();
+}
+
+std::uint64_t MqttPublisher::delivered() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return delivered_;
+}
+
+std::uint64_t MqttPublisher::droppedCount() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return dropped_;
+}
+
+std::size_t MqttPublisher::queued() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return queue_.size() + inFlight_.size();
+}
+
+void MqttPublisher::run() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (true) {
+    const auto now = Clock::now();
+    if (stopping_ && ((queue_.empty() && inFlight_.empty()) || now >= drainUntil_)) break;
+    if (!connected_ && !connecting_ && now >= nextAttempt_) connect(lock);
+    if (connected_) send(lock);
+    auto until = now + milliseconds(100);
+    if (!connected_ && !connecting_) until = std::min(until, nextAttempt_);
+    if (stopping_) until = std::min(until, drainUntil_);
+    wake_.wait_until(lock, until);
+  }
+}
+
+void MqttPublisher::connect(std::unique_lock<std::mutex> &lock) {
+  connecting_ = true;
+  MQTTAsync_connectOptions options = MQTTAsync_connectOptions_initializer;
+  options.keepAliveInterval = kKeepAliveSeconds;
+  options.cleansession = 1;  // what was in flight is resent from our queue
+  options.connectTimeout = kConnectTimeoutSeconds;
+  options.onSuccess = &Callback::connected;
+  options.onFailure = &Callback::connectFailed;
+  options.context = this;
+  if (!config_.username.empty()) options.username = config_.username.c_str();
+  if (!config_.password.empty()) options.password = config_.password.c_str();
+  MQTTAsync_SSLOptions ssl = MQTTAsync_SSLOptions_initializer;
+  const bool tls = config_.address.rfind("ssl://", 0) == 0 || config_.address.rfind("mqtts://", 0) == 0;
+  if (tls) {
+    if (!config_.caFile.empty()) ssl.trustStore = config_.caFile.c_str();
+    if (!config_.certFile.empty()) ssl.keyStore = config_.certFile.c_str();
+    if (!config_.keyFile.empty()) ssl.privateKey = config_.keyFile.c_str();
+    ssl.enableServerCertAuth = config_.verifyServer ? 1 : 0;
+    ssl.verify = config_.verifyServer ? 1 : 0;
+    options.ssl = &ssl;
+  }
+  lock.unlock();
+  const int rc = MQTTAsync_connect(static_cast<MQTTAsync>(client_), &options);
+  lock.lock();
+  if (rc != MQTTASYNC_SUCCESS) {
+    lock.unlock();
+    connectDone(false, textOf(nullptr, rc));
+    lock.lock();
+  }
+}
+
+void MqttPublisher::send(std::unique_lock<std::mutex> &lock) {
+  while (connected_ && !queue_.empty() && inFlight_.size() < kWindow) {
+    inFlight_.push_back(std::move(queue_.front()));
+    queue_.pop_front();
+    // Copies: a callback may change inFlight_ while the lock is released (Paho copies the payload too).
+    const Document document = inFlight_.back();
+    auto *context = new SendContext{this, document.sequence};
+    sends_.insert(context);
+    lock.unlock();
+    MQTTAsync_message message = MQTTAsync_message_initializer;
+    message.payload = const_cast<char *>(document.payload.data());
+    message.payloadlen = static_cast<int>(document.payload.size());
+    message.qos = config_.qos;
+    MQTTAsync_responseOptions response = MQTTAsync_responseOptions_initializer;
+    response.onSuccess = &Callback::sent;
+    response.onFailure = &Callback::sendFailed;
+    response.context = context;
+    const int rc =
+        MQTTAsync_sendMessage(static_cast<MQTTAsync>(client_), document.topic.c_str(), &message, &response);
+    lock.lock();
+    if (rc != MQTTASYNC_SUCCESS) {
+      // Not taken (the connection went meanwhile): back in the queue, no callback will come.
+      sends_.erase(context);
+      delete context;
+      requeueInFlight();
+      return;
+    }
+  }
+}
+
+// Everything sent and not acknowledged goes back to the front of the queue, in order, to be sent again.
+void MqttPublisher::requeueInFlight() {
+  while (!inFlight_.empty()) {
+    queue_.push_front(std::move(inFlight_.back()));
+    inFlight_.pop_back();
+  }
+}
+
+void MqttPublisher::sent(std::uint64_t sequence) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto it = std::find_if(inFlight_.begin(), inFlight_.end(),
+                                 [&](const Document &d) { return d.sequence == sequence; });
+    if (it != inFlight_.end()) {
+      inFlight_.erase(it);
+      ++delivered_;
+    }
+  }
+  wake_.notify_all();
+}
+
+void MqttPublisher::sendFailed(std::uint64_t sequence) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto it = std::find_if(inFlight_.begin(), inFlight_.end(),
+                                 [&](const Document &d) { return d.sequence == sequence; });
+    if (it == inFlight_.end()) return;
+    // Back in the queue before every later document, so the order holds when it is sent again.
+    Document document = std::move(*it);
+    inFlight_.erase(it);
+    const auto at = std::find_if(queue_.begin(), queue_.end(),
+                                 [&](const Document &d) { return d.sequence > document.sequence; });
+    queue_.insert(at, std::move(document));
+  }
+  wake_.notify_all();
+}
+
+void MqttPublisher::connectDone(bool ok, const std::string &why) {
+  bool again = false, first = false;
+  milliseconds retryIn{0};
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    connecting_ = false;
+    attempted_ = true;
+    if (ok) {
+      connected_ = true;
+      again = everConnected_;
+      everConnected_ = true;
+      failedSinceSuccess_ = false;
+      backoff_ = kFirstBackoff;
+    } else {
+      lastError_ = why;
+      first = !failedSinceSuccess_;
+      failedSinceSuccess_ = true;
+      retryIn = backoff_;
+      nextAttempt_ = Clock::now() + backoff_;
+      backoff_ = std::min(backoff_ * 2, kMaxBackoff);
+    }
+  }
+  wake_.notify_all();
+  if (ok)
+    listener_.connected(config_.address, again);
+  else
+    listener_.connectFailed(config_.address, why, first, retryIn);
+}
+
+void MqttPublisher::lost(const std::string &why) {
+  std::size_t queued = 0;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    connected_ = false;
+    requeueInFlight();
+    queued = queue_.size();
+    nextAttempt_ = Clock::now();
+    backoff_ = kFirstBackoff;
+  }
+  wake_.notify_all();
+  listener_.connectionLost(config_.address, why, queued);
+}
+
+}  // namespace trackpublish

@@ -1,0 +1,109 @@
+// trackpublish's MQTT side: documents handed over by the streaming thread, delivered in order by a worker
+// thread through Eclipse Paho's asynchronous C client, with a bounded queue that keeps everything while the
+// broker is unreachable (the oldest are dropped, and counted, past `maxQueued`) and drains in order after
+// reconnecting. No GStreamer here, so tests/gst/test_mqtt_publisher.cpp drives it against a real broker
+// alone.
+//
+// Why our own queue in front of Paho's: Paho can buffer while disconnected and drop the oldest, but it does
+// not say how many it dropped, and its buffer only exists after a first successful connect.
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <mutex>
+#include <set>
+#include <string>
+#include <thread>
+
+namespace trackpublish {
+
+struct MqttConfig {
+  std::string address;  // tcp://HOST:PORT, ssl://HOST:PORT (also mqtt://, mqtts://)
+  std::string clientId;
+  std::string username, password;         // empty: none
+  std::string caFile, certFile, keyFile;  // TLS (ssl://): trust store, client certificate and key
+  bool verifyServer = true;               // TLS: check the broker's certificate and host name
+  int qos = 1;
+  std::size_t maxQueued = 1000;  // documents waiting for the broker, beyond which the oldest are dropped
+};
+
+// What the publisher reports, from its own threads (never the streaming thread).
+class MqttListener {
+ public:
+  virtual ~MqttListener() = default;
+  virtual void connected(const std::string &address, bool again) = 0;
+  // `first`: the first failure since the last success (later ones repeat the same news).
+  virtual void connectFailed(const std::string &address, const std::string &why, bool first,
+                             std::chrono::milliseconds retryIn) = 0;
+  virtual void connectionLost(const std::string &address, const std::string &why, std::size_t queued) = 0;
+  // `total` documents dropped so far because the queue was full.
+  virtual void dropped(std::uint64_t total, std::size_t maxQueued) = 0;
+};
+
+// An address Paho accepts, or why not (empty when fine).
+std::string checkAddress(const std::string &address);
+// A topic a publisher may use (no wildcards, not empty, no NUL), or why not (empty when fine).
+std::string checkTopic(const std::string &topic);
+
+class MqttPublisher {
+ public:
+  MqttPublisher(const MqttConfig &config, MqttListener &listener);
+  ~MqttPublisher();  // stop(0)
+  MqttPublisher(const MqttPublisher &) = delete;
+  MqttPublisher &operator=(const MqttPublisher &) = delete;
+
+  // Creates the client and starts connecting (in the background). False with `why` when the configuration
+  // cannot work at all (a bad address).
+  bool start(std::string &why);
+  // Waits up to `timeout` for the first connection attempt to end; true when connected.
+  bool waitFirstAttempt(std::chrono::milliseconds timeout, std::string &why);
+  // Queues a document; never waits for the network.
+  void publish(std::string topic, std::string payload);
+  // Waits up to `timeout` until everything queued has been delivered; true when it has.
+  bool waitDelivered(std::chrono::milliseconds timeout);
+  // Tries for up to `drain` to deliver what is queued, then disconnects and stops the worker.
+  void stop(std::chrono::milliseconds drain);
+
+  std::uint64_t delivered() const;
+  std::uint64_t droppedCount() const;
+  std::size_t queued() const;  // waiting or in flight
+
+ private:
+  struct Document {
+    std::uint64_t sequence;
+    std::string topic, payload;
+  };
+  struct Callback;     // Paho's C callbacks, which call the members below
+  struct SendContext;  // one document's send, until Paho answers it
+
+  void run();
+  void connect(std::unique_lock<std::mutex> &lock);
+  void send(std::unique_lock<std::mutex> &lock);
+  void requeueInFlight();
+  void sent(std::uint64_t sequence);
+  void sendFailed(std::uint64_t sequence);
+  void connectDone(bool ok, const std::string &why);
+  void lost(const std::string &why);
+
+  const MqttConfig config_;
+  MqttListener &listener_;
+  void *client_ = nullptr;  // MQTTAsync
+
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<Document> queue_;     // not yet sent, oldest first
+  std::deque<Document> inFlight_;  // sent, not yet acknowledged, oldest first
+  std::uint64_t nextSequence_ = 0, delivered_ = 0, dropped_ = 0;
+  bool connected_ = false, connecting_ = false, everConnected_ = false, stopping_ = false;
+  bool attempted_ = false;  // the first connection attempt has ended
+  std::string lastError_;
+  bool failedSinceSuccess_ = false;
+  std::chrono::milliseconds backoff_;
+  std::chrono::steady_clock::time_point nextAttempt_, drainUntil_;
+  std::set<SendContext *> sends_;  // not yet answered by Paho; freed at stop when Paho discarded them
+  std::thread worker_;
+};
+
+}  // namespace trackpublish

@@ -1,0 +1,180 @@
+#include "trackpublish-settings.h"
+
+#include "mqtt-publisher.h"
+
+namespace trackpublish {
+
+namespace {
+
+using gstglue::Apply;
+using gstglue::getText;
+using gstglue::getTextOrNull;
+using gstglue::setText;
+using gstglue::textOf;
+using Def = gstglue::PropertyDef<Settings>;
+
+// Every property is read at start: a change while running warns and applies from the next start.
+constexpr Apply kAtStart = Apply::AtStart;
+
+template <auto field>
+void getBool(const Settings &s, GValue *v) {
+  g_value_set_boolean(v, s.*field);
+}
+template <auto field>
+void setBool(Settings &s, const GValue *v) {
+  s.*field = g_value_get_boolean(v);
+}
+template <auto field>
+void getUint(const Settings &s, GValue *v) {
+  g_value_set_uint(v, s.*field);
+}
+template <auto field>
+void setUint(Settings &s, const GValue *v) {
+  s.*field = g_value_get_uint(v);
+}
+
+std::string checkAddressValue(const PropertyStore &, const GValue *v, std::string *) {
+  const std::string address = textOf(v);
+  return address.empty() ? "" : checkAddress(address);
+}
+
+std::string checkTopicValue(const PropertyStore &, const GValue *v, std::string *) {
+  return checkTopic(textOf(v));
+}
+
+const char *refuseEmptyRoiType(const GValue *v) {
+  return textOf(v).empty() ? "it names the type of the regions to publish (e.g. colortrack, object)"
+                           : nullptr;
+}
+
+const Def kProperties[] = {
+    {kAtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_string("location", "Location",
+                                  "File to append one JSON document per line to, or \"-\" for stdout; may be "
+                                  "combined with address",
+                                  nullptr, f);
+     },
+     getTextOrNull<&Settings::location>, setText<&Settings::location>},
+    {kAtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_string(
+           "address", "Address",
+           "MQTT broker to publish to, tcp://HOST:PORT or ssl://HOST:PORT (1883 and 8883 "
+           "are the usual ports); setting it selects MQTT",
+           nullptr, f);
+     },
+     getTextOrNull<&Settings::address>, setText<&Settings::address>, nullptr, checkAddressValue, true},
+    {kAtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_string("topic", "Topic",
+                                  "MQTT topic; {source} is replaced by the source name; no wildcards",
+                                  Settings{}.topic.c_str(), f);
+     },
+     getText<&Settings::topic>, setText<&Settings::topic>, nullptr, checkTopicValue, true},
+    {kAtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_string("source", "Source",
+                                  "Name of this camera or stream in every document (and in the topic); "
+                                  "NULL = the element's name",
+                                  nullptr, f);
+     },
+     getTextOrNull<&Settings::source>, setText<&Settings::source>},
+    {kAtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_int("qos", "QoS",
+                               "MQTT quality of service: 0 at most once, 1 at least once (a document may "
+                               "arrive twice after a reconnect), 2 exactly once",
+                               0, 2, Settings{}.qos, f);
+     },
+     [](const Settings &s, GValue *v) { g_value_set_int(v, s.qos); },
+     [](Settings &s, const GValue *v) { s.qos = g_value_get_int(v); }},
+    {kAtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_string(
+           "client-id", "Client id",
+           "MQTT client id, unique per broker; NULL = colortrack-<source>-<process id>", nullptr, f);
+     },
+     getTextOrNull<&Settings::clientId>, setText<&Settings::clientId>},
+    {kAtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_string("username", "User name", "MQTT user name; NULL = none", nullptr, f);
+     },
+     getTextOrNull<&Settings::username>, setText<&Settings::username>},
+    {kAtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_string("password", "Password", "MQTT password; NULL = none", nullptr, f);
+     },
+     getTextOrNull<&Settings::password>, setText<&Settings::password>},
+    {kAtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_string(
+           "tls-ca-file", "TLS CA file",
+           "PEM file of the certificate authorities to trust (ssl:// only); NULL = the "
+           "system's",
+           nullptr, f);
+     },
+     getTextOrNull<&Settings::tlsCaFile>, setText<&Settings::tlsCaFile>},
+    {kAtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_string("tls-cert-file", "TLS certificate file",
+                                  "PEM client certificate (ssl:// only); NULL = none", nullptr, f);
+     },
+     getTextOrNull<&Settings::tlsCertFile>, setText<&Settings::tlsCertFile>},
+    {kAtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_string("tls-key-file", "TLS key file",
+                                  "PEM private key of the client certificate (ssl:// only); NULL = in the "
+                                  "certificate file",
+                                  nullptr, f);
+     },
+     getTextOrNull<&Settings::tlsKeyFile>, setText<&Settings::tlsKeyFile>},
+    {kAtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_boolean("tls-verify", "TLS verify",
+                                   "Check the broker's certificate and host name (ssl:// only)",
+                                   Settings{}.tlsVerify, f);
+     },
+     getBool<&Settings::tlsVerify>, setBool<&Settings::tlsVerify>},
+    {kAtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_uint("max-queued", "Maximum queued",
+                                "Documents kept while the broker is unreachable; beyond this the oldest are "
+                                "dropped (counted in a warning)",
+                                1, 10000000, Settings{}.maxQueued, f);
+     },
+     getUint<&Settings::maxQueued>, setUint<&Settings::maxQueued>},
+    {kAtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_boolean("fail-on-connect", "Fail on connect",
+                                   "Fail to start when the broker cannot be reached (else warn and keep "
+                                   "retrying, queueing documents)",
+                                   Settings{}.failOnConnect, f);
+     },
+     getBool<&Settings::failOnConnect>, setBool<&Settings::failOnConnect>},
+    {kAtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_uint("drain-timeout", "Drain timeout",
+                                "Milliseconds to keep delivering queued documents when stopping", 0, 600000,
+                                Settings{}.drainTimeoutMs, f);
+     },
+     getUint<&Settings::drainTimeoutMs>, setUint<&Settings::drainTimeoutMs>},
+    {kAtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_string(
+           "roi-type", "ROI type",
+           "Type of the region-of-interest metas to publish, not empty (\"object\" for "
+           "cvtracker)",
+           Settings{}.roiType.c_str(), f);
+     },
+     getText<&Settings::roiType>, setText<&Settings::roiType>, refuseEmptyRoiType},
+};
+
+}  // namespace
+
+const gstglue::PropertyTable<Settings> &properties() {
+  static const gstglue::PropertyTable<Settings> table(kProperties);
+  return table;
+}
+
+}  // namespace trackpublish

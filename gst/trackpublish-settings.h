@@ -1,0 +1,32 @@
+// trackpublish's settings, what its properties say, and the table that declares those properties. All are
+// read at start.
+#pragma once
+
+#include <string>
+
+#include "property-table.h"
+
+namespace trackpublish {
+
+struct Settings {
+  std::string location;  // a file of JSON lines, "-" for stdout; empty: none
+  std::string address;   // MQTT broker, tcp://HOST:PORT or ssl://HOST:PORT; empty: none
+  std::string topic = "colortrack/{source}";
+  std::string source;  // empty: the element's name
+  gint qos = 1;
+  std::string clientId;  // empty: colortrack-<source>-<process id>
+  std::string username, password;
+  std::string tlsCaFile, tlsCertFile, tlsKeyFile;
+  bool tlsVerify = true;
+  guint maxQueued = 1000;
+  bool failOnConnect = false;
+  guint drainTimeoutMs = 5000;
+  std::string roiType = "colortrack";
+};
+
+using PropertyStore = gstglue::PropertyStore<Settings>;
+
+// In the order gst-inspect-1.0 lists them.
+const gstglue::PropertyTable<Settings> &properties();
+
+}  // namespace trackpublish
