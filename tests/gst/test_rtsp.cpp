@@ -583,6 +583,7 @@ GST_START_TEST(test_track_over_rtsp_and_survive_server_restart) {
   const int disconnectsBefore = disconnects();
   const bool noticed = client.runUntil([&] { return disconnects() > disconnectsBefore; }, 3.0);
   const double noticedAfter = client.now() - killedAt;
+  const int stallsWhenNoticed = client.stalls();
   client.runUntil([] { return false; }, std::max(0.0, 1.0 - noticedAfter));
   const int attemptsWhileDown = client.connections() - 1;
 
@@ -638,9 +639,10 @@ GST_START_TEST(test_track_over_rtsp_and_survive_server_restart) {
   fail_unless(q1.meanIou >= 0.6, "mean IoU %.3f before the restart", q1.meanIou);
   fail_unless(q1.tracked >= 0.9 * q1.frames, "IoU >= 0.5 in only %d of %d frames", q1.tracked, q1.frames);
   // The outage: seen quickly, retried without giving up, nothing outside the source failed.
-  // The close is seen at once (EOS), not by the stall watchdog.
+  // The close is seen at once (EOS), not by the stall watchdog. (A reconnection that brings no frame for
+  // kStallSeconds, as on a loaded machine, may count a stall later: that is the recovery path working.)
   fail_unless(noticed && noticedAfter < 1.0, "the disconnect went unnoticed for %.2f s", noticedAfter);
-  fail_unless_equals_int(client.stalls(), 0);
+  fail_unless_equals_int(stallsWhenNoticed, 0);
   fail_unless(attemptsWhileDown >= 1, "no reconnection attempt while the server was down");
   fail_unless(client.otherErrors().empty(), "errors outside the source");
   // After the restart: frames again, the object (which moved meanwhile) found again, tracked again.
