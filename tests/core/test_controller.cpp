@@ -330,6 +330,27 @@ TEST(RobotController, ProportionalRampsAndFollows) {
   EXPECT_NEAR(out.left, 0.4, 1e-12);
 }
 
+TEST(RobotController, RatesFromSuccessiveBoxesClearedWhenLost) {
+  ControllerSettings c;
+  c.kind = ControllerKind::Proportional;
+  c.turnIntegralGain = c.driveIntegralGain = 0;
+  c.maxLinearAccel = c.maxAngularAccel = 0;
+  FailsafeSettings f;
+  RobotController moving(c, f), still(c, f);
+  // A target sliding right (offset 0.1 -> 0.2 in 0.1 s: 1/s, smoothed to half on the first step) turns
+  // harder than one standing at 0.2.
+  moving.update(seen(0.0, 0.1, 72));
+  still.update(seen(0.0, 0.2, 72));
+  const double slid = moving.update(seen(0.1, 0.2, 72)).angular;
+  const double stood = still.update(seen(0.1, 0.2, 72)).angular;
+  EXPECT_NEAR(slid - stood, -c.turnRateGain * 0.5, 1e-12);
+  // Lost and found elsewhere: the jump is not a motion (no rate term on the first frame back, as for a
+  // controller that never saw the target).
+  moving.update(unseen(1.0));
+  RobotController fresh(c, f);
+  EXPECT_DOUBLE_EQ(moving.update(seen(1.1, -0.3, 72)).angular, fresh.update(seen(1.1, -0.3, 72)).angular);
+}
+
 TEST(RobotController, SetSettingsKeepsTheSlewStateAndTheHold) {
   ControllerSettings c;
   c.kind = ControllerKind::Proportional;
