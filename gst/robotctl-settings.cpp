@@ -308,11 +308,10 @@ const Def kProperties[] = {
      [](GParamFlags f) {
        return g_param_spec_double(
            "latency", "Latency",
-           "Zone controller: seconds from a command to the wheels (link, rate period, firmware, motors). A "
-           "turn "
-           "ends this much early and, near the centre, turns are single decisions each followed by this "
-           "long a stop, so the robot does not swing across the centre. 0: no such rule (the paper's "
-           "controller)",
+           "Zone controller: seconds from a command to the wheels (the robot's delay plus about half the "
+           "send period 1/rate). A turn ends this much early and, near the centre, turns are single "
+           "decisions each followed by this long without a turn, so the robot does not swing across the "
+           "centre. 0: no such rule (the paper's controller)",
            0.0, 2.0, ControllerSettings{}.latency, f);
      },
      getControl<&ControllerSettings::latency>, setControl<&ControllerSettings::latency>},

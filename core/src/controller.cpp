@@ -107,21 +107,26 @@ DriveOutput ZoneController::update(const Errors &e, double now) {
                            std::max(0.0, s.distanceDeadband - s.hysteresis));
 
   // Turning first: driving towards an off-centre target would lose it from the side of the frame.
-  if (turnZone_ != 0 && s.latency > 0) {
-    // The last turn's effect is not seen yet: wait (turning on would overshoot).
-    if (now < holdUntil_) return makeOutput(0, 0, true);
-    // The offset where the robot will have stopped if it stops now: still turning for the latency.
-    const double predicted = e.offset + e.offsetRate * s.latency;
-    const bool near = std::abs(e.offset) < 2 * s.turnDeadband;
-    if (near || turnZone_ * predicted < turnLeave) {
-      // One decision's turn near the centre (a stop where the prediction says it would overshoot), then
-      // stops for the latency and the next frame (the first to show where it led; half a frame here,
-      // so that times rounded to the frame period do not add or drop one).
-      holdUntil_ = now + s.latency + frame / 2;
-      return near ? turn(turnZone_) : makeOutput(0, 0, true);
+  bool turning = turnZone_ != 0;
+  if (turning && s.latency > 0) {
+    if (now < holdUntil_) {
+      // The last turn's effect is not seen yet: no turn (it would overshoot), but the target is near the
+      // centre, so the distance may be corrected meanwhile.
+      turning = false;
+    } else {
+      // The offset where the robot will have stopped if it stops now: still turning for the latency.
+      const double predicted = e.offset + e.offsetRate * s.latency;
+      const bool near = std::abs(e.offset) < 2 * s.turnDeadband;
+      if (near || turnZone_ * predicted < turnLeave) {
+        // One decision's turn near the centre (no turn where the prediction says it would overshoot),
+        // then no turn for the latency and the next frame (the first to show where it led; half a frame
+        // here, so that times rounded to the frame period do not add or drop one).
+        holdUntil_ = now + s.latency + frame / 2;
+        turning = near;
+      }
     }
   }
-  if (turnZone_ != 0) return turn(turnZone_);
+  if (turning) return turn(turnZone_);
   if (distanceZone_ != 0) {
     DriveOutput out = makeOutput(distanceZone_ > 0 ? s.maxLinear : -s.maxLinear, 0, true);
     out.command = distanceZone_ > 0 ? DriveCommand::Forward : DriveCommand::Backward;

@@ -115,6 +115,10 @@ TEST(ZoneController, LatencyTurnsInSingleDecisionsNearTheCentre) {
   for (std::size_t k = 1; k < turns.size(); ++k) EXPECT_EQ(turns[k] - turns[k - 1], 4) << k;  // 3 stops
   // Centred again: no turn, and the hold does not delay driving.
   EXPECT_EQ(zone.update({0.0, 0.3}, 2.0).command, DriveCommand::Forward);
+  // While a turn's effect is awaited the distance is corrected (the target is near the centre).
+  ZoneController far(s);
+  EXPECT_EQ(far.update({0.15, 0.3}, 0.0).command, DriveCommand::Right);  // turning first
+  EXPECT_EQ(far.update({0.15, 0.3}, 1 / 30.0).command, DriveCommand::Forward);
 }
 
 TEST(ZoneController, LatencyEndsAFastTurnEarly) {

@@ -63,8 +63,8 @@ struct ControllerSettings {
   double maxAngularAccel = 4.0;
   // Zone: seconds from a decision to the wheels (serial link, command period, firmware, motors). A turn
   // ends this much early (the offset's rate tells how far the robot still turns) and, near the centre,
-  // turns are single decisions each followed by this long a stop to see where they led. 0: the paper's
-  // controller exactly.
+  // turns are single decisions each followed by this long without a turn to see where they led. 0: the
+  // paper's controller exactly.
   double latency = 0.1;
 };
 
@@ -106,7 +106,8 @@ DriveCommand classifyCommand(double linear, double angular);
 // With a latency (settings.latency > 0) a turn at full speed would overshoot the centre by the distance
 // turned during the latency, and the next turn overshoot back: so a turn ends once the offset predicted a
 // latency ahead is inside, and within twice the deadband of the centre the robot turns one decision at a
-// time, each followed by stops for the latency and a frame (the turn's average speed falls near the centre).
+// time, each followed by no turn for the latency and a frame (the turn's average speed falls near the
+// centre); meanwhile the distance zone drives.
 class ZoneController {
  public:
   explicit ZoneController(const ControllerSettings &settings) : settings_(settings) {}
