@@ -13,9 +13,10 @@
  * Two controllers (#GstRobotCtl:controller): "zone" splits the frame into left / centre / right by the
  * target's horizontal offset and into too-far / right / too-close by its size (or the height of its bottom
  * edge, #GstRobotCtl:distance-cue) and sends forward, backward, left, right or stop, with a deadband and
- * hysteresis against chatter; "proportional" turns at a rate proportional to the offset and drives at a
- * speed proportional to the distance error, with gains, deadbands, limits and an acceleration limit, as
- * left/right wheel speeds.
+ * hysteresis against chatter, and near the centre turns in single steps that wait #GstRobotCtl:latency for
+ * their effect; "proportional" sets the turn from the offset and the speed from the distance error, each
+ * with a proportional, an integral (without wind-up) and a rate term, limits and an acceleration limit, as
+ * left/right wheel speeds, and stops once the target is well within the deadbands.
  *
  * Three protocols (#GstRobotCtl:protocol): "zone-char" (one character per command, #GstRobotCtl:zone-chars,
  * default "FBLRS"), "text" ("L=<int> R=<int>\n", wheel speeds times #GstRobotCtl:output-scale) and "binary"

@@ -285,6 +285,62 @@ const Def kProperties[] = {
      refuseNegativeGain},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
+       return g_param_spec_double(
+           "turn-integral-gain", "Turn integral gain",
+           "Proportional controller: angular speed per unit horizontal offset held for a second, 0-100 "
+           "(removes "
+           "the lag behind a target moving sideways; frozen while the turn is limited). The range admits "
+           "negatives only so that robotctl can refuse them with a clear error",
+           -100.0, 100.0, ControllerSettings{}.turnIntegralGain, f);
+     },
+     getControl<&ControllerSettings::turnIntegralGain>, setControl<&ControllerSettings::turnIntegralGain>,
+     refuseNegativeGain},
+    {Apply::Live, kVersioned,
+     [](GParamFlags f) {
+       return g_param_spec_double(
+           "drive-integral-gain", "Drive integral gain",
+           "Proportional controller: linear speed per unit relative distance error held for a second, 0-100 "
+           "(removes the lag behind a target moving away or closer; frozen while the speed is limited). The "
+           "range admits negatives only so that robotctl can refuse them with a clear error",
+           -100.0, 100.0, ControllerSettings{}.driveIntegralGain, f);
+     },
+     getControl<&ControllerSettings::driveIntegralGain>, setControl<&ControllerSettings::driveIntegralGain>,
+     refuseNegativeGain},
+    {Apply::Live, kVersioned,
+     [](GParamFlags f) {
+       return g_param_spec_double(
+           "turn-rate-gain", "Turn rate gain",
+           "Proportional controller: angular speed per unit of horizontal offset change per second, 0-100 "
+           "(reacts to the target's sideways motion; damps the turn). The range admits negatives only so "
+           "that robotctl can refuse them with a clear error",
+           -100.0, 100.0, ControllerSettings{}.turnRateGain, f);
+     },
+     getControl<&ControllerSettings::turnRateGain>, setControl<&ControllerSettings::turnRateGain>,
+     refuseNegativeGain},
+    {Apply::Live, kVersioned,
+     [](GParamFlags f) {
+       return g_param_spec_double(
+           "drive-rate-gain", "Drive rate gain",
+           "Proportional controller: linear speed per unit of relative distance error change per second, "
+           "0-100 (reacts to the target moving away or closer; damps the approach). The range admits "
+           "negatives only so that robotctl can refuse them with a clear error",
+           -100.0, 100.0, ControllerSettings{}.driveRateGain, f);
+     },
+     getControl<&ControllerSettings::driveRateGain>, setControl<&ControllerSettings::driveRateGain>,
+     refuseNegativeGain},
+    {Apply::Live, kVersioned,
+     [](GParamFlags f) {
+       return g_param_spec_double(
+           "latency", "Latency",
+           "Zone controller: seconds from a command to the wheels (the robot's delay plus about half the "
+           "send period 1/rate). A turn ends this much early and, near the centre, turns are single "
+           "decisions each followed by this long without a turn, so the robot does not swing across the "
+           "centre. 0: no such rule (the paper's controller)",
+           0.0, 2.0, ControllerSettings{}.latency, f);
+     },
+     getControl<&ControllerSettings::latency>, setControl<&ControllerSettings::latency>},
+    {Apply::Live, kVersioned,
+     [](GParamFlags f) {
        return g_param_spec_double("max-linear", "Maximum linear speed",
                                   "Largest forward/backward speed (fraction of full speed); the zone "
                                   "controller's driving speed",

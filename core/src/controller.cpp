@@ -2,16 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace colortrack {
 
 namespace {
-
-// The error beyond the deadband: zero inside it and continuous at its edge, so the output does not jump.
-double beyondDeadband(double error, double deadband) {
-  const double magnitude = std::max(0.0, std::abs(error) - deadband);
-  return std::copysign(magnitude, error);
-}
 
 // Moves `current` towards `target` by at most rate * dt (rate 0 = no limit).
 double slew(double current, double target, double rate, double dt) {
@@ -96,35 +91,87 @@ int ZoneController::nextZone(int zone, double error, double enter, double leave)
   return 0;
 }
 
-DriveOutput ZoneController::update(double offset, double distanceError) {
-  const ControllerSettings &s = settings_;
-  turnZone_ = nextZone(turnZone_, offset, s.turnDeadband, std::max(0.0, s.turnDeadband - s.hysteresis));
-  distanceZone_ = nextZone(distanceZone_, distanceError, s.distanceDeadband,
-                           std::max(0.0, s.distanceDeadband - s.hysteresis));
-
-  DriveOutput out;
-  // Turning first: driving towards an off-centre target would lose it from the side of the frame.
-  if (turnZone_ != 0) {
-    out = makeOutput(0, turnZone_ > 0 ? -s.maxAngular : s.maxAngular, true);
-    out.command = turnZone_ > 0 ? DriveCommand::Right : DriveCommand::Left;
-  } else if (distanceZone_ != 0) {
-    out = makeOutput(distanceZone_ > 0 ? s.maxLinear : -s.maxLinear, 0, true);
-    out.command = distanceZone_ > 0 ? DriveCommand::Forward : DriveCommand::Backward;
-  } else {
-    out = makeOutput(0, 0, true);
-  }
+DriveOutput ZoneController::turn(int zone) const {
+  DriveOutput out = makeOutput(0, zone > 0 ? -settings_.maxAngular : settings_.maxAngular, true);
+  out.command = zone > 0 ? DriveCommand::Right : DriveCommand::Left;
   return out;
 }
 
-DriveOutput ProportionalController::update(double offset, double distanceError, double dt) {
+DriveOutput ZoneController::update(const Errors &e, double now) {
   const ControllerSettings &s = settings_;
-  const double angularTarget =
-      std::clamp(-s.turnGain * beyondDeadband(offset, s.turnDeadband), -s.maxAngular, s.maxAngular);
-  const double linearTarget =
-      std::clamp(s.driveGain * beyondDeadband(distanceError, s.distanceDeadband), -s.maxLinear, s.maxLinear);
-  linear_ = slew(linear_, linearTarget, s.maxLinearAccel, dt);
-  angular_ = slew(angular_, angularTarget, s.maxAngularAccel, dt);
-  return makeOutput(linear_, angular_, true);
+  const double frame = lastNow_ ? std::max(0.0, now - *lastNow_) : 0.0;
+  lastNow_ = now;
+  const double turnLeave = std::max(0.0, s.turnDeadband - s.hysteresis);
+  turnZone_ = nextZone(turnZone_, e.offset, s.turnDeadband, turnLeave);
+  distanceZone_ = nextZone(distanceZone_, e.distance, s.distanceDeadband,
+                           std::max(0.0, s.distanceDeadband - s.hysteresis));
+
+  // Turning first: driving towards an off-centre target would lose it from the side of the frame.
+  bool turning = turnZone_ != 0;
+  if (turning && s.latency > 0) {
+    if (now < holdUntil_) {
+      // The last turn's effect is not seen yet: no turn (it would overshoot), but the target is near the
+      // centre, so the distance may be corrected meanwhile.
+      turning = false;
+    } else {
+      // The offset where the robot will have stopped if it stops now: still turning for the latency.
+      const double predicted = e.offset + e.offsetRate * s.latency;
+      const bool near = std::abs(e.offset) < 2 * s.turnDeadband;
+      if (near || turnZone_ * predicted < turnLeave) {
+        // One decision's turn near the centre (no turn where the prediction says it would overshoot),
+        // then no turn for the latency and the next frame (the first to show where it led; half a frame
+        // here, so that times rounded to the frame period do not add or drop one).
+        holdUntil_ = now + s.latency + frame / 2;
+        turning = near;
+      }
+    }
+  }
+  if (turning) return turn(turnZone_);
+  if (distanceZone_ != 0) {
+    DriveOutput out = makeOutput(distanceZone_ > 0 ? s.maxLinear : -s.maxLinear, 0, true);
+    out.command = distanceZone_ > 0 ? DriveCommand::Forward : DriveCommand::Backward;
+    return out;
+  }
+  return makeOutput(0, 0, true);
+}
+
+double PiAxis::update(const Gains &g, double error, double rate, double dt) {
+  dt = std::max(0.0, dt);
+  // Arrived: stop rather than creep at a speed the motors cannot hold; go again once the error grows.
+  if (arrived_ && std::abs(error) > g.deadband / 2) arrived_ = false;
+  if (!arrived_ && std::abs(error) < g.deadband / 4) {
+    arrived_ = true;
+    integral_ = 0;
+  }
+  double target = 0;
+  if (!arrived_) {
+    const double integral = integral_ + error * dt;
+    const double wanted = g.p * error + g.i * integral + g.rate * rate;
+    target = std::clamp(wanted, -g.limit, g.limit);
+    const double step = g.accel > 0 ? g.accel * dt : std::numeric_limits<double>::infinity();
+    // Anti-windup: no integration while the output is held back (clamp or slew limit) in the direction
+    // the error pushes, or the integral would grow during the saturation and overshoot afterwards.
+    const bool clamped = wanted != target && (wanted > 0) == (error > 0);
+    const bool slewing = std::abs(target - output_) > step && (target > output_) == (error > 0);
+    if (!clamped && !slewing) integral_ = integral;
+    // The I term alone never asks for more than the limit.
+    if (g.i > 0) integral_ = std::clamp(integral_, -g.limit / g.i, g.limit / g.i);
+    target = std::clamp(g.p * error + g.i * integral_ + g.rate * rate, -g.limit, g.limit);
+  }
+  output_ = slew(output_, target, g.accel, dt);
+  return output_;
+}
+
+DriveOutput ProportionalController::update(const Errors &e, double dt) {
+  const ControllerSettings &s = settings_;
+  const PiAxis::Gains turn{s.turnGain,     s.turnIntegralGain, s.turnRateGain,
+                           s.turnDeadband, s.maxAngular,       s.maxAngularAccel};
+  const PiAxis::Gains drive{s.driveGain,        s.driveIntegralGain, s.driveRateGain,
+                            s.distanceDeadband, s.maxLinear,         s.maxLinearAccel};
+  // Offset > 0 (target right) turns right: a negative angular.
+  const double angular = -turn_.update(turn, e.offset, e.offsetRate, dt);
+  const double linear = drive_.update(drive, e.distance, e.distanceRate, dt);
+  return makeOutput(linear, angular, true);
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -160,6 +207,7 @@ void RobotController::reset() {
   lastTime_.reset();
   last_ = DriveOutput();
   lastOffset_ = 0;
+  lastErrors_.reset();
 }
 
 DriveOutput RobotController::failsafeOutput() const {
@@ -174,13 +222,27 @@ DriveOutput RobotController::update(const Observation &o) {
 
   if (confirmed(o)) {
     watchdog_.feed(o.time);
-    const double offset = horizontalOffset(*o.box, o.frameSize);
-    const double error = distanceError(*o.box, o.frameSize, settings_.distanceCue, settings_.setPoint);
-    last_ = settings_.kind == ControllerKind::Zone ? zone_.update(offset, error)
-                                                   : proportional_.update(offset, error, dt);
-    lastOffset_ = offset;
+    Errors e;
+    e.offset = horizontalOffset(*o.box, o.frameSize);
+    e.distance = distanceError(*o.box, o.frameSize, settings_.distanceCue, settings_.setPoint);
+    if (lastErrors_ && dt > 0) {
+      // Rates by differences, smoothed over ~0.1 s: the boxes come rounded to whole pixels.
+      constexpr double kSmoothing = 0.1;  // s
+      const double a = dt / (dt + kSmoothing);
+      e.offsetRate =
+          lastErrors_->offsetRate + a * ((e.offset - lastErrors_->offset) / dt - lastErrors_->offsetRate);
+      e.distanceRate = lastErrors_->distanceRate +
+                       a * ((e.distance - lastErrors_->distance) / dt - lastErrors_->distanceRate);
+    } else if (lastErrors_) {
+      e.offsetRate = lastErrors_->offsetRate, e.distanceRate = lastErrors_->distanceRate;
+    }
+    lastErrors_ = e;
+    last_ = settings_.kind == ControllerKind::Zone ? zone_.update(e, o.time) : proportional_.update(e, dt);
+    lastOffset_ = e.offset;
     return last_;
   }
+  // The rates are of a continuous view of the target.
+  lastErrors_.reset();
 
   if (!watchdog_.expired(o.time)) {
     // A short dropout (a coasting track, one bad frame): keep going as decided.

@@ -1,6 +1,8 @@
 // The zone and proportional controllers and the failsafe, on exact figures (no I/O, given times).
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "colortrack/controller.hpp"
 
 namespace colortrack {
@@ -39,99 +41,215 @@ TEST(ControllerGeometry, WheelsKeepTheTurnWhenSaturated) {
 }
 
 TEST(ZoneController, DecisionsWithDeadbandAndHysteresis) {
-  ControllerSettings s;  // deadbands 0.1, hysteresis 0.05, maxLinear 0.5, maxAngular 0.3
+  ControllerSettings s;  // deadbands 0.1, maxLinear 0.5, maxAngular 0.3
+  s.hysteresis = 0.05;
+  s.latency = 0;  // the paper's controller
   ZoneController zone(s);
+  double t = 0;
+  const auto update = [&](double offset, double distance) {
+    return zone.update({offset, distance}, t += 0.1);
+  };
 
-  DriveOutput out = zone.update(0.05, 0.0);
+  DriveOutput out = update(0.05, 0.0);
   EXPECT_EQ(out.command, DriveCommand::Stop);
-  out = zone.update(0.11, 0.0);
+  out = update(0.11, 0.0);
   EXPECT_EQ(out.command, DriveCommand::Right);
   EXPECT_DOUBLE_EQ(out.angular, -0.3);
   EXPECT_DOUBLE_EQ(out.left, 0.3);
   EXPECT_DOUBLE_EQ(out.right, -0.3);
   // Back inside the deadband but not by the hysteresis: still turning.
-  EXPECT_EQ(zone.update(0.08, 0.0).command, DriveCommand::Right);
-  EXPECT_EQ(zone.update(0.051, 0.0).command, DriveCommand::Right);
-  EXPECT_EQ(zone.update(0.049, 0.0).command, DriveCommand::Stop);
+  EXPECT_EQ(update(0.08, 0.0).command, DriveCommand::Right);
+  EXPECT_EQ(update(0.051, 0.0).command, DriveCommand::Right);
+  EXPECT_EQ(update(0.049, 0.0).command, DriveCommand::Stop);
   // From the centre, 0.09 is not enough to start turning.
-  EXPECT_EQ(zone.update(0.09, 0.0).command, DriveCommand::Stop);
-  EXPECT_EQ(zone.update(-0.2, 0.0).command, DriveCommand::Left);
+  EXPECT_EQ(update(0.09, 0.0).command, DriveCommand::Stop);
+  EXPECT_EQ(update(-0.2, 0.0).command, DriveCommand::Left);
   // Straight across to the other side.
-  EXPECT_EQ(zone.update(0.2, 0.0).command, DriveCommand::Right);
-  EXPECT_EQ(zone.update(0.0, 0.0).command, DriveCommand::Stop);
+  EXPECT_EQ(update(0.2, 0.0).command, DriveCommand::Right);
+  EXPECT_EQ(update(0.0, 0.0).command, DriveCommand::Stop);
 
-  out = zone.update(0.0, 0.15);
+  out = update(0.0, 0.15);
   EXPECT_EQ(out.command, DriveCommand::Forward);
   EXPECT_DOUBLE_EQ(out.left, 0.5);
   EXPECT_DOUBLE_EQ(out.right, 0.5);
-  EXPECT_EQ(zone.update(0.0, 0.07).command, DriveCommand::Forward);
-  EXPECT_EQ(zone.update(0.0, 0.04).command, DriveCommand::Stop);
-  out = zone.update(0.0, -0.2);
+  EXPECT_EQ(update(0.0, 0.07).command, DriveCommand::Forward);
+  EXPECT_EQ(update(0.0, 0.04).command, DriveCommand::Stop);
+  out = update(0.0, -0.2);
   EXPECT_EQ(out.command, DriveCommand::Backward);
   EXPECT_DOUBLE_EQ(out.linear, -0.5);
   // Turning comes before distance.
-  EXPECT_EQ(zone.update(0.2, 0.5).command, DriveCommand::Right);
-  EXPECT_EQ(zone.update(0.0, 0.5).command, DriveCommand::Forward);
+  EXPECT_EQ(update(0.2, 0.5).command, DriveCommand::Right);
+  EXPECT_EQ(update(0.0, 0.5).command, DriveCommand::Forward);
 }
 
 TEST(ZoneController, NoChatterOnABorder) {
   ControllerSettings s;
+  s.latency = 0;
   ZoneController zone(s);
   // A target jittering +-0.02 around the deadband border changes the command once, not on every frame.
   int changes = 0;
   DriveCommand previous = DriveCommand::Stop;
   for (int i = 0; i < 40; ++i) {
     const double offset = 0.1 + (i % 2 ? 0.02 : -0.02);
-    const DriveCommand c = zone.update(offset, 0).command;
+    const DriveCommand c = zone.update({offset, 0}, i * 0.1).command;
     changes += c != previous;
     previous = c;
   }
   EXPECT_EQ(changes, 1);
 }
 
+TEST(ZoneController, LatencyTurnsInSingleDecisionsNearTheCentre) {
+  ControllerSettings s;  // latency 0.1 s
+  ZoneController zone(s);
+  // A target 0.15 off (beyond the deadband, within twice it) that does not move, decided at 30 fps: one
+  // turn decision, then stops for the latency and a frame, then the next one.
+  std::vector<int> turns;
+  zone.update({0, 0}, -1 / 30.0);  // the frame period is known from the second decision on
+  for (int i = 0; i < 30; ++i) {
+    const DriveOutput out = zone.update({0.15, 0}, i / 30.0);
+    EXPECT_TRUE(out.command == DriveCommand::Right || out.command == DriveCommand::Stop) << i;
+    if (out.command == DriveCommand::Right) turns.push_back(i);
+  }
+  ASSERT_GE(turns.size(), 6u);
+  EXPECT_EQ(turns.front(), 0);
+  for (std::size_t k = 1; k < turns.size(); ++k) EXPECT_EQ(turns[k] - turns[k - 1], 4) << k;  // 3 stops
+  // Centred again: no turn, and the hold does not delay driving.
+  EXPECT_EQ(zone.update({0.0, 0.3}, 2.0).command, DriveCommand::Forward);
+  // While a turn's effect is awaited the distance is corrected (the target is near the centre).
+  ZoneController far(s);
+  EXPECT_EQ(far.update({0.15, 0.3}, 0.0).command, DriveCommand::Right);  // turning first
+  EXPECT_EQ(far.update({0.15, 0.3}, 1 / 30.0).command, DriveCommand::Forward);
+}
+
+TEST(ZoneController, LatencyEndsAFastTurnEarly) {
+  ControllerSettings s;  // latency 0.1 s
+  ZoneController zone(s);
+  // Far off: full turn while the offset predicted a latency ahead is still out of the centre.
+  EXPECT_EQ(zone.update({0.6, 0, 0, 0}, 0.0).command, DriveCommand::Right);
+  EXPECT_EQ(zone.update({0.5, 0, -2.0, 0}, 0.033).command, DriveCommand::Right);  // predicted 0.3
+  // Predicted 0.25 - 0.3 < 0: the robot will still turn past the centre, stop now and wait.
+  EXPECT_EQ(zone.update({0.25, 0, -3.0, 0}, 0.067).command, DriveCommand::Stop);
+  EXPECT_EQ(zone.update({0.22, 0, -3.0, 0}, 0.1).command, DriveCommand::Stop);  // waiting
+  // The same decisions without the latency rule (the paper's): turn until inside.
+  s.latency = 0;
+  zone.setSettings(s);
+  zone.reset();
+  EXPECT_EQ(zone.update({0.25, 0, -3.0, 0}, 0.2).command, DriveCommand::Right);
+}
+
 TEST(ProportionalController, GainsDeadbandsAndLimits) {
-  ControllerSettings s;  // gains 1.5, deadbands 0.1, maxLinear 0.5, maxAngular 0.3
+  ControllerSettings s;  // deadbands 0.1, maxLinear 0.5, maxAngular 0.3
   s.kind = ControllerKind::Proportional;
+  s.turnGain = s.driveGain = 1.5;
+  s.turnIntegralGain = s.driveIntegralGain = 0;  // P alone here
+  s.turnRateGain = s.driveRateGain = 0;
   s.maxLinearAccel = s.maxAngularAccel = 0;  // no slew limit here
   ProportionalController p(s);
 
-  DriveOutput out = p.update(0.2, 0.3, 0.1);
-  EXPECT_NEAR(out.angular, -0.15, 1e-12);  // -1.5 * (0.2 - 0.1)
-  EXPECT_NEAR(out.linear, 0.3, 1e-12);     // 1.5 * (0.3 - 0.1)
+  // The whole error counts (the set-point is reached, not the deadband's edge).
+  DriveOutput out = p.update({0.1, 0.2}, 0.1);
+  EXPECT_NEAR(out.angular, -0.15, 1e-12);  // -1.5 * 0.1
+  EXPECT_NEAR(out.linear, 0.3, 1e-12);     // 1.5 * 0.2
   EXPECT_NEAR(out.left, 0.45, 1e-12);
   EXPECT_NEAR(out.right, 0.15, 1e-12);
   EXPECT_EQ(out.command, DriveCommand::Forward);
 
-  out = p.update(-0.9, 1.0, 0.1);
+  out = p.update({-0.9, 1.0}, 0.1);
   EXPECT_DOUBLE_EQ(out.angular, 0.3);  // limited
   EXPECT_DOUBLE_EQ(out.linear, 0.5);
 
-  out = p.update(0.05, -0.05, 0.1);  // inside both deadbands
+  out = p.update({0.04, -0.04}, 0.1);  // within half the deadbands, but not arrived: still correcting
+  EXPECT_NEAR(out.angular, -0.06, 1e-12);
+  EXPECT_NEAR(out.linear, -0.06, 1e-12);
+  out = p.update({0.02, -0.02}, 0.1);  // within a quarter: arrived, stop (no creeping)
   EXPECT_EQ(out.command, DriveCommand::Stop);
   EXPECT_DOUBLE_EQ(out.left, 0.0);
   EXPECT_DOUBLE_EQ(out.right, 0.0);
+  EXPECT_EQ(p.update({0.04, -0.04}, 0.1).command, DriveCommand::Stop);  // stays arrived within half
+  out = p.update({0.0, -0.06}, 0.1);                                    // beyond half: again
+  EXPECT_NEAR(out.linear, -0.09, 1e-12);
 
-  out = p.update(0.0, -0.5, 0.1);
-  EXPECT_NEAR(out.linear, -0.5, 1e-12);  // 1.5 * -0.4 = -0.6, limited
+  out = p.update({0.0, -0.5}, 0.1);
+  EXPECT_NEAR(out.linear, -0.5, 1e-12);  // 1.5 * -0.5 = -0.75, limited
   EXPECT_EQ(out.command, DriveCommand::Backward);
 }
 
 TEST(ProportionalController, SlewLimit) {
   ControllerSettings s;
   s.kind = ControllerKind::Proportional;
+  s.turnGain = s.driveGain = 1.5;
+  s.turnIntegralGain = s.driveIntegralGain = 0;
   s.maxLinearAccel = 2.0;  // per second
   s.maxAngularAccel = 1.0;
   ProportionalController p(s);
-  EXPECT_DOUBLE_EQ(p.update(0, 1.0, 0.0).linear, 0.0);  // no time has passed
-  EXPECT_NEAR(p.update(0, 1.0, 0.1).linear, 0.2, 1e-12);
-  EXPECT_NEAR(p.update(0, 1.0, 0.1).linear, 0.4, 1e-12);
-  EXPECT_NEAR(p.update(0, 1.0, 0.1).linear, 0.5, 1e-12);  // the limit
-  EXPECT_NEAR(p.update(0, -1.0, 0.05).linear, 0.4, 1e-12);
-  DriveOutput out = p.update(1.0, 0.0, 0.1);
+  EXPECT_DOUBLE_EQ(p.update({0, 1.0}, 0.0).linear, 0.0);  // no time has passed
+  EXPECT_NEAR(p.update({0, 1.0}, 0.1).linear, 0.2, 1e-12);
+  EXPECT_NEAR(p.update({0, 1.0}, 0.1).linear, 0.4, 1e-12);
+  EXPECT_NEAR(p.update({0, 1.0}, 0.1).linear, 0.5, 1e-12);  // the limit
+  EXPECT_NEAR(p.update({0, -1.0}, 0.05).linear, 0.4, 1e-12);
+  DriveOutput out = p.update({1.0, 0.0}, 0.1);
   EXPECT_NEAR(out.angular, -0.1, 1e-12);
   EXPECT_NEAR(out.linear, 0.2, 1e-12);
   p.reset();
-  EXPECT_NEAR(p.update(0, 1.0, 0.1).linear, 0.2, 1e-12);
+  EXPECT_NEAR(p.update({0, 1.0}, 0.1).linear, 0.2, 1e-12);
+}
+
+TEST(ProportionalController, IntegralRemovesTheSteadyError) {
+  ControllerSettings s;
+  s.kind = ControllerKind::Proportional;
+  s.driveGain = 1.0;
+  s.driveIntegralGain = 2.0;
+  s.driveRateGain = 0;
+  s.maxLinearAccel = 0;
+  ProportionalController p(s);
+  // A steady error of 0.1 (a target receding as fast as the robot drives): the output grows past P's.
+  double linear = 0;
+  for (int i = 0; i < 10; ++i) linear = p.update({0, 0.1}, 0.1).linear;
+  EXPECT_NEAR(p.driveAxis().integral(), 0.1, 1e-12);  // 0.1 for 1 s
+  EXPECT_NEAR(linear, 0.1 + 2.0 * 0.1, 1e-12);
+  // Arriving clears it: no push past the set-point afterwards.
+  EXPECT_EQ(p.update({0, 0.01}, 0.1).linear < linear, true);
+  EXPECT_DOUBLE_EQ(p.driveAxis().integral(), 0.0);
+  p.update({0, 0.2}, 0.1);
+  p.reset();
+  EXPECT_DOUBLE_EQ(p.driveAxis().integral(), 0.0);
+}
+
+TEST(ProportionalController, AntiWindupWhileSaturated) {
+  ControllerSettings s;
+  s.kind = ControllerKind::Proportional;
+  s.driveGain = 1.0;
+  s.driveIntegralGain = 2.0;
+  s.driveRateGain = 0;
+  s.maxLinearAccel = 0;
+  ProportionalController p(s);
+  // Far away (error 0.8 > the 0.5 limit on its own) for 3 s: the integrator must not grow.
+  for (int i = 0; i < 30; ++i) EXPECT_DOUBLE_EQ(p.update({0, 0.8}, 0.1).linear, 0.5);
+  EXPECT_DOUBLE_EQ(p.driveAxis().integral(), 0.0);
+  // So once near, the output is P's alone (a wound-up integral would drive on at full speed).
+  EXPECT_NEAR(p.update({0, 0.1}, 0.1).linear, 0.1 + 2.0 * 0.01, 1e-12);
+
+  // The slew limit holding the output back counts as saturation too.
+  s.maxLinearAccel = 0.5;  // 0.05 per 0.1 s
+  p.setSettings(s);
+  p.reset();
+  for (int i = 0; i < 4; ++i) p.update({0, 0.3}, 0.1);  // wants 0.3, has reached 0.2
+  EXPECT_DOUBLE_EQ(p.driveAxis().integral(), 0.0);
+}
+
+TEST(ProportionalController, RateTermFollowsTheTargetsMotion) {
+  ControllerSettings s;
+  s.kind = ControllerKind::Proportional;
+  s.turnIntegralGain = s.driveIntegralGain = 0;
+  s.maxLinearAccel = s.maxAngularAccel = 0;
+  ProportionalController still(s), moving(s);
+  const DriveOutput base = still.update({0.2, 0.1, 0, 0}, 0.1);
+  // The target moving right and away: turn right harder and drive faster than for a still one.
+  const DriveOutput out = moving.update({0.2, 0.1, 0.5, 0.2}, 0.1);
+  EXPECT_NEAR(out.angular - base.angular, -s.turnRateGain * 0.5, 1e-12);
+  EXPECT_NEAR(out.linear - base.linear, s.driveRateGain * 0.2, 1e-12);
+  EXPECT_LT(out.angular, base.angular);
+  EXPECT_GT(out.linear, base.linear);
 }
 
 Observation seen(double time, double offset, double height, TrackState state = TrackState::Tracking,
@@ -216,6 +334,27 @@ TEST(RobotController, ProportionalRampsAndFollows) {
   EXPECT_NEAR(out.left, 0.4, 1e-12);
 }
 
+TEST(RobotController, RatesFromSuccessiveBoxesClearedWhenLost) {
+  ControllerSettings c;
+  c.kind = ControllerKind::Proportional;
+  c.turnIntegralGain = c.driveIntegralGain = 0;
+  c.maxLinearAccel = c.maxAngularAccel = 0;
+  FailsafeSettings f;
+  RobotController moving(c, f), still(c, f);
+  // A target sliding right (offset 0.1 -> 0.2 in 0.1 s: 1/s, smoothed to half on the first step) turns
+  // harder than one standing at 0.2.
+  moving.update(seen(0.0, 0.1, 72));
+  still.update(seen(0.0, 0.2, 72));
+  const double slid = moving.update(seen(0.1, 0.2, 72)).angular;
+  const double stood = still.update(seen(0.1, 0.2, 72)).angular;
+  EXPECT_NEAR(slid - stood, -c.turnRateGain * 0.5, 1e-12);
+  // Lost and found elsewhere: the jump is not a motion (no rate term on the first frame back, as for a
+  // controller that never saw the target).
+  moving.update(unseen(1.0));
+  RobotController fresh(c, f);
+  EXPECT_DOUBLE_EQ(moving.update(seen(1.1, -0.3, 72)).angular, fresh.update(seen(1.1, -0.3, 72)).angular);
+}
+
 TEST(RobotController, SetSettingsKeepsTheSlewStateAndTheHold) {
   ControllerSettings c;
   c.kind = ControllerKind::Proportional;
@@ -231,7 +370,7 @@ TEST(RobotController, SetSettingsKeepsTheSlewStateAndTheHold) {
   robot.setSettings(c, f);
   DriveOutput out = robot.update(seen(0.2, 0.0, 24));
   EXPECT_NEAR(out.linear, 0.4, 1e-12);
-  // The new gain applies: an offset of 0.2 turns at -3 * (0.2 - 0.1) = -0.3, from 0 at 4/s: -0.3 in 0.1 s.
+  // The new gain applies: an offset of 0.2 turns at -3 * 0.2 = -0.6, limited to -0.3, reached from 0 at 4/s.
   out = robot.update(seen(0.3, 0.2, 24));
   EXPECT_NEAR(out.angular, -0.3, 1e-12);
   EXPECT_NEAR(out.linear, 0.5, 1e-12);  // max-linear

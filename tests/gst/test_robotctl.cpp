@@ -206,11 +206,11 @@ GST_START_TEST(test_zone_char_decisions) {
 GST_END_TEST;
 
 GST_START_TEST(test_text_exact_line) {
-  // Proportional, no slew limit: angular -0.3 (limited), linear 1.5 * (1/3 - 0.1) = 0.35;
-  // left 0.65 * 255 = 165.75, right 0.05 * 255 = 12.75.
+  // Proportional, no slew limit, first sight (no integral, no rate yet): angular -0.3 (limited), linear
+  // 2 * 1/3, limited to 0.5; left 0.8 * 255 = 204, right 0.2 * 255 = 51.
   Ctl ctl("rate=100 protocol=text controller=proportional max-linear-accel=0 max-angular-accel=0");
   expectLastLine(ctl.decide({}), "L=0 R=0\n");
-  expectLastLine(ctl.decide({roi(kRight)}), "L=166 R=13\n");
+  expectLastLine(ctl.decide({roi(kRight)}), "L=204 R=51\n");
   expectLastLine(ctl.decide({roi(kCentreRight)}), "L=0 R=0\n");
 }
 GST_END_TEST;
@@ -220,7 +220,7 @@ GST_START_TEST(test_binary_exact_packets) {
   const Bytes bytes = ctl.decide({roi(kRight)});
   fail_unless(bytes.size() >= 10 && bytes.size() % 10 == 0, "%zu bytes", bytes.size());
   const std::uint8_t *p = bytes.data() + bytes.size() - 10;
-  const Bytes expected = {0xA5, p[1], 0x06, 0x01, 0x01, 0xA6, 0x00, 0x0D, 0x00};  // forward, visible, 166, 13
+  const Bytes expected = {0xA5, p[1], 0x06, 0x01, 0x01, 0xCC, 0x00, 0x33, 0x00};  // forward, visible, 204, 51
   fail_unless(Bytes(p, p + 9) == expected);
   fail_unless_equals_int(p[9], crc8(p + 1, 8));
   // Every packet is framed and numbered one after the other.

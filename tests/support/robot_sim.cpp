@@ -29,6 +29,23 @@ cv::Rect2d RobotSim::ballBox() const {
   return {u - radius, v - radius, 2 * radius, 2 * radius};
 }
 
+void RobotSim::moveBall(double dt) {
+  config_.ball += config_.ballVelocity * dt;
+}
+
+double RobotSim::ballBearing() const {
+  const cv::Point3d p = toCamera(config_.ball.x, config_.ball.y, config_.ballRadius);
+  return std::atan2(p.y, p.x);
+}
+
+double RobotSim::ballDistance() const {
+  return std::hypot(config_.ball.x - pose_.x, config_.ball.y - pose_.y);
+}
+
+double RobotSim::distanceForSizeCue(double cue) const {
+  return 2 * focal_ * config_.ballRadius / (cue * config_.frameSize.height);
+}
+
 cv::Mat RobotSim::render() const {
   const cv::Size size = config_.frameSize;
   cv::Mat image(size, CV_8UC3);

@@ -14,11 +14,12 @@ namespace colortrack::robot_sim {
 struct RobotSimConfig {
   cv::Size frameSize{320, 240};
   double horizontalFovDegrees = 60;
-  double cameraHeight = 0.25;   // m above the floor, looking level
-  double ballRadius = 0.15;     // m; the ball rests on the floor
-  cv::Point2d ball{3.0, 0.0};   // m, world position of the ball
-  double fullWheelSpeed = 1.0;  // m/s at wheel speed 1
-  double wheelBase = 0.4;       // m between the wheels
+  double cameraHeight = 0.25;      // m above the floor, looking level
+  double ballRadius = 0.15;        // m; the ball rests on the floor
+  cv::Point2d ball{3.0, 0.0};      // m, world position of the ball
+  cv::Point2d ballVelocity{0, 0};  // m/s, applied by moveBall
+  double fullWheelSpeed = 1.0;     // m/s at wheel speed 1
+  double wheelBase = 0.4;          // m between the wheels
 };
 
 // Position (m) and heading (rad, 0 = +x, counter-clockwise).
@@ -35,6 +36,16 @@ class RobotSim {
   // Where the ball appears (ground truth); empty when hidden or behind the camera.
   cv::Rect2d ballBox() const;
   void setBallHidden(bool hidden) { hidden_ = hidden; }
+  // Rolls the ball for dt seconds at its velocity (config().ballVelocity).
+  void moveBall(double dt);
+
+  // Ground truth for scoring a run: the ball's bearing from the camera's axis (rad, > 0 to the left) and
+  // its distance on the floor (m, camera to ball centre).
+  double ballBearing() const;
+  double ballDistance() const;
+  // The distance at which the ball's box is `cue` of the frame height (robotctl's distance-cue=size):
+  // box height = 2 * focal * radius / distance, exactly (ballBox).
+  double distanceForSizeCue(double cue) const;
 
   // Moves for dt seconds with wheel speeds in [-1, 1] (exact arc of a differential drive).
   void drive(double left, double right, double dt);

@@ -45,13 +45,27 @@ struct ControllerSettings {
   double setPoint = 0.3;          // wanted distance cue (fraction of the frame height)
   double turnDeadband = 0.1;      // |offset| below which the target counts as centred
   double distanceDeadband = 0.1;  // |relative distance error| below which the distance counts as right
-  double hysteresis = 0.05;       // zone: a border zone is left only once this far inside the deadband
-  double turnGain = 1.5;          // proportional: angular per unit offset
-  double driveGain = 1.5;         // proportional: linear per unit relative distance error
-  double maxLinear = 0.5;         // output limits, also the zone controller's speeds
+  double hysteresis = 0.07;       // zone: a border zone is left only once this far inside the deadband
+  // Proportional: angular per unit offset, linear per unit relative distance error (the P terms).
+  double turnGain = 0.6;
+  double driveGain = 2.0;
+  // Proportional: the I terms, per second of error (they remove what the P terms leave: the lag behind a
+  // moving target, a robot that turns or drives slower than commanded).
+  double turnIntegralGain = 0.6;
+  double driveIntegralGain = 1.0;
+  // Proportional: the terms on how fast each error changes (per second), i.e. on the target's motion
+  // relative to the robot: they start following as soon as the target moves and damp the approach.
+  double turnRateGain = 0.05;
+  double driveRateGain = 0.3;
+  double maxLinear = 0.5;  // output limits, also the zone controller's speeds
   double maxAngular = 0.3;
   double maxLinearAccel = 2.0;  // slew limits per second (proportional; 0 = unlimited)
   double maxAngularAccel = 4.0;
+  // Zone: seconds from a decision to the wheels (serial link, command period, firmware, motors). A turn
+  // ends this much early (the offset's rate tells how far the robot still turns) and, near the centre,
+  // turns are single decisions each followed by this long without a turn to see where they led. 0: the
+  // paper's controller exactly.
+  double latency = 0.1;
 };
 
 struct FailsafeSettings {
@@ -73,6 +87,12 @@ double horizontalOffset(const cv::Rect2d &box, cv::Size frame);
 double distanceCue(const cv::Rect2d &box, cv::Size frame, DistanceCue cue);
 double distanceError(const cv::Rect2d &box, cv::Size frame, DistanceCue cue, double setPoint);
 
+// One frame's errors (see above) and how fast they change, per second (0 when not known yet).
+struct Errors {
+  double offset = 0, distance = 0;
+  double offsetRate = 0, distanceRate = 0;
+};
+
 // Wheel speeds from linear/angular, scaled down together so neither exceeds 1 (the turn is kept).
 void toWheels(double linear, double angular, double &left, double &right);
 // A complete output for linear/angular, its command named by the larger of the two motions.
@@ -83,36 +103,66 @@ DriveCommand classifyCommand(double linear, double angular);
 // too-far/right/too-close by the distance cue; turning comes before distance so the target stays in view.
 // Each axis is a Schmitt trigger: a side zone is entered beyond the deadband and left only once the error
 // is `hysteresis` inside it, so a target on a border does not make the command chatter.
+// With a latency (settings.latency > 0) a turn at full speed would overshoot the centre by the distance
+// turned during the latency, and the next turn overshoot back: so a turn ends once the offset predicted a
+// latency ahead is inside, and within twice the deadband of the centre the robot turns one decision at a
+// time, each followed by no turn for the latency and a frame (the turn's average speed falls near the
+// centre); meanwhile the distance zone drives.
 class ZoneController {
  public:
   explicit ZoneController(const ControllerSettings &settings) : settings_(settings) {}
-  DriveOutput update(double offset, double distanceError);
-  void reset() { turnZone_ = 0, distanceZone_ = 0; }
+  // now: seconds, monotonic (the pulses' timing).
+  DriveOutput update(const Errors &errors, double now);
+  void reset() { turnZone_ = 0, distanceZone_ = 0, holdUntil_ = -1e300, lastNow_.reset(); }
   // New limits from the next update; the zones (the hysteresis state) are kept.
   void setSettings(const ControllerSettings &settings) { settings_ = settings; }
 
  private:
   static int nextZone(int zone, double error, double enter, double leave);
+  DriveOutput turn(int zone) const;
   ControllerSettings settings_;
-  int turnZone_ = 0;      // -1 target left, 0 centred, +1 target right
-  int distanceZone_ = 0;  // -1 too close, 0 right, +1 too far
+  int turnZone_ = 0;           // -1 target left, 0 centred, +1 target right
+  int distanceZone_ = 0;       // -1 too close, 0 right, +1 too far
+  double holdUntil_ = -1e300;  // no turn before this time: the last turn's effect is not seen yet
+  std::optional<double> lastNow_;
 };
 
-// The control law: angular = -turnGain * offset, linear = driveGain * distance error, each with its
-// deadband taken off (continuous at the deadband's edge), clamped to the limits and slew-limited.
+// One axis of the proportional controller: P + I + rate terms, the integrator frozen while the output is
+// limited (by the clamp or the slew limit) in the error's direction and cleared when the axis arrives.
+// An axis arrives (output 0, no creeping) when its error is within a quarter of the deadband and starts
+// again once the error leaves half of it.
+class PiAxis {
+ public:
+  struct Gains {
+    double p = 0, i = 0, rate = 0;
+    double deadband = 0, limit = 0, accel = 0;  // accel 0: no slew limit
+  };
+  double update(const Gains &gains, double error, double rate, double dt);
+  void reset() { output_ = 0, integral_ = 0, arrived_ = false; }
+  double integral() const { return integral_; }
+
+ private:
+  double output_ = 0, integral_ = 0;
+  bool arrived_ = false;
+};
+
+// The control law: angular = -(turn terms on the offset), linear = drive terms on the distance error,
+// clamped to the limits and slew-limited (see PiAxis).
 class ProportionalController {
  public:
   explicit ProportionalController(const ControllerSettings &settings) : settings_(settings) {}
   // dt: seconds since the previous update (the slew limit allows accel * dt of change).
-  DriveOutput update(double offset, double distanceError, double dt);
-  // Starts again from standstill (after a stop, the slew limit ramps up from zero).
-  void reset() { linear_ = 0, angular_ = 0; }
-  // New gains and limits from the next update; the current speeds (the slew state) are kept.
+  DriveOutput update(const Errors &errors, double dt);
+  // Starts again from standstill (after a stop, the slew limit ramps up from zero, integrators empty).
+  void reset() { turn_.reset(), drive_.reset(); }
+  // New gains and limits from the next update; the current speeds and integrators are kept.
   void setSettings(const ControllerSettings &settings) { settings_ = settings; }
+  const PiAxis &turnAxis() const { return turn_; }
+  const PiAxis &driveAxis() const { return drive_; }
 
  private:
   ControllerSettings settings_;
-  double linear_ = 0, angular_ = 0;
+  PiAxis turn_, drive_;
 };
 
 // No-target timing, from given times: has there been a confirmed target within the timeout?
@@ -156,6 +206,8 @@ class RobotController {
   std::optional<double> lastTime_;
   DriveOutput last_;
   double lastOffset_ = 0;
+  // The errors of the previous confirmed frame and their smoothed rates (cleared when the target is lost).
+  std::optional<Errors> lastErrors_;
 };
 
 }  // namespace colortrack
