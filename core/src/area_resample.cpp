@@ -38,10 +38,21 @@ void combineRows(const cv::Mat &input, const std::vector<Tap> &taps, const std::
                  cv::Mat &output) {
   const int values = input.cols * input.channels();
   for (int i = 0; i + 1 < static_cast<int>(first.size()); ++i) {
-    float *sum = output.ptr<float>(i);
-    std::fill(sum, sum + values, 0.0f);
-    for (int t = first[i]; t < first[i + 1]; ++t) {
-      const In *in = input.ptr<In>(taps[t].source);
+    float *__restrict sum = output.ptr<float>(i);
+    // The first tap is stored rather than added to zero: the same value, as w * in is never -0 (weights are
+    // positive, inputs non-negative).
+    const int begin = first[i], end = first[i + 1];
+    if (begin == end) {
+      std::fill(sum, sum + values, 0.0f);
+      continue;
+    }
+    {
+      const In *__restrict in = input.ptr<In>(taps[begin].source);
+      const float w = taps[begin].weight;
+      for (int v = 0; v < values; ++v) sum[v] = w * in[v];
+    }
+    for (int t = begin + 1; t < end; ++t) {
+      const In *__restrict in = input.ptr<In>(taps[t].source);
       const float w = taps[t].weight;
       for (int v = 0; v < values; ++v) sum[v] += w * in[v];
     }

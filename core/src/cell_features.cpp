@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/imgproc.hpp>
 
 namespace colortrack {
@@ -17,17 +18,18 @@ constexpr float kBinsPerDegree = kOrientations / 180.0f;
 const float kTextureScale = 1.0f / std::sqrt(2.0f * kOrientations);
 
 // One pixel's gradient vote: contrast-insensitive orientation (a and a + 180 degrees share a bin), the
-// magnitude shared linearly between the two nearest bins. `angle` in degrees, [0, 360). Each share is
-// computed in float whatever the bins hold (float cells, or the double running sums of the integral images).
+// magnitude shared linearly between the two nearest bins. `angle` in degrees, [0, 360); bin o is
+// bins[o * stride]. Each share is computed in float whatever the bins hold (float cells, or the double
+// running sums of the integral images).
 template <typename Bin>
-inline void vote(float magnitude, float angle, Bin *bins) {
+inline void vote(float magnitude, float angle, Bin *bins, int stride = 1) {
   if (magnitude <= 0) return;
   if (angle >= 180) angle -= 180;
   const float position = angle * kBinsPerDegree - 0.5f;
   const int lower = position < 0 ? -1 : static_cast<int>(position);
   const float upperShare = position - lower;
-  bins[lower < 0 ? kOrientations - 1 : lower] += magnitude * (1 - upperShare);
-  bins[lower + 1 >= kOrientations ? 0 : lower + 1] += magnitude * upperShare;
+  bins[(lower < 0 ? kOrientations - 1 : lower) * stride] += magnitude * (1 - upperShare);
+  bins[(lower + 1 >= kOrientations ? 0 : lower + 1) * stride] += magnitude * upperShare;
 }
 
 // [-1 0 1] gradients (the border repeated) as magnitude and angle in degrees, the whole patch at once:
@@ -40,21 +42,23 @@ void orientedGradients(const cv::Mat &gray, cv::Mat &magnitude, cv::Mat &angle) 
   cv::cartToPolar(dx, dy, magnitude, angle, true);
 }
 
-// From raw orientation histograms (one row of kOrientations per cell, cells in row order) and mean
-// intensities (ch x cw) to the kCellChannels feature maps: each histogram normalised by the four 2x2 cell
-// blocks around its cell (cells outside repeat the border) and clipped, as in Dalal-Triggs / Felzenszwalb.
+// From raw orientation histograms (planar: row o holds orientation o of every cell, cells in row order) and
+// mean intensities (ch x cw) to the kCellChannels feature maps: each histogram normalised by the four 2x2
+// cell blocks around its cell (cells outside repeat the border) and clipped, as in Dalal-Triggs /
+// Felzenszwalb. Every loop runs along a row of cells, so it vectorises; each value is summed in the same
+// order as one cell at a time would (orientations in turn, the four blocks in turn), so the features are the
+// same to the bit.
 void normaliseCells(const cv::Mat &hist, const cv::Mat &intensity, std::vector<cv::Mat> &channels) {
   const int ch = intensity.rows, cw = intensity.cols;
+  CV_Assert(hist.rows == kOrientations && hist.cols == ch * cw && hist.isContinuous() &&
+            intensity.isContinuous());
   thread_local cv::Mat energy, inverseBlockNorm;
   energy.create(ch, cw, CV_32F);
-  for (int y = 0; y < ch; ++y) {
-    float *e = energy.ptr<float>(y);
-    for (int x = 0; x < cw; ++x) {
-      const float *bins = hist.ptr<float>(y * cw + x);
-      float sum = 0;
-      for (int o = 0; o < kOrientations; ++o) sum += bins[o] * bins[o];
-      e[x] = sum;
-    }
+  float *__restrict e = energy.ptr<float>();
+  std::fill(e, e + ch * cw, 0.0f);
+  for (int o = 0; o < kOrientations; ++o) {
+    const float *__restrict bins = hist.ptr<float>(o);
+    for (int i = 0; i < ch * cw; ++i) e[i] += bins[i] * bins[i];
   }
   // Block (by, bx) covers cells (by - 1 .. by, bx - 1 .. bx), clamped to the grid; each block's norm is
   // shared by its four cells.
@@ -68,31 +72,74 @@ void normaliseCells(const cv::Mat &hist, const cv::Mat &intensity, std::vector<c
       n[bx] = 1.0f / std::sqrt(above[left] + above[right] + below[left] + below[right] + kEps);
     }
   }
-  channels.resize(kCellChannels);
-  for (auto &c : channels) c.create(ch, cw, CV_32F);
-  float *out[kCellChannels];
+  // The four block norms of each cell, as planes in cell order, so that the loops below run over all cells.
+  const int cells = ch * cw;
+  thread_local cv::Mat cellNorms;
+  cellNorms.create(4, cells, CV_32F);
   for (int y = 0; y < ch; ++y) {
-    for (int c = 0; c < kCellChannels; ++c) out[c] = channels[c].ptr<float>(y);
-    const float *normsAbove = inverseBlockNorm.ptr<float>(y),
-                *normsBelow = inverseBlockNorm.ptr<float>(y + 1);
-    const float *mean = intensity.ptr<float>(y);
+    const float *above = inverseBlockNorm.ptr<float>(y), *below = inverseBlockNorm.ptr<float>(y + 1);
     for (int x = 0; x < cw; ++x) {
-      const float inverseNorm[4] = {normsAbove[x], normsAbove[x + 1], normsBelow[x], normsBelow[x + 1]};
-      const float *bins = hist.ptr<float>(y * cw + x);
-      float texture[4] = {0, 0, 0, 0};
-      for (int o = 0; o < kOrientations; ++o) {
-        float sum = 0;
-        for (int n = 0; n < 4; ++n) {
-          const float v = std::min(bins[o] * inverseNorm[n], kClip);
-          sum += v;
-          texture[n] += v;
-        }
-        out[o][x] = 0.5f * sum;
-      }
-      for (int n = 0; n < 4; ++n) out[kOrientations + n][x] = kTextureScale * texture[n];
-      out[kOrientations + 4][x] = mean[x] - 0.5f;
+      const int i = y * cw + x;
+      cellNorms.at<float>(0, i) = above[x];
+      cellNorms.at<float>(1, i) = above[x + 1];
+      cellNorms.at<float>(2, i) = below[x];
+      cellNorms.at<float>(3, i) = below[x + 1];
     }
   }
+  const float *__restrict n0 = cellNorms.ptr<float>(0), *__restrict n1 = cellNorms.ptr<float>(1);
+  const float *__restrict n2 = cellNorms.ptr<float>(2), *__restrict n3 = cellNorms.ptr<float>(3);
+  channels.resize(kCellChannels);
+  for (auto &c : channels) c.create(ch, cw, CV_32F);
+  // The texture channels gather their sums in place, then are scaled.
+  float *__restrict t0 = channels[kOrientations].ptr<float>();
+  float *__restrict t1 = channels[kOrientations + 1].ptr<float>();
+  float *__restrict t2 = channels[kOrientations + 2].ptr<float>();
+  float *__restrict t3 = channels[kOrientations + 3].ptr<float>();
+  std::fill(t0, t0 + cells, 0.0f);
+  std::fill(t1, t1 + cells, 0.0f);
+  std::fill(t2, t2 + cells, 0.0f);
+  std::fill(t3, t3 + cells, 0.0f);
+  for (int o = 0; o < kOrientations; ++o) {
+    const float *__restrict bins = hist.ptr<float>(o);
+    float *__restrict out = channels[o].ptr<float>();
+    int i = 0;
+#if CV_SIMD128
+    // v_min(v, clip) is std::min(v, clip) for every value that is not NaN (these are products of finite
+    // values): the same features.
+    using namespace cv;
+    const v_float32x4 clip = v_setall_f32(kClip), half = v_setall_f32(0.5f);
+    for (; i + 4 <= cells; i += 4) {
+      const v_float32x4 b = v_load(bins + i);
+      const v_float32x4 v0 = v_min(b * v_load(n0 + i), clip), v1 = v_min(b * v_load(n1 + i), clip);
+      const v_float32x4 v2 = v_min(b * v_load(n2 + i), clip), v3 = v_min(b * v_load(n3 + i), clip);
+      v_store(t0 + i, v_load(t0 + i) + v0);
+      v_store(t1 + i, v_load(t1 + i) + v1);
+      v_store(t2 + i, v_load(t2 + i) + v2);
+      v_store(t3 + i, v_load(t3 + i) + v3);
+      v_store(out + i, half * (((v_setzero_f32() + v0) + v1) + v2 + v3));
+    }
+#endif
+    for (; i < cells; ++i) {
+      const float b = bins[i];
+      const float v0 = std::min(b * n0[i], kClip), v1 = std::min(b * n1[i], kClip);
+      const float v2 = std::min(b * n2[i], kClip), v3 = std::min(b * n3[i], kClip);
+      float sum = 0;
+      sum += v0;
+      sum += v1;
+      sum += v2;
+      sum += v3;
+      t0[i] += v0;
+      t1[i] += v1;
+      t2[i] += v2;
+      t3[i] += v3;
+      out[i] = 0.5f * sum;
+    }
+  }
+  for (float *t : {t0, t1, t2, t3})
+    for (int i = 0; i < cells; ++i) t[i] = kTextureScale * t[i];
+  const float *__restrict mean = intensity.ptr<float>();
+  float *__restrict m = channels[kOrientations + 4].ptr<float>();
+  for (int i = 0; i < cells; ++i) m[i] = mean[i] - 0.5f;
 }
 
 }  // namespace
@@ -102,12 +149,13 @@ void cellFeatures(const cv::Mat &gray, int cell, std::vector<cv::Mat> &channels)
   const int cw = gray.cols / cell, ch = gray.rows / cell;
   thread_local cv::Mat hist, intensity, magnitude, angle;
   orientedGradients(gray, magnitude, angle);
-  hist.create(ch * cw, kOrientations, CV_32F);
+  hist.create(kOrientations, ch * cw, CV_32F);
   hist.setTo(0);
+  const int plane = ch * cw;
   for (int y = 0; y < ch * cell; ++y) {
-    float *cellRow = hist.ptr<float>((y / cell) * cw);
+    float *cellRow = hist.ptr<float>() + (y / cell) * cw;
     const float *m = magnitude.ptr<float>(y), *a = angle.ptr<float>(y);
-    for (int x = 0; x < cw * cell; ++x) vote(m[x], a[x], cellRow + (x / cell) * kOrientations);
+    for (int x = 0; x < cw * cell; ++x) vote(m[x], a[x], cellRow + x / cell, plane);
   }
   cv::resize(gray(cv::Rect(0, 0, cw * cell, ch * cell)), intensity, cv::Size(cw, ch), 0, 0, cv::INTER_AREA);
   normaliseCells(hist, intensity, channels);
@@ -141,7 +189,7 @@ void CellFeatureIntegral::features(const cv::Rect2d &rect, cv::Size cells,
                                    std::vector<cv::Mat> &channels) const {
   CV_Assert(!sums_.empty() && cells.width >= 1 && cells.height >= 1);
   thread_local cv::Mat hist, intensity;
-  hist.create(cells.area(), kOrientations, CV_32F);
+  hist.create(kOrientations, cells.area(), CV_32F);
   intensity.create(cells, CV_32F);
   const int stride = kPlanes, rowStride = (size_.width + 1) * stride;
   // Cell edges, rounded to whole pixels and kept inside the image with at least one pixel per cell.
@@ -163,8 +211,9 @@ void CellFeatureIntegral::features(const cv::Rect2d &rect, cv::Size cells,
       const double *b = &sums_[ys[j] * rowStride + xs[i + 1] * stride];
       const double *c = &sums_[ys[j + 1] * rowStride + xs[i] * stride];
       const double *d = &sums_[ys[j + 1] * rowStride + xs[i + 1] * stride];
-      float *bins = hist.ptr<float>(j * cells.width + i);
-      for (int o = 0; o < kOrientations; ++o) bins[o] = static_cast<float>(d[o] - b[o] - c[o] + a[o]);
+      float *bins = hist.ptr<float>() + j * cells.width + i;
+      for (int o = 0; o < kOrientations; ++o)
+        bins[o * cells.area()] = static_cast<float>(d[o] - b[o] - c[o] + a[o]);
       const double area = std::max(1, (xs[i + 1] - xs[i]) * (ys[j + 1] - ys[j]));
       const int k = kOrientations;
       intensity.at<float>(j, i) = static_cast<float>((d[k] - b[k] - c[k] + a[k]) / area);

@@ -173,16 +173,9 @@ void ScaleFilter::init(int scales, double step, double sigma, double lambda) {
 }
 
 // The spectra here are OpenCV's packed spectra of real rows of length n (CCS): Re(0), then Re(k) at 2k - 1
-// and Im(k) at 2k for k = 1 .. n/2 (no Im for the last k when n is even). Half the values of a full complex
-// spectrum, and the DFT that makes them is cheaper; the loops below stand in for mulSpectrums on rows.
-namespace {
-
-inline float imaginaryAt(const float *row, int k, int n) {
-  return 2 * k < n ? row[2 * k] : 0.0f;
-}
-
-}  // namespace
-
+// and Im(k) at 2k for k = 1 .. n/2 (n is odd, init() asserts it, so every k has its Im). Half the values of
+// a full complex spectrum, and the DFT that makes them is cheaper; the loops below stand in for mulSpectrums
+// on rows.
 // Features x scales packed spectrum of samples (scales x features), windowed over the scales. The DFT along
 // the scale axis is a product with a small fixed matrix (Eigen's blocked, vectorised product): one matrix
 // product over all feature columns cost a fifth of what cv::dft took for the same rows of odd length 33,
@@ -216,21 +209,23 @@ void ScaleFilter::trainOnSpectrum(const cv::Mat &spectrum, double rate) {
     numerator_ = cv::Mat::zeros(spectrum.size(), CV_32F);  // zero, so that "keep" times it stays zero
     denominator_.assign(frequencies, 0.0f);
   }
+  CV_Assert(n % 2 == 1);
   const float keep = static_cast<float>(1 - rate), take = static_cast<float>(rate);
   for (float &d : denominator_) d *= keep;
-  const float *label = labelSpectrum_.ptr<float>(0);
+  const float *__restrict label = labelSpectrum_.ptr<float>(0);
+  float *__restrict den = denominator_.data();
   for (int r = 0; r < spectrum.rows; ++r) {
-    const float *x = spectrum.ptr<float>(r);
-    float *num = numerator_.ptr<float>(r);
+    const float *__restrict x = spectrum.ptr<float>(r);
+    float *__restrict num = numerator_.ptr<float>(r);
     num[0] = keep * num[0] + take * label[0] * x[0];
-    denominator_[0] += take * x[0] * x[0];
+    den[0] += take * x[0] * x[0];
     for (int k = 1; k < frequencies; ++k) {
       // label * conj(x)
-      const float xr = x[2 * k - 1], xi = imaginaryAt(x, k, n);
-      const float lr = label[2 * k - 1], li = imaginaryAt(label, k, n);
+      const float xr = x[2 * k - 1], xi = x[2 * k];
+      const float lr = label[2 * k - 1], li = label[2 * k];
       num[2 * k - 1] = keep * num[2 * k - 1] + take * (lr * xr + li * xi);
-      if (2 * k < n) num[2 * k] = keep * num[2 * k] + take * (li * xr - lr * xi);
-      denominator_[k] += take * (xr * xr + xi * xi);
+      num[2 * k] = keep * num[2 * k] + take * (li * xr - lr * xi);
+      den[k] += take * (xr * xr + xi * xi);
     }
   }
 }
@@ -239,23 +234,24 @@ double ScaleFilter::estimate(const cv::Mat &samples) {
   CV_Assert(!empty());
   transform(samples, lastSpectrum_);
   const int n = lastSpectrum_.cols, frequencies = n / 2 + 1;
+  CV_Assert(n % 2 == 1);
   cv::Mat sum = cv::Mat::zeros(1, n, CV_32F);
-  float *total = sum.ptr<float>(0);
+  float *__restrict total = sum.ptr<float>(0);
   for (int r = 0; r < lastSpectrum_.rows; ++r) {
-    const float *z = lastSpectrum_.ptr<float>(r), *num = numerator_.ptr<float>(r);
+    const float *__restrict z = lastSpectrum_.ptr<float>(r), *__restrict num = numerator_.ptr<float>(r);
     total[0] += z[0] * num[0];
     for (int k = 1; k < frequencies; ++k) {
-      const float zr = z[2 * k - 1], zi = imaginaryAt(z, k, n);
-      const float nr = num[2 * k - 1], ni = imaginaryAt(num, k, n);
+      const float zr = z[2 * k - 1], zi = z[2 * k];
+      const float nr = num[2 * k - 1], ni = num[2 * k];
       total[2 * k - 1] += zr * nr - zi * ni;
-      if (2 * k < n) total[2 * k] += zr * ni + zi * nr;
+      total[2 * k] += zr * ni + zi * nr;
     }
   }
   total[0] /= static_cast<float>(denominator_[0] + lambda_);
   for (int k = 1; k < frequencies; ++k) {
     const float inverse = 1.0f / static_cast<float>(denominator_[k] + lambda_);
     total[2 * k - 1] *= inverse;
-    if (2 * k < n) total[2 * k] *= inverse;
+    total[2 * k] *= inverse;
   }
   cv::Mat circular;
   cv::dft(sum, circular, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT);

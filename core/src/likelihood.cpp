@@ -37,12 +37,18 @@ void ColorLikelihood::learn(const BinImage &bins, const cv::Rect &object, const 
   objectCounts_.assign(table_.size(), 0.f);
   ringCounts_.assign(table_.size(), 0.f);
   std::vector<float> &objectCounts = objectCounts_, &ringCounts = ringCounts_;
+  // Each row in runs: ring, then object, then ring (rows outside the object are all ring).
+  const auto count = [this](const cv::Vec3b *row, int from, int to, float *counts) {
+    for (int x = from; x < to; ++x) counts[jointBin(row[x])] += 1.f;
+  };
   for (int y = outer.y; y < outer.br().y; ++y) {
     const cv::Vec3b *row = bins.bins.ptr<cv::Vec3b>(y - bins.origin.y) - bins.origin.x;
-    const bool rowInObject = y >= inner.y && y < inner.br().y;
-    for (int x = outer.x; x < outer.br().x; ++x) {
-      const bool inObject = rowInObject && x >= inner.x && x < inner.br().x;
-      (inObject ? objectCounts : ringCounts)[jointBin(row[x])] += 1.f;
+    if (y >= inner.y && y < inner.br().y) {
+      count(row, outer.x, inner.x, ringCounts.data());
+      count(row, inner.x, inner.br().x, objectCounts.data());
+      count(row, inner.br().x, outer.br().x, ringCounts.data());
+    } else {
+      count(row, outer.x, outer.br().x, ringCounts.data());
     }
   }
   // P(O|c) = H_O(c) / (H_O(c) + H_S(c)) on raw counts: the ring's larger area is the prior that a colour
