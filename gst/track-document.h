@@ -1,7 +1,7 @@
 // One JSON document per frame from the region-of-interest metas on a buffer, shaped like DL Streamer's
 // gvametaconvert output (timestamp, source, resolution, objects[] with a pixel box and a normalised
 // detection.bounding_box, confidence, label) plus what a tracker adds (id, state, score, verified, vx, vy)
-// and the frame number. Built with json-glib. docs/trackpublish.md shows a document.
+// and the frame number. Built with nlohmann-json. docs/trackpublish.md shows a document.
 #pragma once
 
 #include <gst/gst.h>

@@ -22,7 +22,7 @@
 
 #include <MQTTAsync.h>
 #include <gio/gio.h>
-#include <json-glib/json-glib.h>
+#include <nlohmann/json.hpp>
 
 #include "gst_test_util.hpp"
 
@@ -84,52 +84,42 @@ std::string caps() {
 
 // One parsed document; fails the test when it is not what frame `frame` of `source` should give.
 void checkDocument(const std::string &text, const std::string &source, int frame) {
-  JsonParser *parser = json_parser_new();
-  GError *error = nullptr;
-  fail_unless(json_parser_load_from_data(parser, text.c_str(), -1, &error), "not JSON: %s (%s)",
-              error ? error->message : "?", text.c_str());
-  JsonObject *doc = json_node_get_object(json_parser_get_root(parser));
-  fail_unless_equals_string(json_object_get_string_member(doc, "source"), source.c_str());
-  fail_unless_equals_int(json_object_get_int_member(doc, "frame"), frame);
-  fail_unless_equals_uint64(json_object_get_int_member(doc, "timestamp"),
+  const nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
+  fail_if(doc.is_discarded(), "not JSON: %s", text.c_str());
+  fail_unless_equals_string(doc["source"].get<std::string>().c_str(), source.c_str());
+  fail_unless_equals_int(doc["frame"].get<int>(), frame);
+  fail_unless_equals_uint64(doc["timestamp"].get<guint64>(),
                             gst_util_uint64_scale_int(frame, GST_SECOND, kFps));
-  JsonObject *resolution = json_object_get_object_member(doc, "resolution");
-  fail_unless_equals_int(json_object_get_int_member(resolution, "width"), kWidth);
-  fail_unless_equals_int(json_object_get_int_member(resolution, "height"), kHeight);
-  JsonArray *objects = json_object_get_array_member(doc, "objects");
+  fail_unless_equals_int(doc["resolution"]["width"].get<int>(), kWidth);
+  fail_unless_equals_int(doc["resolution"]["height"].get<int>(), kHeight);
+  const nlohmann::json &objects = doc["objects"];
   const std::vector<TrackBox> expected = tracksOf(frame);
-  fail_unless_equals_int(json_array_get_length(objects), expected.size());
-  for (guint i = 0; i < json_array_get_length(objects); ++i) {
-    JsonObject *o = json_array_get_object_element(objects, i);
+  fail_unless_equals_int(objects.size(), expected.size());
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const nlohmann::json &o = objects[i];
     const TrackBox &t = expected[i];
-    fail_unless_equals_int(json_object_get_int_member(o, "id"), t.id);
-    fail_unless_equals_int(json_object_get_int_member(o, "x"), t.x);
-    fail_unless_equals_int(json_object_get_int_member(o, "y"), t.y);
-    fail_unless_equals_int(json_object_get_int_member(o, "w"), t.w);
-    fail_unless_equals_int(json_object_get_int_member(o, "h"), t.h);
-    fail_unless_equals_string(json_object_get_string_member(o, "state"), t.state);
-    fail_unless_equals_float(json_object_get_double_member(o, "score"), t.score);
-    fail_unless(json_object_get_boolean_member(o, "verified"));
-    fail_unless_equals_float(json_object_get_double_member(o, "vx"), 3.0);
-    JsonObject *detection = json_object_get_object_member(o, "detection");
-    fail_unless_equals_string(json_object_get_string_member(detection, "label"), "colortrack");
-    fail_unless_equals_float(json_object_get_double_member(detection, "confidence"), t.score);
-    JsonObject *box = json_object_get_object_member(detection, "bounding_box");
-    fail_unless(std::abs(json_object_get_double_member(box, "x_min") - t.x / double(kWidth)) < 1e-9);
-    fail_unless(std::abs(json_object_get_double_member(box, "y_max") - (t.y + t.h) / double(kHeight)) < 1e-9);
+    fail_unless_equals_int(o["id"].get<int>(), t.id);
+    fail_unless_equals_int(o["x"].get<int>(), t.x);
+    fail_unless_equals_int(o["y"].get<int>(), t.y);
+    fail_unless_equals_int(o["w"].get<int>(), t.w);
+    fail_unless_equals_int(o["h"].get<int>(), t.h);
+    fail_unless_equals_string(o["state"].get<std::string>().c_str(), t.state);
+    fail_unless_equals_float(o["score"].get<double>(), t.score);
+    fail_unless(o["verified"].get<bool>());
+    fail_unless_equals_float(o["vx"].get<double>(), 3.0);
+    const nlohmann::json &detection = o["detection"];
+    fail_unless_equals_string(detection["label"].get<std::string>().c_str(), "colortrack");
+    fail_unless_equals_float(detection["confidence"].get<double>(), t.score);
+    const nlohmann::json &box = detection["bounding_box"];
+    fail_unless(std::abs(box["x_min"].get<double>() - t.x / double(kWidth)) < 1e-9);
+    fail_unless(std::abs(box["y_max"].get<double>() - (t.y + t.h) / double(kHeight)) < 1e-9);
   }
-  g_object_unref(parser);
 }
 
 // The frame number of a document, -1 when it is not one.
 int frameOf(const std::string &text) {
-  JsonParser *parser = json_parser_new();
-  int frame = -1;
-  if (json_parser_load_from_data(parser, text.c_str(), -1, nullptr))
-    frame = static_cast<int>(
-        json_object_get_int_member(json_node_get_object(json_parser_get_root(parser)), "frame"));
-  g_object_unref(parser);
-  return frame;
+  const nlohmann::json doc = nlohmann::json::parse(text, nullptr, false);
+  return doc.is_object() && doc.contains("frame") ? doc["frame"].get<int>() : -1;
 }
 
 // ---------------------------------------------------------------------------------------------------------
