@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The install test (meson test install): `meson install --destdir` puts the build into a staging root, and
-# gst-inspect-1.0 must find colortrack and robotctl there, loaded from the staged file: GST_PLUGIN_PATH into
+# gst-inspect-1.0 must find colortrack, robotctl and trackpublish there, loaded from the staged file: GST_PLUGIN_PATH into
 # the staging root, no system plugin directory, a private registry.
 #   check-install.sh BUILD_DIR PLUGIN_DIR INCLUDE_DIR GST_INSPECT
 # PLUGIN_DIR and INCLUDE_DIR are the absolute install paths meson computed (prefix included).
@@ -23,7 +23,7 @@ unset GST_PLUGIN_PATH GST_PLUGIN_SYSTEM_PATH
 export GST_PLUGIN_PATH_1_0="$stage$plugin_dir"
 export GST_PLUGIN_SYSTEM_PATH_1_0="$stage/no-system-plugins"
 export GST_REGISTRY_1_0="$stage/registry.bin"
-for element in colortrack robotctl; do
+for element in colortrack robotctl trackpublish; do
   out="$("$inspect" "$element" 2>&1)" || fail "gst-inspect-1.0 $element found nothing in $GST_PLUGIN_PATH_1_0: $out"
   filename="$(printf '%s\n' "$out" | sed -n 's/^ *Filename *//p' | head -1)"
   [ "$filename" = "$plugin" ] || fail "gst-inspect-1.0 $element loaded '$filename', not the staged $plugin"
