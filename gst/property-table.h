@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <map>
 #include <string>
+#include <type_traits>
 
 namespace gstglue {
 
@@ -82,6 +83,36 @@ void getTextOrNull(const ClassOf<field> &s, GValue *v) {
 template <auto field>
 void setText(ClassOf<field> &s, const GValue *v) {
   s.*field = textOf(v);
+}
+
+// Table accessors of a bool, gint, guint, double or enum field of an element's settings, by the field's type.
+template <auto field>
+void getValue(const ClassOf<field> &s, GValue *v) {
+  using T = std::remove_cv_t<std::remove_reference_t<decltype(s.*field)>>;
+  if constexpr (std::is_same_v<T, bool>)
+    g_value_set_boolean(v, s.*field);
+  else if constexpr (std::is_same_v<T, gint>)
+    g_value_set_int(v, s.*field);
+  else if constexpr (std::is_same_v<T, guint>)
+    g_value_set_uint(v, s.*field);
+  else if constexpr (std::is_same_v<T, double>)
+    g_value_set_double(v, s.*field);
+  else
+    g_value_set_enum(v, static_cast<gint>(s.*field));
+}
+template <auto field>
+void setValue(ClassOf<field> &s, const GValue *v) {
+  using T = std::remove_cv_t<std::remove_reference_t<decltype(s.*field)>>;
+  if constexpr (std::is_same_v<T, bool>)
+    s.*field = g_value_get_boolean(v);
+  else if constexpr (std::is_same_v<T, gint>)
+    s.*field = g_value_get_int(v);
+  else if constexpr (std::is_same_v<T, guint>)
+    s.*field = g_value_get_uint(v);
+  else if constexpr (std::is_same_v<T, double>)
+    s.*field = g_value_get_double(v);
+  else
+    s.*field = static_cast<T>(g_value_get_enum(v));
 }
 
 // The helpers the table's templates share; in property-table.cpp.

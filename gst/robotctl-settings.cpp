@@ -10,7 +10,9 @@ namespace {
 using gstglue::Apply;
 using gstglue::getText;
 using gstglue::getTextOrNull;
+using gstglue::getValue;
 using gstglue::setText;
+using gstglue::setValue;
 using gstglue::textOf;
 using Def = gstglue::PropertyDef<Settings>;
 using colortrack::ControllerSettings;
@@ -84,23 +86,6 @@ GstRobotCtlLockOn fromLockOn(colortrack::LockOn lockOn) {
   return GST_ROBOT_CTL_LOCK_ON_FIRST_CONFIRMED;
 }
 
-// Accessors of a field, by type; `field` is a pointer to a member of Settings (text: gstglue's).
-template <auto field>
-void getInt(const Settings &s, GValue *v) {
-  g_value_set_int(v, s.*field);
-}
-template <auto field>
-void setInt(Settings &s, const GValue *v) {
-  s.*field = g_value_get_int(v);
-}
-template <auto field>
-void getEnum(const Settings &s, GValue *v) {
-  g_value_set_enum(v, s.*field);
-}
-template <auto field>
-void setEnum(Settings &s, const GValue *v) {
-  s.*field = static_cast<std::remove_reference_t<decltype(s.*field)>>(g_value_get_enum(v));
-}
 // A double of the controller's or the failsafe's settings.
 template <auto field>
 void getControl(const Settings &s, GValue *v) {
@@ -145,32 +130,31 @@ const Def kProperties[] = {
            "Serial port speed in bit/s; one of the standard rates 50 ... 4000000; read at start", 50, 4000000,
            Settings{}.baudRate, f);
      },
-     [](const Settings &s, GValue *v) { g_value_set_uint(v, s.baudRate); },
-     [](Settings &s, const GValue *v) { s.baudRate = g_value_get_uint(v); }},
+     getValue<&Settings::baudRate>, setValue<&Settings::baudRate>},
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_int("data-bits", "Data bits", "Serial port data bits; read at start", 5, 8,
                                Settings{}.dataBits, f);
      },
-     getInt<&Settings::dataBits>, setInt<&Settings::dataBits>},
+     getValue<&Settings::dataBits>, setValue<&Settings::dataBits>},
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_enum("parity", "Parity", "Serial port parity; read at start",
                                 GST_TYPE_ROBOT_CTL_PARITY, Settings{}.parity, f);
      },
-     getEnum<&Settings::parity>, setEnum<&Settings::parity>},
+     getValue<&Settings::parity>, setValue<&Settings::parity>},
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_int("stop-bits", "Stop bits", "Serial port stop bits; read at start", 1, 2,
                                Settings{}.stopBits, f);
      },
-     getInt<&Settings::stopBits>, setInt<&Settings::stopBits>},
+     getValue<&Settings::stopBits>, setValue<&Settings::stopBits>},
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_enum("flow-control", "Flow control", "Serial port flow control; read at start",
                                 GST_TYPE_ROBOT_CTL_FLOW_CONTROL, Settings{}.flowControl, f);
      },
-     getEnum<&Settings::flowControl>, setEnum<&Settings::flowControl>},
+     getValue<&Settings::flowControl>, setValue<&Settings::flowControl>},
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_string("location", "Location",
@@ -184,7 +168,7 @@ const Def kProperties[] = {
        return g_param_spec_enum("protocol", "Protocol", "How commands are encoded; read at start",
                                 GST_TYPE_ROBOT_CTL_PROTOCOL, Settings{}.protocol, f);
      },
-     getEnum<&Settings::protocol>, setEnum<&Settings::protocol>},
+     getValue<&Settings::protocol>, setValue<&Settings::protocol>},
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_string(
@@ -201,7 +185,7 @@ const Def kProperties[] = {
            "Integer sent for full wheel speed by the text and binary protocols; read at start", 1, 32767,
            Settings{}.outputScale, f);
      },
-     getInt<&Settings::outputScale>, setInt<&Settings::outputScale>},
+     getValue<&Settings::outputScale>, setValue<&Settings::outputScale>},
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_double(
@@ -423,7 +407,7 @@ const Def kProperties[] = {
                                "Id of the region of interest to follow, and no other; -1 = choose by lock-on",
                                -1, G_MAXINT, Settings{}.targetId, f);
      },
-     getInt<&Settings::targetId>, setInt<&Settings::targetId>},
+     getValue<&Settings::targetId>, setValue<&Settings::targetId>},
     {Apply::Live, false,
      [](GParamFlags f) {
        return g_param_spec_enum("lock-on", "Lock on",
@@ -442,8 +426,7 @@ const Def kProperties[] = {
            "Post a \"robotctl\" element message for every command sent; read at start",
            Settings{}.postMessages, f);
      },
-     [](const Settings &s, GValue *v) { g_value_set_boolean(v, s.postMessages); },
-     [](Settings &s, const GValue *v) { s.postMessages = g_value_get_boolean(v); }},
+     getValue<&Settings::postMessages>, setValue<&Settings::postMessages>},
 };
 
 }  // namespace

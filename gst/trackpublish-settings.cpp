@@ -9,29 +9,14 @@ namespace {
 using gstglue::Apply;
 using gstglue::getText;
 using gstglue::getTextOrNull;
+using gstglue::getValue;
 using gstglue::setText;
+using gstglue::setValue;
 using gstglue::textOf;
 using Def = gstglue::PropertyDef<Settings>;
 
 // Every property is read at start: a change while running warns and applies from the next start.
 constexpr Apply kAtStart = Apply::AtStart;
-
-template <auto field>
-void getBool(const Settings &s, GValue *v) {
-  g_value_set_boolean(v, s.*field);
-}
-template <auto field>
-void setBool(Settings &s, const GValue *v) {
-  s.*field = g_value_get_boolean(v);
-}
-template <auto field>
-void getUint(const Settings &s, GValue *v) {
-  g_value_set_uint(v, s.*field);
-}
-template <auto field>
-void setUint(Settings &s, const GValue *v) {
-  s.*field = g_value_get_uint(v);
-}
 
 std::string checkAddressValue(const PropertyStore &, const GValue *v, std::string *) {
   const std::string address = textOf(v);
@@ -87,8 +72,7 @@ const Def kProperties[] = {
                                "arrive twice after a reconnect), 2 exactly once",
                                0, 2, Settings{}.qos, f);
      },
-     [](const Settings &s, GValue *v) { g_value_set_int(v, s.qos); },
-     [](Settings &s, const GValue *v) { s.qos = g_value_get_int(v); }},
+     getValue<&Settings::qos>, setValue<&Settings::qos>},
     {kAtStart, false,
      [](GParamFlags f) {
        return g_param_spec_string(
@@ -135,7 +119,7 @@ const Def kProperties[] = {
                                    "Check the broker's certificate and host name (ssl:// only)",
                                    Settings{}.tlsVerify, f);
      },
-     getBool<&Settings::tlsVerify>, setBool<&Settings::tlsVerify>},
+     getValue<&Settings::tlsVerify>, setValue<&Settings::tlsVerify>},
     {kAtStart, false,
      [](GParamFlags f) {
        return g_param_spec_uint("max-queued", "Maximum queued",
@@ -143,7 +127,7 @@ const Def kProperties[] = {
                                 "dropped (counted in a warning)",
                                 1, 10000000, Settings{}.maxQueued, f);
      },
-     getUint<&Settings::maxQueued>, setUint<&Settings::maxQueued>},
+     getValue<&Settings::maxQueued>, setValue<&Settings::maxQueued>},
     {kAtStart, false,
      [](GParamFlags f) {
        return g_param_spec_boolean("fail-on-connect", "Fail on connect",
@@ -151,14 +135,14 @@ const Def kProperties[] = {
                                    "retrying, queueing documents)",
                                    Settings{}.failOnConnect, f);
      },
-     getBool<&Settings::failOnConnect>, setBool<&Settings::failOnConnect>},
+     getValue<&Settings::failOnConnect>, setValue<&Settings::failOnConnect>},
     {kAtStart, false,
      [](GParamFlags f) {
        return g_param_spec_uint("drain-timeout", "Drain timeout",
                                 "Milliseconds to keep delivering queued documents when stopping", 0, 600000,
                                 Settings{}.drainTimeoutMs, f);
      },
-     getUint<&Settings::drainTimeoutMs>, setUint<&Settings::drainTimeoutMs>},
+     getValue<&Settings::drainTimeoutMs>, setValue<&Settings::drainTimeoutMs>},
     {kAtStart, false,
      [](GParamFlags f) {
        return g_param_spec_string(
