@@ -5,16 +5,6 @@
 
 namespace colortrack {
 
-namespace {
-
-struct PartMoments {
-  long long count = 0, own = 0;
-  double sumX = 0, sumY = 0;
-  int minX = std::numeric_limits<int>::max(), maxX = -1, minY = std::numeric_limits<int>::max(), maxY = -1;
-};
-
-}  // namespace
-
 std::vector<BlobShare> splitBlob(const Blob &blob, const BlobLabels &labels,
                                  const std::vector<SplitSeed> &seeds) {
   std::vector<BlobShare> parts(seeds.size());
@@ -24,7 +14,8 @@ std::vector<BlobShare> splitBlob(const Blob &blob, const BlobLabels &labels,
   const cv::Rect grid =
       cv::Rect(blob.box.x / d, blob.box.y / d, (blob.box.width + d - 1) / d, (blob.box.height + d - 1) / d) &
       cv::Rect(cv::Point(), labels.labels.size());
-  std::vector<PartMoments> moments(seeds.size());
+  std::vector<GridMoments> moments(seeds.size());
+  std::vector<long long> own(seeds.size(), 0);
   for (int y = grid.y; y < grid.y + grid.height; ++y) {
     const int *row = labels.labels.ptr<int>(y);
     for (int x = grid.x; x < grid.x + grid.width; ++x) {
@@ -43,29 +34,15 @@ std::vector<BlobShare> splitBlob(const Blob &blob, const BlobLabels &labels,
           nearest = s;
         }
       }
-      PartMoments &m = moments[nearest];
-      ++m.count;
-      if (inside <= 1) ++m.own;  // in its own disc only, or in none
-      m.sumX += x;
-      m.sumY += y;
-      m.minX = std::min(m.minX, x);
-      m.maxX = std::max(m.maxX, x);
-      m.minY = std::min(m.minY, y);
-      m.maxY = std::max(m.maxY, y);
+      moments[nearest].add(x, y);
+      if (inside <= 1) ++own[nearest];  // in its own disc only, or in none
     }
   }
-  const double cellArea = static_cast<double>(d) * d;
   for (size_t s = 0; s < seeds.size(); ++s) {
-    const PartMoments &m = moments[s];
-    if (m.count == 0) continue;
-    parts[s].ownArea = m.own * cellArea;
-    Blob &part = parts[s].blob;
-    part.area = m.count * cellArea;
-    part.centroid = cv::Point2d(m.sumX / m.count * d, m.sumY / m.count * d);
-    const int width = m.maxX - m.minX + 1, height = m.maxY - m.minY + 1;
-    part.box = cv::Rect(m.minX * d, m.minY * d, width * d, height * d) & blob.box;
-    part.fill = static_cast<double>(m.count) / (static_cast<double>(width) * height);
-    part.label = blob.label;
+    if (moments[s].count == 0) continue;
+    parts[s].blob = moments[s].toBlob(d, blob.box);
+    parts[s].blob.label = blob.label;
+    parts[s].ownArea = static_cast<double>(own[s]) * d * d;
   }
   return parts;
 }

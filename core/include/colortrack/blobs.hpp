@@ -2,6 +2,7 @@
 // connected components ("blobs"), plus learning a range from the pixels of a box.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -72,6 +73,24 @@ struct Blob {
   int label = 0;         // its component in BlobDetector::labels() (0: not from a detector)
 };
 
+// The samples of one blob (or part of one) on a segmentation grid, gathered one by one.
+struct GridMoments {
+  long long count = 0, sumX = 0, sumY = 0;
+  int minX = std::numeric_limits<int>::max(), maxX = -1, minY = std::numeric_limits<int>::max(), maxY = -1;
+  void add(int x, int y) {
+    ++count;
+    sumX += x;
+    sumY += y;
+    minX = std::min(minX, x);
+    maxX = std::max(maxX, x);
+    minY = std::min(minY, y);
+    maxY = std::max(maxY, y);
+  }
+  // The blob they make in frame coordinates, grid sample (x, y) being frame pixel (x step, y step), its box
+  // clipped to `bounds`. Needs count > 0.
+  Blob toBlob(int step, const cv::Rect &bounds) const;
+};
+
 // Where each blob's pixels are: the detector's component labels on its (decimated) grid, grid sample (x, y)
 // being frame pixel (x step, y step). Empty when unknown.
 struct BlobLabels {
@@ -100,14 +119,10 @@ class BlobDetector {
 
  private:
   const RangeLut &lutFor(PixelEncoding encoding);
-  struct ComponentMoments {
-    long long count = 0, sumX = 0, sumY = 0;
-    int minX = std::numeric_limits<int>::max(), maxX = -1, minY = std::numeric_limits<int>::max(), maxY = -1;
-  };
   BlobSettings settings_;
   std::optional<RangeLut> rgbLut_, yuvLut_;
   cv::Mat mask_, labels_;
-  std::vector<ComponentMoments> moments_;
+  std::vector<GridMoments> moments_;
   int lastDecimation_ = 1;
   cv::Mat bgr_;
 };
