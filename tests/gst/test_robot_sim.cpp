@@ -364,6 +364,8 @@ const Roi *ballRoi(const Step &step) {
 // distance (one that follows the distractor backs away from it: +38 % to +48 %). Within 45 frames (1.5 s)
 // of the distractor leaving the view it is centred on the ball (|bearing| < 5 degrees, distance within
 // 15 %) to the end of the run, and the ball's ROI has the same id after the crossing as before.
+// Not covered: the distractor at 0.3 m/s steals the zone robot (the ball's track, coasting on a velocity
+// the robot's own turn made, leaves the frame during the merge): docs/benchmarks.md, "Robot closed loop".
 // ROBOT_SIM_TRACE=1 prints every frame's ground truth and ROIs.
 void checkCrossing(const char *controller, const char *extra = "") {
   constexpr int kSettleAfter = 45, kAfter = 60;
