@@ -23,6 +23,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <deque>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,7 @@
 namespace {
 
 using colortrack::gst_test_util::bgrBuffer;
+using colortrack::gst_test_util::colortrackRois;
 using colortrack::gst_test_util::kFps;
 using colortrack::gst_test_util::waitForCommandOf;
 using colortrack::robot_sim::CommandDecoder;
@@ -81,6 +83,17 @@ struct Scenario {
   int latency = 0;                 // frames between a command's arrival and the wheels
   int frames = 210;
   int hideAt = -1;  // frame at which the ball disappears (-1: never)
+  // A second ball of the same colour (none while distractorRadius is 0), world frame.
+  double distractorRadius = 0;
+  cv::Point2d distractor{0, 0}, distractorVelocity{0, 0};
+  const char *extra = "";  // more robotctl properties
+};
+
+// One colortrack ROI as robotctl received it.
+struct Roi {
+  int id = 0;
+  cv::Rect2d box;
+  std::string state;
 };
 
 // What happened on each frame, after the robot moved.
@@ -89,6 +102,10 @@ struct Step {
   double distance = 0;  // m
   int turn = 0;         // direction of the command the wheels ran: +1 left, -1 right, 0 no turn
   bool inView = false;
+  double distractorBearing = 0;   // rad
+  bool distractorInView = false;  // some of the distractor's box lies in the frame
+  cv::Rect2d ballBox;             // ground truth, in the frame the decision was made on
+  std::vector<Roi> rois;          // what robotctl was given on that frame
 };
 
 struct LoopResult {
@@ -98,10 +115,35 @@ struct LoopResult {
   int rejected = 0;
 };
 
+// Records the colortrack ROIs of each buffer reaching robotctl.
+struct RoiLog {
+  std::mutex mutex;
+  std::vector<std::vector<Roi>> frames;
+};
+
+GstPadProbeReturn recordRois(GstPad *, GstPadProbeInfo *info, gpointer data) {
+  auto *log = static_cast<RoiLog *>(data);
+  std::vector<Roi> rois;
+  for (GstVideoRegionOfInterestMeta *meta : colortrackRois(GST_PAD_PROBE_INFO_BUFFER(info))) {
+    Roi roi;
+    roi.id = meta->id;
+    roi.box = cv::Rect2d(meta->x, meta->y, meta->w, meta->h);
+    if (const GstStructure *p = gst_video_region_of_interest_meta_get_param(meta, "colortrack"))
+      if (const char *state = gst_structure_get_string(p, "state")) roi.state = state;
+    rois.push_back(roi);
+  }
+  std::lock_guard<std::mutex> lock(log->mutex);
+  log->frames.push_back(rois);
+  return GST_PAD_PROBE_OK;
+}
+
 LoopResult runLoop(const Scenario &sc) {
   RobotSimConfig config;
   config.ball = cv::Point2d(sc.distance * std::cos(sc.bearing), sc.distance * std::sin(sc.bearing));
   config.ballVelocity = sc.ballVelocity;
+  config.distractorRadius = sc.distractorRadius;
+  config.distractor = sc.distractor;
+  config.distractorVelocity = sc.distractorVelocity;
   RobotSim robot(config, Pose{});
   CommandDecoder decoder(sc.decoding, kMaxLinear, kMaxAngular, 255);
 
@@ -112,14 +154,21 @@ LoopResult runLoop(const Scenario &sc) {
                 "appsrc name=src format=time caps=video/x-raw,format=BGR,width=%d,height=%d,framerate=%d/1 ! "
                 "colortrack mode=threshold init-box=%d,%d,%d,%d draw=0 ! "
                 "robotctl name=ctl location=%s sync=false post-messages=true rate=200 controller=%s "
-                "protocol=%s",
+                "protocol=%s %s",
                 config.frameSize.width, config.frameSize.height, kFps, cvRound(first.x), cvRound(first.y),
-                cvRound(first.width), cvRound(first.height), pty.slave.c_str(), sc.controller, sc.protocol);
+                cvRound(first.width), cvRound(first.height), pty.slave.c_str(), sc.controller, sc.protocol,
+                sc.extra);
   GError *error = nullptr;
   GstElement *pipeline = gst_parse_launch(launch, &error);
   fail_unless(pipeline != nullptr, "%s", error ? error->message : "");
   GstElement *src = gst_bin_get_by_name(GST_BIN(pipeline), "src");
   GstBus *bus = gst_element_get_bus(pipeline);
+  RoiLog roiLog;
+  GstElement *ctl = gst_bin_get_by_name(GST_BIN(pipeline), "ctl");
+  GstPad *sinkPad = gst_element_get_static_pad(ctl, "sink");
+  gst_pad_add_probe(sinkPad, GST_PAD_PROBE_TYPE_BUFFER, recordRois, &roiLog, nullptr);
+  gst_object_unref(sinkPad);
+  gst_object_unref(ctl);
   fail_unless(gst_element_set_state(pipeline, GST_STATE_PLAYING) != GST_STATE_CHANGE_FAILURE);
 
   LoopResult result;
@@ -128,6 +177,7 @@ LoopResult runLoop(const Scenario &sc) {
   const double dt = 1.0 / kFps;
   for (int i = 0; i < sc.frames; ++i) {
     if (i == sc.hideAt) robot.setBallHidden(true);
+    const cv::Rect2d ballBox = robot.ballBox();
     fail_unless(gst_app_src_push_buffer(GST_APP_SRC(src), bgrBuffer(robot.render(), i)) == GST_FLOW_OK);
     waitForCommandOf(bus, gst_util_uint64_scale_int(i, GST_SECOND, kFps));
     const std::vector<std::uint8_t> bytes = pty.drain();
@@ -156,6 +206,14 @@ LoopResult runLoop(const Scenario &sc) {
     const double spin = wheels.right - wheels.left;
     step.turn = spin > 1e-9 ? 1 : spin < -1e-9 ? -1 : 0;
     step.inView = !robot.ballBox().empty();
+    step.distractorBearing = robot.distractorBearing();
+    const cv::Rect2d frameRect(cv::Point2d(), cv::Size2d(config.frameSize));
+    step.distractorInView = (robot.distractorBox() & frameRect).area() > 0;
+    step.ballBox = ballBox;
+    {
+      std::lock_guard<std::mutex> lock(roiLog.mutex);
+      if (roiLog.frames.size() > static_cast<size_t>(i)) step.rois = roiLog.frames[i];
+    }
     result.steps.push_back(step);
   }
   result.rejected = decoder.rejected();
@@ -273,6 +331,120 @@ void checkFollows(const char *controller, int latency) {
   fail_unless_equals_int(r.rejected, 0);
 }
 
+// The ROI that is the ball on a step: the one overlapping the ball's true box most (nullptr when none does).
+const Roi *ballRoi(const Step &step) {
+  const Roi *best = nullptr;
+  double bestOverlap = 0;
+  for (const Roi &roi : step.rois) {
+    const double overlap = (roi.box & step.ballBox).area();
+    if (overlap > bestOverlap) {
+      best = &roi;
+      bestOverlap = overlap;
+    }
+  }
+  return best;
+}
+
+// Issue 12's crossing: "a same-coloured object crossing in front does not steal the robot". The robot starts
+// at the set-point distance, facing the ball, which rolls slowly to the right (0.1 m/s across), so the robot
+// is following when a second ball of the same colour, smaller (0.12 m) but nearer (0.55 m ahead: 121 px
+// wide in the image against the ball's 72), rolls from the right to the left at 0.4 m/s between the robot
+// and the ball. In the image it passes over the lower three quarters of the ball: the blobs touch (and are
+// split between the tracks by their pixels), then merge (the ball's track coasts inside the merged blob for
+// about 20 frames, longer than lost-timeout), then part. It appears after the ball, so its track has the
+// higher id; the ball's track must live through the merge, and robotctl must keep following it
+// (lock-on=first-confirmed, the default; with it, the lock and "the lowest id" agree as long as the tracker
+// keeps the ball's id, so a third run with lock-on=largest, for which the distractor is the choice on every
+// frame it is in view, shows the lock itself).
+//
+// Required, while the distractor is in view: the robot never turns more than 10 degrees off the ball (the
+// ball drifts about 5 degrees while robotctl holds, then stops, during the merge; a robot that follows the
+// distractor instead turns 85-90 degrees off), never turns away from the ball for more than 3 frames in a
+// row (8.6 degrees at max-angular 0.3), and its distance to the ball stays within 15 % of the set-point
+// distance (one that follows the distractor backs away from it: +38 % to +48 %). Within 45 frames (1.5 s)
+// of the distractor leaving the view it is centred on the ball (|bearing| < 5 degrees, distance within
+// 15 %) to the end of the run, and the ball's ROI has the same id after the crossing as before.
+// Not covered: the distractor at 0.3 m/s steals the zone robot (the ball's track, coasting on a velocity
+// the robot's own turn made, leaves the frame during the merge): docs/benchmarks.md, "Robot closed loop".
+// ROBOT_SIM_TRACE=1 prints every frame's ground truth and ROIs.
+void checkCrossing(const char *controller, const char *extra = "") {
+  constexpr int kSettleAfter = 45, kAfter = 60;
+  Scenario sc = forController(controller);
+  sc.extra = extra;
+  sc.distance = setPointDistance();
+  sc.distractorRadius = 0.12;
+  sc.ballVelocity = cv::Point2d(0, -0.1);
+  sc.distractor = cv::Point2d(0.55, -0.85);
+  sc.distractorVelocity = cv::Point2d(0, 0.4);
+  sc.frames = 85 + kAfter;  // it leaves the view at frame 85
+  const LoopResult r = runLoop(sc);
+  const bool trace = std::getenv("ROBOT_SIM_TRACE") != nullptr;
+
+  int enters = -1, leaves = -1;
+  for (int i = 0; i < static_cast<int>(r.steps.size()); ++i) {
+    if (enters < 0 && r.steps[i].distractorInView) enters = i;
+    if (enters >= 0 && leaves < 0 && !r.steps[i].distractorInView) leaves = i;
+  }
+  fail_unless(enters > 0, "the distractor never came into view");
+  const bool left = leaves > 0;  // it stays in view when the robot follows it
+  if (!left) leaves = static_cast<int>(r.steps.size());
+
+  const Roi *before = ballRoi(r.steps[enters - 1]);
+  const Roi *after = ballRoi(r.steps.back());
+  const int idBefore = before ? before->id : -1, idAfter = after ? after->id : -1;
+  // While the distractor is in view: how far the robot turned from the ball and how its distance changed,
+  // the longest run of frames turning away from the ball (more than 1 degree off, and the turn takes it
+  // further), and the frames on which the ball's track was not measured (coasting inside the merged blob).
+  double maxBearing = 0, minDistance = 1e9, maxDistance = 0;
+  int awayRun = 0, longestAway = 0, unmeasured = 0;
+  for (int i = enters; i < leaves; ++i) {
+    const Step &s = r.steps[i];
+    maxBearing = std::max(maxBearing, std::abs(s.bearing));
+    minDistance = std::min(minDistance, s.distance);
+    maxDistance = std::max(maxDistance, s.distance);
+    const int away = s.bearing > kDeg ? -1 : s.bearing < -kDeg ? 1 : 0;
+    awayRun = away != 0 && s.turn == away ? awayRun + 1 : 0;
+    longestAway = std::max(longestAway, awayRun);
+    bool tracking = false;
+    for (const Roi &roi : s.rois) tracking = tracking || (roi.id == idBefore && roi.state == "tracking");
+    unmeasured += !tracking;
+  }
+  int centredFrom = static_cast<int>(r.steps.size());
+  while (centredFrom > leaves && std::abs(r.steps[centredFrom - 1].bearing) < 5 * kDeg &&
+         std::abs(r.steps[centredFrom - 1].distance / setPointDistance() - 1) <= 0.15)
+    --centredFrom;
+  if (trace) {
+    for (int i = 0; i < static_cast<int>(r.steps.size()); ++i) {
+      const Step &s = r.steps[i];
+      g_print("  %3d: ball %5.1f deg %.3f m (box %.0f,%.0f %.0fx%.0f) distractor %6.1f deg%s turn %+d:", i,
+              s.bearing / kDeg, s.distance, s.ballBox.x, s.ballBox.y, s.ballBox.width, s.ballBox.height,
+              s.distractorBearing / kDeg, s.distractorInView ? " (in view)" : "", s.turn);
+      for (const Roi &roi : s.rois)
+        g_print(" [%d %s %.0f,%.0f %.0fx%.0f]", roi.id, roi.state.c_str(), roi.box.x, roi.box.y,
+                roi.box.width, roi.box.height);
+      g_print("\n");
+    }
+  }
+  g_print(
+      "crossing %s%s%s: distractor in view frames %d-%d (the ball's track not measured on %d); ball track "
+      "id %d before, %d after; max |bearing| %.1f deg, distance %.3f-%.3f m (set-point %.3f m), longest "
+      "turn away from the ball %d frames; centred from frame %d (%d after it left)\n",
+      controller, *extra ? " " : "", extra, enters, leaves - 1, unmeasured, idBefore, idAfter,
+      maxBearing / kDeg, minDistance, maxDistance, setPointDistance(), longestAway, centredFrom,
+      left ? centredFrom - leaves : -1);
+  fail_unless(left, "%s: the distractor never left the view", controller);
+  fail_unless(idBefore > 0 && idAfter == idBefore,
+              "%s: the ball's track was %d before the crossing, %d after", controller, idBefore, idAfter);
+  fail_unless(maxBearing < 10 * kDeg, "%s: turned %.1f deg off the ball", controller, maxBearing / kDeg);
+  fail_unless(longestAway <= 3, "%s: turned away from the ball for %d frames", controller, longestAway);
+  fail_unless(std::abs(minDistance / setPointDistance() - 1) <= 0.15 &&
+                  std::abs(maxDistance / setPointDistance() - 1) <= 0.15,
+              "%s: distance %.3f-%.3f m during the crossing", controller, minDistance, maxDistance);
+  fail_unless(centredFrom - leaves <= kSettleAfter,
+              "%s: not centred on the ball %d frames after the crossing", controller, kSettleAfter);
+  fail_unless_equals_int(r.rejected, 0);
+}
+
 GST_START_TEST(test_zone_settles) {
   checkSettles("zone", 0);
 }
@@ -338,6 +510,23 @@ GST_START_TEST(test_hidden_ball_stops_within_lost_timeout) {
 }
 GST_END_TEST;
 
+GST_START_TEST(test_zone_keeps_the_ball_when_another_crosses) {
+  checkCrossing("zone");
+}
+GST_END_TEST;
+
+GST_START_TEST(test_proportional_keeps_the_ball_when_another_crosses) {
+  checkCrossing("proportional");
+}
+GST_END_TEST;
+
+// With lock-on=largest the distractor, larger in the image, would be the choice on every frame it is in view:
+// only the lock keeps the robot on the ball.
+GST_START_TEST(test_largest_lock_keeps_the_ball_when_a_larger_one_crosses) {
+  checkCrossing("zone", "lock-on=largest");
+}
+GST_END_TEST;
+
 Suite *robot_sim_suite(void) {
   Suite *s = suite_create("robot_sim");
   TCase *tc = tcase_create("closed-loop");
@@ -352,6 +541,9 @@ Suite *robot_sim_suite(void) {
   tcase_add_test(tc, test_zone_follows_with_latency);
   tcase_add_test(tc, test_proportional_follows_with_latency);
   tcase_add_test(tc, test_hidden_ball_stops_within_lost_timeout);
+  tcase_add_test(tc, test_zone_keeps_the_ball_when_another_crosses);
+  tcase_add_test(tc, test_proportional_keeps_the_ball_when_another_crosses);
+  tcase_add_test(tc, test_largest_lock_keeps_the_ball_when_a_larger_one_crosses);
   return s;
 }
 

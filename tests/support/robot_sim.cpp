@@ -20,8 +20,16 @@ cv::Point3d RobotSim::toCamera(double x, double y, double z) const {
 
 cv::Rect2d RobotSim::ballBox() const {
   if (hidden_) return {};
-  const double r = config_.ballRadius;
-  const cv::Point3d p = toCamera(config_.ball.x, config_.ball.y, r);
+  return boxOf(config_.ball, config_.ballRadius);
+}
+
+cv::Rect2d RobotSim::distractorBox() const {
+  if (config_.distractorRadius <= 0) return {};
+  return boxOf(config_.distractor, config_.distractorRadius);
+}
+
+cv::Rect2d RobotSim::boxOf(cv::Point2d position, double r) const {
+  const cv::Point3d p = toCamera(position.x, position.y, r);
   if (p.x <= r) return {};
   const double cx = config_.frameSize.width / 2.0, cy = config_.frameSize.height / 2.0;
   const double u = cx - focal_ * p.y / p.x, v = cy - focal_ * p.z / p.x;
@@ -31,6 +39,7 @@ cv::Rect2d RobotSim::ballBox() const {
 
 void RobotSim::moveBall(double dt) {
   config_.ball += config_.ballVelocity * dt;
+  config_.distractor += config_.distractorVelocity * dt;
 }
 
 double RobotSim::ballBearing() const {
@@ -42,9 +51,38 @@ double RobotSim::ballDistance() const {
   return std::hypot(config_.ball.x - pose_.x, config_.ball.y - pose_.y);
 }
 
+double RobotSim::distractorBearing() const {
+  const cv::Point3d p = toCamera(config_.distractor.x, config_.distractor.y, config_.distractorRadius);
+  return std::atan2(p.y, p.x);
+}
+
+double RobotSim::distractorDistance() const {
+  return std::hypot(config_.distractor.x - pose_.x, config_.distractor.y - pose_.y);
+}
+
 double RobotSim::distanceForSizeCue(double cue) const {
   return 2 * focal_ * config_.ballRadius / (cue * config_.frameSize.height);
 }
+
+namespace {
+
+// A shaded red ball with a highlight, filling `box` (nothing when empty); sub-pixel centre (shift) so it
+// moves smoothly.
+void drawBall(cv::Mat &image, const cv::Rect2d &box) {
+  if (box.empty()) return;
+  constexpr int kShift = 4;
+  const double scale = 1 << kShift;
+  const cv::Point centre(cvRound((box.x + box.width / 2) * scale), cvRound((box.y + box.height / 2) * scale));
+  const double radius = box.width / 2;
+  cv::circle(image, centre, cvRound(radius * scale), cv::Scalar(25, 25, 170), cv::FILLED, cv::LINE_AA,
+             kShift);
+  cv::circle(image, centre - cv::Point(cvRound(radius * 0.15 * scale), cvRound(radius * 0.15 * scale)),
+             cvRound(radius * 0.7 * scale), cv::Scalar(40, 40, 215), cv::FILLED, cv::LINE_AA, kShift);
+  cv::circle(image, centre - cv::Point(cvRound(radius * 0.35 * scale), cvRound(radius * 0.35 * scale)),
+             cvRound(radius * 0.25 * scale), cv::Scalar(120, 120, 245), cv::FILLED, cv::LINE_AA, kShift);
+}
+
+}  // namespace
 
 cv::Mat RobotSim::render() const {
   const cv::Size size = config_.frameSize;
@@ -71,21 +109,11 @@ cv::Mat RobotSim::render() const {
       row[u] = dark ? cv::Vec3b(95, 105, 100) : cv::Vec3b(150, 160, 155);
     }
   }
-  const cv::Rect2d box = ballBox();
-  if (!box.empty()) {
-    // A shaded red ball with a highlight; sub-pixel centre (shift) so it moves smoothly.
-    constexpr int kShift = 4;
-    const double scale = 1 << kShift;
-    const cv::Point centre(cvRound((box.x + box.width / 2) * scale),
-                           cvRound((box.y + box.height / 2) * scale));
-    const double radius = box.width / 2;
-    cv::circle(image, centre, cvRound(radius * scale), cv::Scalar(25, 25, 170), cv::FILLED, cv::LINE_AA,
-               kShift);
-    cv::circle(image, centre - cv::Point(cvRound(radius * 0.15 * scale), cvRound(radius * 0.15 * scale)),
-               cvRound(radius * 0.7 * scale), cv::Scalar(40, 40, 215), cv::FILLED, cv::LINE_AA, kShift);
-    cv::circle(image, centre - cv::Point(cvRound(radius * 0.35 * scale), cvRound(radius * 0.35 * scale)),
-               cvRound(radius * 0.25 * scale), cv::Scalar(120, 120, 245), cv::FILLED, cv::LINE_AA, kShift);
-  }
+  // The farther ball first, so the nearer one covers it.
+  const cv::Rect2d ball = ballBox(), distractor = distractorBox();
+  const bool distractorFirst = distractorDistance() > ballDistance();
+  drawBall(image, distractorFirst ? distractor : ball);
+  drawBall(image, distractorFirst ? ball : distractor);
   return image;
 }
 

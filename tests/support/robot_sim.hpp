@@ -1,4 +1,5 @@
-// A simulated differential-drive robot with a forward camera, in a flat world with one coloured ball. It
+// A simulated differential-drive robot with a forward camera, in a flat world with one coloured ball (and,
+// optionally, a second ball of the same colour that rolls across: a distractor). It
 // renders what the camera sees (pinhole model) and drives from wheel speeds, so robotctl can be tested in a
 // closed loop. It also decodes robotctl's three protocols, independently of core/ (from docs/robotctl.md).
 #pragma once
@@ -20,6 +21,11 @@ struct RobotSimConfig {
   cv::Point2d ballVelocity{0, 0};  // m/s, applied by moveBall
   double fullWheelSpeed = 1.0;     // m/s at wheel speed 1
   double wheelBase = 0.4;          // m between the wheels
+  // A second ball of the ball's colour (none while distractorRadius is 0), also resting on the floor and
+  // rolling at its own velocity (moveBall moves both).
+  double distractorRadius = 0;           // m
+  cv::Point2d distractor{0, 0};          // m, world position
+  cv::Point2d distractorVelocity{0, 0};  // m/s
 };
 
 // Position (m) and heading (rad, 0 = +x, counter-clockwise).
@@ -31,18 +37,24 @@ class RobotSim {
  public:
   RobotSim(const RobotSimConfig &config, const Pose &start);
 
-  // The camera view: sky, a checkered floor, the ball (BGR, CV_8UC3).
+  // The camera view: sky, a checkered floor, the ball and the distractor, the nearer one drawn over the
+  // other (BGR, CV_8UC3).
   cv::Mat render() const;
   // Where the ball appears (ground truth); empty when hidden or behind the camera.
   cv::Rect2d ballBox() const;
+  // Where the distractor appears, whole (not cut where the ball is in front); empty without one.
+  cv::Rect2d distractorBox() const;
   void setBallHidden(bool hidden) { hidden_ = hidden; }
-  // Rolls the ball for dt seconds at its velocity (config().ballVelocity).
+  // Rolls the ball and the distractor for dt seconds at their velocities.
   void moveBall(double dt);
 
   // Ground truth for scoring a run: the ball's bearing from the camera's axis (rad, > 0 to the left) and
   // its distance on the floor (m, camera to ball centre).
   double ballBearing() const;
   double ballDistance() const;
+  // The same for the distractor.
+  double distractorBearing() const;
+  double distractorDistance() const;
   // The distance at which the ball's box is `cue` of the frame height (robotctl's distance-cue=size):
   // box height = 2 * focal * radius / distance, exactly (ballBox).
   double distanceForSizeCue(double cue) const;
@@ -57,6 +69,8 @@ class RobotSim {
  private:
   // World point to camera coordinates: forward, left, up (m).
   cv::Point3d toCamera(double x, double y, double z) const;
+  // Where a ball of `radius` resting at `position` appears; empty when behind the camera.
+  cv::Rect2d boxOf(cv::Point2d position, double radius) const;
 
   RobotSimConfig config_;
   Pose pose_;
