@@ -174,6 +174,7 @@ def main():
         print("skipped: needs mosquitto (Debian: mosquitto) and gst-launch-1.0 (Debian: gstreamer1.0-tools)")
         return 77
 
+    sys.dont_write_bytecode = True  # no __pycache__ in the source tree
     spec = importlib.util.spec_from_file_location("track_subscriber", script)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
