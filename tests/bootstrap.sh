@@ -27,10 +27,10 @@ demo_packages=(
 )
 # The tests, benchmarks and examples on top: gst-inspect-1.0, cvtracker (-bad and -opencv) for the
 # evaluation, GoogleTest, gst-rtsp-server for the RTSP test, PyGObject for the Python example, the mosquitto
-# broker the trackpublish tests start on loopback.
+# broker the trackpublish tests start on loopback, paho-mqtt for the Python MQTT consumer example.
 test_packages=(
   gstreamer1.0-tools gstreamer1.0-plugins-bad gstreamer1.0-opencv libgtest-dev libgstrtspserver-1.0-dev
-  python3-gi gir1.2-gstreamer-1.0 gir1.2-gst-plugins-base-1.0 mosquitto
+  python3-gi gir1.2-gstreamer-1.0 gir1.2-gst-plugins-base-1.0 mosquitto python3-paho-mqtt
 )
 packages=("${demo_packages[@]}")
 [ "$mode" = demo ] || packages+=("${test_packages[@]}")
