@@ -33,6 +33,12 @@
  * when gst_video_region_of_interest_meta_get_param () returns NULL. */
 #define COLORTRACK_PARAMS_META_NAME "GstColorTrackParamsMeta"
 
+/* Built against GStreamer 1.24 or newer, colortrack also attaches a GstAnalyticsRelationMeta: per track with
+ * a ROI meta an object-detection mtd (type COLORTRACK_ROI_TYPE, the same box, confidence = score clamped to
+ * 0..1) related (GST_ANALYTICS_REL_TYPE_RELATE_TO) to a tracking mtd (tracking id = meta->id, first and last
+ * seen, lost); a track gone since the previous buffer gets a lost tracking mtd alone. docs/api.md has more.
+ */
+
 /* Track states, as in the meta params and the bus message. */
 #define COLORTRACK_STATE_SEARCHING "searching"
 #define COLORTRACK_STATE_TRACKING "tracking"

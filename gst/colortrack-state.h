@@ -10,6 +10,7 @@
 
 #include "colortrack/threshold_tracker.hpp"
 #include "colortrack/tracker.hpp"
+#include "analytics-meta.h"
 #include "colortrack-settings.h"
 #include "gstcolortrack.h"
 #include "track-overlay.h"
@@ -33,6 +34,7 @@ struct State {
   guint64 appliedRangeGeneration = 0;
   std::string templateOrigin;  // "template-location 'x.png'" or "init-box '1,2,3,4'", for error messages
   Trails trails;
+  AnalyticsTracks analytics;  // GStreamer >= 1.24: the tracks in the analytics meta (first seen, gone)
   guint64 frameCount = 0;
   bool warnedNoTemplate = false;
   bool capsChanged = false;

@@ -396,6 +396,7 @@ static void report_frame(GstColorTrack *self, GstVideoFrame *frame, const Snapsh
   state.trails.update(report.tracks, snapshot.trailLength);
   for (const colortrack::TrackReport &track : report.tracks)
     colortrack_gst::attachTrackMeta(GST_ELEMENT(self), frame->buffer, track, size);
+  state.analytics.attach(frame->buffer, report, size);
   colortrack_gst::OverlayParts parts;
   parts.box = snapshot.draw & GST_COLOR_TRACK_DRAW_BOX;
   parts.trail = snapshot.draw & GST_COLOR_TRACK_DRAW_TRAIL;
@@ -422,6 +423,7 @@ static GstFlowReturn track_frame(GstColorTrack *self, GstVideoFrame *frame, cons
   colortrack::FrameReport empty;
   empty.listsTracks = threshold;
   if (state.idle) {
+    state.analytics.attach(frame->buffer, empty, view.size());  // the tracks stopped by the click: lost
     if (snapshot.postMessages)
       colortrack_gst::postTrackMessage(GST_ELEMENT(self), GST_BASE_TRANSFORM(self)->segment, frame->buffer,
                                        frameNumber, empty, COLORTRACK_STATE_IDLE);
