@@ -35,16 +35,33 @@ test_packages=(
 packages=("${demo_packages[@]}")
 [ "$mode" = demo ] || packages+=("${test_packages[@]}")
 
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
+installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q "install ok installed"; }
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo=sudo
+updated=false
+install_missing() {
+  local missing=() p
+  for p in "$@"; do installed "$p" || missing+=("$p"); done
+  [ ${#missing[@]} -gt 0 ] || return 0
   echo "== installing: ${missing[*]}"
-  sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo=sudo
-  $sudo apt-get update -q
+  $updated || $sudo apt-get update -q
+  updated=true
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
+}
+install_missing "${packages[@]}"
+
+# GStreamer 1.24 and newer (Debian 13): the analytics library's headers come with -bad's development package,
+# and the plugin then also attaches the analytics meta (gst/analytics-meta.h). Debian 12's GStreamer 1.22 has
+# no analytics library: nothing to add there. A build/ configured before the package came is configured again
+# so that meson finds it.
+analytics_added=false
+if dpkg --compare-versions "$(dpkg-query -W -f='${Version}' libgstreamer1.0-dev)" ge 1.24 &&
+  ! installed libgstreamer-plugins-bad1.0-dev; then
+  install_missing libgstreamer-plugins-bad1.0-dev
+  analytics_added=true
+fi
+if $analytics_added && [ -f build/build.ninja ]; then
+  meson setup --reconfigure build
 fi
 
 # The value of a boolean build option of build/ ("true" or "false").
