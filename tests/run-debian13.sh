@@ -1,0 +1,117 @@
+#!/usr/bin/env bash
+# The project's tests (tests/run-tests.sh) on Debian 13 (trixie, GStreamer 1.26: the analytics meta is built
+# and tested there, see gst/analytics-meta.h), in a chroot, from any Debian machine where we are root:
+#   1. debootstrap --variant=minbase trixie into the chroot if it has no Debian 13 yet (debootstrap is
+#      installed if missing);
+#   2. copies this work tree (git's tracked and untracked files, not ignored ones such as build directories)
+#      to /src/colortrack in the chroot, keeping the build/ a previous run left there;
+#   3. inside: tests/bootstrap.sh (installs the packages, builds), then tests/run-tests.sh "$@".
+# /proc, /sys, /dev, /dev/pts and /dev/shm are mounted in the chroot for the run and unmounted at the end,
+# whatever happens. Each phase's time is printed at the end.
+#
+# Settings (environment): COLORTRACK_DEBIAN13_CHROOT (default /var/tmp/colortrack-debian13),
+# DEBIAN_MIRROR (default http://deb.debian.org/debian), COLORTRACK_DEBIAN13_CLEAN=1 to remove the chroot's
+# build/ first (a build from nothing).
+set -euo pipefail
+repo=$(cd "$(dirname "$0")/.." && pwd)
+root=${COLORTRACK_DEBIAN13_CHROOT:-/var/tmp/colortrack-debian13}
+mirror=${DEBIAN_MIRROR:-http://deb.debian.org/debian}
+src=/src/colortrack
+
+if [ "$(id -u)" -ne 0 ]; then
+  echo "run-debian13.sh: needs root (debootstrap, mount, chroot)" >&2
+  exit 2
+fi
+
+phases=()
+phase_start=0
+begin() {
+  phase_start=$SECONDS
+  echo "== $1"
+}
+end() { phases+=("$(printf '%-28s %4d s' "$1" $((SECONDS - phase_start)))"); }
+summary() {
+  echo "== Debian 13 run: phases"
+  local p
+  for p in "${phases[@]}"; do echo "   $p"; done
+}
+
+# Unmounts whatever is mounted under $1 (a run or a debootstrap killed before it could clean up), deepest
+# first, so that nothing under it is removed through a mount.
+unmount_under() {
+  local dir m
+  dir=$(realpath -m "$1")
+  awk -v d="$dir" '$2 == d || index($2, d "/") == 1 { print $2 }' /proc/mounts | sort -r |
+    while read -r m; do umount "$m" 2>/dev/null || umount -l "$m"; done
+}
+unmount_under "$root"
+unmount_under "$root.partial"
+
+# 1. The chroot.
+if [ ! -f "$root/etc/debian_version" ] || ! grep -q '^13' "$root/etc/debian_version" ||
+  [ ! -x "$root/usr/bin/apt-get" ]; then
+  begin "debootstrap trixie into $root"
+  command -v debootstrap >/dev/null || {
+    apt-get update -q
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -q debootstrap
+  }
+  # Into a temporary directory first: a debootstrap cut short leaves no half chroot under $root.
+  rm -rf "$root.partial"
+  mkdir -p "$(dirname "$root")"
+  debootstrap --variant=minbase trixie "$root.partial" "$mirror"
+  rm -rf "$root"
+  mv "$root.partial" "$root"
+  end "debootstrap"
+fi
+cp /etc/resolv.conf "$root/etc/resolv.conf"
+
+# Mounts, undone on any exit (failure and interruption too).
+mounted=()
+cleanup() {
+  local status=$? i
+  for ((i = ${#mounted[@]} - 1; i >= 0; i--)); do
+    umount "${mounted[i]}" 2>/dev/null || umount -l "${mounted[i]}" || echo "could not unmount ${mounted[i]}" >&2
+  done
+  summary
+  exit "$status"
+}
+trap cleanup EXIT
+trap 'exit 130' INT TERM
+mount_in() {  # mount_in TARGET MOUNT-ARGS...
+  local target=$root$1
+  shift
+  mkdir -p "$target"
+  mount "$@" "$target"
+  mounted+=("$target")
+}
+mount_in /proc -t proc proc
+mount_in /sys -t sysfs sysfs
+mount_in /dev --bind /dev
+mount_in /dev/pts --bind /dev/pts
+mount_in /dev/shm -t tmpfs -o mode=1777,nosuid,nodev shm
+
+# 2. The work tree.
+begin "copy $repo to $root$src"
+mkdir -p "$root$src"
+if [ "${COLORTRACK_DEBIAN13_CLEAN:-0}" = 1 ]; then
+  rm -rf "$root$src/build"
+fi
+find "$root$src" -mindepth 1 -maxdepth 1 ! -name build -exec rm -rf {} +
+git -C "$repo" ls-files -z --cached --others --exclude-standard |
+  tar -C "$repo" --no-recursion --ignore-failed-read --null -cf - -T - | tar -xf - -C "$root$src"
+end "copy"
+
+in_chroot() {
+  chroot "$root" /usr/bin/env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin HOME=/root LANG=C.UTF-8 \
+    TERM="${TERM:-dumb}" CI="${CI:-}" /bin/bash -c "cd $src && $*"
+}
+
+# 3. Packages and build, then the tests.
+begin "tests/bootstrap.sh (packages, build)"
+in_chroot "bash tests/bootstrap.sh 2>&1 | while IFS= read -r line; do printf '%(%T)T %s\n' -1 \"\$line\"; done; exit \${PIPESTATUS[0]}"
+end "packages and build"
+begin "tests/run-tests.sh $*"
+args=""
+[ $# -eq 0 ] || args=$(printf ' %q' "$@")
+in_chroot "bash tests/run-tests.sh$args"
+end "tests"
