@@ -20,6 +20,7 @@
 #include <gst/analytics/analytics.h>
 #include <gst/check/gstcheck.h>
 #include <gst/check/gstharness.h>
+#include <gst/video/navigation.h>
 #include <gst/video/video.h>
 
 namespace {
@@ -180,11 +181,54 @@ GST_START_TEST(test_analytics_meta_matches_roi_meta) {
 }
 GST_END_TEST;
 
+// A right click stops tracking: on the next buffer no od mtd, and each track of the buffer before gets a lost
+// tracking mtd alone (with its first- and last-seen times); on the one after, nothing.
+GST_START_TEST(test_right_click_reports_tracks_lost) {
+  const BallScene scene = exitsScene();
+  const cv::Size size = scene.config().frameSize;
+  BusHarness h("colortrack name=ct mode=threshold hsv-lower=345,0.5,0.25 hsv-upper=30,1,1 draw=0",
+               videoCaps("BGR", size));
+  std::map<guint64, GstClockTime> firstReported, lastReported;
+  std::set<guint64> before;
+  for (int i = 0; i < 20; ++i) {
+    GstBuffer *out = h.process(bgrBuffer(scene.render(i), i));
+    before.clear();
+    for (GstVideoRegionOfInterestMeta *roi : colortrackRois(out)) {
+      const auto id = static_cast<guint64>(roi->id);
+      firstReported.emplace(id, GST_BUFFER_PTS(out));
+      lastReported[id] = GST_BUFFER_PTS(out);
+      before.insert(id);
+    }
+    gst_buffer_unref(out);
+  }
+  fail_unless(before.size() >= 2, "only %d tracks before the click", static_cast<int>(before.size()));
+  fail_unless(gst_harness_push_upstream_event(
+      h.harness(), gst_navigation_event_new_mouse_button_press(3, 320, 240, GST_NAVIGATION_MODIFIER_NONE)));
+  GstBuffer *out = h.process(bgrBuffer(scene.render(20), 20));
+  fail_unless_equals_int(colortrackRois(out).size(), 0);
+  const Analytics a = readAnalytics(out);
+  gst_buffer_unref(out);
+  fail_unless_equals_int(a.ods.size(), 0);
+  std::set<guint64> lost;
+  for (const Tracking &t : a.trackings) {
+    fail_unless(t.lost && !t.relatedToOd);
+    fail_unless_equals_uint64(t.firstSeen, firstReported[t.trackId]);
+    fail_unless_equals_uint64(t.lastSeen, lastReported[t.trackId]);
+    lost.insert(t.trackId);
+  }
+  fail_unless(lost == before, "the lost tracking mtds are not the tracks before the click");
+  out = h.process(bgrBuffer(scene.render(21), 21));
+  fail_unless(gst_buffer_get_analytics_relation_meta(out) == nullptr, "analytics meta while stopped");
+  gst_buffer_unref(out);
+}
+GST_END_TEST;
+
 static Suite *analytics_meta_suite(void) {
   Suite *s = suite_create("analytics_meta");
   TCase *tc = tcase_create("analytics");
   suite_add_tcase(s, tc);
   tcase_add_test(tc, test_analytics_meta_matches_roi_meta);
+  tcase_add_test(tc, test_right_click_reports_tracks_lost);
   return s;
 }
 
