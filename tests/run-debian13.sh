@@ -4,7 +4,8 @@
 #   1. debootstrap --variant=minbase trixie into the chroot if it has no Debian 13 yet (debootstrap is
 #      installed if missing);
 #   2. copies this work tree (git's tracked and untracked files, not ignored ones such as build directories)
-#      to /src/colortrack in the chroot, keeping the build/ a previous run left there;
+#      to /src/colortrack in the chroot, keeping the build/ a previous run left there (only files whose
+#      content changed are copied, so that build/ rebuilds exactly those);
 #   3. inside: tests/bootstrap.sh (installs the packages, builds), then tests/run-tests.sh "$@".
 # /proc, /sys, /dev, /dev/pts and /dev/shm are mounted in the chroot for the run and unmounted at the end,
 # whatever happens. Each phase's time is printed at the end.
@@ -96,9 +97,29 @@ mkdir -p "$root$src"
 if [ "${COLORTRACK_DEBIAN13_CLEAN:-0}" = 1 ]; then
   rm -rf "$root$src/build"
 fi
-find "$root$src" -mindepth 1 -maxdepth 1 ! -name build -exec rm -rf {} +
+# Into a staging directory, then only the files whose content differs are copied over (with the time of the
+# copy, so that ninja rebuilds what changed: the work tree's own times may be older than the kept build's),
+# and files no longer in the work tree are removed. Nothing under build*/ (git ignores them) is touched.
+stage="$root/src/.incoming"
+dest="$root$src"
+rm -rf "$stage"
+mkdir -p "$stage"
 git -C "$repo" ls-files -z --cached --others --exclude-standard |
-  tar -C "$repo" --no-recursion --ignore-failed-read --null -cf - -T - | tar -xf - -C "$root$src"
+  tar -C "$repo" --no-recursion --ignore-failed-read --null -cf - -T - | tar -xf - -C "$stage"
+changed=0
+while IFS= read -r -d '' f; do
+  if ! cmp -s "$stage/$f" "$dest/$f"; then
+    mkdir -p "$(dirname "$dest/$f")"
+    rm -f "$dest/$f"
+    cp -P --preserve=mode "$stage/$f" "$dest/$f"
+    changed=$((changed + 1))
+  fi
+done < <(cd "$stage" && find . ! -type d -print0)
+while IFS= read -r -d '' f; do
+  [ -e "$stage/$f" ] || [ -L "$stage/$f" ] || rm -f "$dest/$f"
+done < <(cd "$dest" && find . -path './build*' -prune -o ! -type d -print0)
+rm -rf "$stage"
+echo "$changed files changed"
 end "copy"
 
 in_chroot() {
