@@ -10,6 +10,9 @@
 # /proc, /sys, /dev, /dev/pts and /dev/shm are mounted in the chroot for the run and unmounted at the end,
 # whatever happens. Each phase's time is printed at the end.
 #
+# Exit code 77 when this machine cannot make the chroot at all (not root, debootstrap cannot reach a Debian
+# mirror, mounting is not allowed): .ci/run reports that as skipped. Anything else that fails is a failure.
+#
 # Settings (environment): COLORTRACK_DEBIAN13_CHROOT (default /var/tmp/colortrack-debian13),
 # DEBIAN_MIRROR (default http://deb.debian.org/debian), COLORTRACK_DEBIAN13_CLEAN=1 to remove the chroot's
 # build/ first (a build from nothing).
@@ -19,10 +22,12 @@ root=${COLORTRACK_DEBIAN13_CHROOT:-/var/tmp/colortrack-debian13}
 mirror=${DEBIAN_MIRROR:-http://deb.debian.org/debian}
 src=/src/colortrack
 
-if [ "$(id -u)" -ne 0 ]; then
-  echo "run-debian13.sh: needs root (debootstrap, mount, chroot)" >&2
-  exit 2
-fi
+# This machine cannot run the Debian 13 tests: say why and exit 77.
+cannot() {
+  echo "run-debian13.sh: cannot make a Debian 13 chroot here: $*" >&2
+  exit 77
+}
+[ "$(id -u)" -eq 0 ] || cannot "needs root (debootstrap, mount, chroot)"
 
 phases=()
 phase_start=0
@@ -54,12 +59,13 @@ if [ ! -f "$root/etc/debian_version" ] || ! grep -q '^13' "$root/etc/debian_vers
   begin "debootstrap trixie into $root"
   command -v debootstrap >/dev/null || {
     apt-get update -q
-    DEBIAN_FRONTEND=noninteractive apt-get install -y -q debootstrap
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -q debootstrap || cannot "debootstrap cannot be installed"
   }
   # Into a temporary directory first: a debootstrap cut short leaves no half chroot under $root.
   rm -rf "$root.partial"
   mkdir -p "$(dirname "$root")"
-  debootstrap --variant=minbase trixie "$root.partial" "$mirror"
+  debootstrap --variant=minbase trixie "$root.partial" "$mirror" ||
+    cannot "debootstrap trixie from $mirror failed (no access to a Debian mirror? DEBIAN_MIRROR names another)"
   rm -rf "$root"
   mv "$root.partial" "$root"
   end "debootstrap"
@@ -82,7 +88,7 @@ mount_in() {  # mount_in TARGET MOUNT-ARGS...
   local target=$root$1
   shift
   mkdir -p "$target"
-  mount "$@" "$target"
+  mount "$@" "$target" || cannot "mounting $1 in the chroot is not allowed"
   mounted+=("$target")
 }
 mount_in /proc -t proc proc
