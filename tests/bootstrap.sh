@@ -30,7 +30,7 @@ demo_packages=(
 # broker the trackpublish tests start on loopback, paho-mqtt for the Python MQTT consumer example.
 test_packages=(
   gstreamer1.0-tools gstreamer1.0-plugins-bad gstreamer1.0-opencv libgtest-dev libgstrtspserver-1.0-dev
-  python3-gi gir1.2-gstreamer-1.0 gir1.2-gst-plugins-base-1.0 mosquitto python3-paho-mqtt
+  python3-gi gir1.2-gstreamer-1.0 gir1.2-gst-plugins-base-1.0 mosquitto openssl python3-paho-mqtt
 )
 packages=("${demo_packages[@]}")
 [ "$mode" = demo ] || packages+=("${test_packages[@]}")

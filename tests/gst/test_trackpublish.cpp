@@ -140,20 +140,29 @@ int freePort() {
 }
 
 // Debian's mosquitto on 127.0.0.1:`port`, persistent (a restart keeps the subscriber's session and the
-// messages queued for it), in a directory of its own.
+// messages queued for it), in a directory of its own. With `tlsPort`, also a TLS listener there, with a
+// certificate for 127.0.0.1 signed by a certificate authority of the test's own (ca.pem in dir()).
 class Broker {
  public:
-  explicit Broker(int port) : port_(port) {
+  explicit Broker(int port, int tlsPort = 0) : port_(port) {
     gchar *dir = g_dir_make_tmp("trackpublish-broker-XXXXXX", nullptr);
     dir_ = dir;
     g_free(dir);
     const std::string config = dir_ + "/mosquitto.conf";
+    std::ofstream out(config);
     // `user`: started by root, mosquitto would switch to its own user, which cannot write our directory.
-    std::ofstream(config) << "user " << g_get_user_name() << "\nlistener " << port
-                          << " 127.0.0.1\nallow_anonymous true\npersistence true\n"
-                          << "persistence_location " << dir_ << "/\nmax_queued_messages 100000\n";
+    out << "user " << g_get_user_name() << "\nlistener " << port
+        << " 127.0.0.1\nallow_anonymous true\npersistence true\n"
+        << "persistence_location " << dir_ << "/\nmax_queued_messages 100000\n";
+    if (tlsPort) {
+      makeCertificates();
+      out << "listener " << tlsPort << " 127.0.0.1\ncafile " << dir_ << "/ca.pem\ncertfile " << dir_
+          << "/server.pem\nkeyfile " << dir_ << "/server.key\n";
+    }
+    out.close();
     start();
   }
+  const std::string &dir() const { return dir_; }
   ~Broker() {
     stop();
     const std::string command = "rm -rf '" + dir_ + "'";
@@ -197,6 +206,20 @@ class Broker {
   std::string address() const { return "tcp://127.0.0.1:" + std::to_string(port_); }
 
  private:
+  // A CA and a server certificate for IP 127.0.0.1 signed by it (openssl's command line, as an administrator
+  // would make them).
+  void makeCertificates() {
+    const std::string d = "'" + dir_ + "'";
+    const std::string commands =
+        "openssl req -x509 -newkey rsa:2048 -nodes -days 2 -subj /CN=colortrack-test-ca -keyout " + d +
+        "/ca.key -out " + d + "/ca.pem && openssl req -newkey rsa:2048 -nodes -subj /CN=127.0.0.1 -keyout " +
+        d + "/server.key -out " + d + "/server.csr && printf 'subjectAltName=IP:127.0.0.1\\n' > " + d +
+        "/san.ext && openssl x509 -req -in " + d + "/server.csr -CA " + d + "/ca.pem -CAkey " + d +
+        "/ca.key -CAcreateserial -days 2 -extfile " + d + "/san.ext -out " + d + "/server.pem";
+    fail_unless(std::system((commands + " >/dev/null 2>&1").c_str()) == 0,
+                "openssl could not make the test's certificates (package openssl)");
+  }
+
   int port_;
   std::string dir_;
   GPid pid_ = 0;
@@ -497,6 +520,53 @@ GST_START_TEST(test_mqtt_survives_a_broker_restart) {
 }
 GST_END_TEST;
 
+// ssl://: documents arrive through a TLS listener whose certificate the CA file vouches for; without that
+// CA the broker is not trusted (a warning, nothing delivered), unless tls-verify=false.
+GST_START_TEST(test_mqtt_over_tls) {
+  const int port = freePort(), tlsPort = freePort();
+  Broker broker(port, tlsPort);
+  Subscriber subscriber(broker.address(), "colortrack/#");
+  const std::string address = "ssl://127.0.0.1:" + std::to_string(tlsPort);
+  constexpr int kFrames = 30;
+  {
+    Publisher p("address=" + address + " source=tls tls-ca-file=" + broker.dir() + "/ca.pem");
+    fail_unless(p.play() != GST_STATE_CHANGE_FAILURE);
+    for (int i = 0; i < kFrames; ++i) p.push(i);
+    p.endAndWait();
+    const std::vector<std::string> warnings = p.messages(GST_MESSAGE_WARNING);
+    fail_unless(warnings.empty(), "warning: %s", warnings.empty() ? "" : warnings.front().c_str());
+  }
+  {
+    // The system's CAs do not know the test's CA.
+    Publisher p("address=" + address + " source=untrusted drain-timeout=0");
+    fail_unless(p.play() != GST_STATE_CHANGE_FAILURE);
+    for (int i = 0; i < kFrames; ++i) p.push(i);
+    fail_unless(Subscriber::waitFor(
+                    [&] {
+                      return anyContains(p.messages(GST_MESSAGE_WARNING),
+                                         "Cannot reach MQTT broker " + address);
+                    },
+                    7),
+                "an untrusted broker was not reported");
+    p.endAndWait();
+  }
+  {
+    Publisher p("address=" + address + " source=unverified tls-verify=false");
+    fail_unless(p.play() != GST_STATE_CHANGE_FAILURE);
+    for (int i = 0; i < kFrames; ++i) p.push(i);
+    p.endAndWait();
+  }
+  fail_unless(Subscriber::waitFor([&] { return subscriber.count() >= 2 * kFrames; }, 10), "received %zu",
+              subscriber.count());
+  const auto received = subscriber.received();
+  fail_unless_equals_int(received.at("colortrack/tls").size(), kFrames);
+  fail_unless_equals_int(received.at("colortrack/unverified").size(), kFrames);
+  fail_unless(received.find("colortrack/untrusted") == received.end(),
+              "documents went to an untrusted broker");
+  for (int i = 0; i < kFrames; ++i) checkDocument(received.at("colortrack/tls")[i], "tls", i);
+}
+GST_END_TEST;
+
 GST_START_TEST(test_bad_addresses_and_topics) {
   // Set before start: an error at start naming the property.
   for (const auto &[properties, part] : std::vector<std::pair<std::string, std::string>>{
@@ -557,6 +627,7 @@ static Suite *trackpublish_suite(void) {
   tcase_add_test(tc, test_mqtt_delivers_every_frame_in_order);
   tcase_add_test(tc, test_mqtt_eight_sources_at_once);
   tcase_add_test(tc, test_mqtt_survives_a_broker_restart);
+  tcase_add_test(tc, test_mqtt_over_tls);
   tcase_add_test(tc, test_bad_addresses_and_topics);
   tcase_add_test(tc, test_full_queue_drops_the_oldest_and_says_how_many);
   return s;
