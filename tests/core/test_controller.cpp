@@ -194,14 +194,19 @@ TEST(ProportionalController, SlewLimit) {
   EXPECT_NEAR(p.update({0, 1.0}, 0.1).linear, 0.2, 1e-12);
 }
 
-TEST(ProportionalController, IntegralRemovesTheSteadyError) {
+// Proportional, distance axis only in play: P gain 1, integral gain 2, no rate term, no slew limit.
+ControllerSettings piOnDistance() {
   ControllerSettings s;
   s.kind = ControllerKind::Proportional;
   s.driveGain = 1.0;
   s.driveIntegralGain = 2.0;
   s.driveRateGain = 0;
   s.maxLinearAccel = 0;
-  ProportionalController p(s);
+  return s;
+}
+
+TEST(ProportionalController, IntegralRemovesTheSteadyError) {
+  ProportionalController p(piOnDistance());
   // A steady error of 0.1 (a target receding as fast as the robot drives): the output grows past P's.
   double linear = 0;
   for (int i = 0; i < 10; ++i) linear = p.update({0, 0.1}, 0.1).linear;
@@ -216,12 +221,7 @@ TEST(ProportionalController, IntegralRemovesTheSteadyError) {
 }
 
 TEST(ProportionalController, AntiWindupWhileSaturated) {
-  ControllerSettings s;
-  s.kind = ControllerKind::Proportional;
-  s.driveGain = 1.0;
-  s.driveIntegralGain = 2.0;
-  s.driveRateGain = 0;
-  s.maxLinearAccel = 0;
+  ControllerSettings s = piOnDistance();
   ProportionalController p(s);
   // Far away (error 0.8 > the 0.5 limit on its own) for 3 s: the integrator must not grow.
   for (int i = 0; i < 30; ++i) EXPECT_DOUBLE_EQ(p.update({0, 0.8}, 0.1).linear, 0.5);
