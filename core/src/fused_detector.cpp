@@ -67,6 +67,11 @@ void FusedDetector::start(const ImageSource &frame, const cv::Rect2d &box) {
 }
 
 void FusedDetector::windowFeatures(const ImageSource &frame, cv::Point2d centre, cv::Size2d size) {
+  readWindow(frame, centre, size);
+  cellFeatures(gray_, kCell, channels_);
+}
+
+void FusedDetector::readWindow(const ImageSource &frame, cv::Point2d centre, cv::Size2d size) {
   const cv::Size2d window = windowFor(size);
   const cv::Rect2d rect(centre.x - window.width / 2, centre.y - window.height / 2, window.width,
                         window.height);
@@ -74,7 +79,6 @@ void FusedDetector::windowFeatures(const ImageSource &frame, cv::Point2d centre,
   windowRect_ = sampler_.extract(rect, window_, patch_);
   cv::cvtColor(patch_, gray_, cv::COLOR_BGR2GRAY);
   gray_.convertTo(gray_, CV_32F, 1.0 / 255);
-  cellFeatures(gray_, kCell, channels_);
 }
 
 void FusedDetector::scaleSamples(const ImageSource &frame, cv::Point2d centre, cv::Size2d size) {
@@ -88,19 +92,23 @@ void FusedDetector::scaleSamples(const ImageSource &frame, cv::Point2d centre, c
   // One gradient pass over the region, then each candidate's cells from integral images.
   scaleIntegral_.build(sampler_.pixels());
   const cv::Size cells(scaleModel_.width / kCell, scaleModel_.height / kCell);
-  for (size_t i = 0; i < factors.size(); ++i) {
-    const cv::Size2d s = size * factors[i];
-    scaleIntegral_.features(
-        sampler_.toSampled(cv::Rect2d(centre.x - s.width / 2, centre.y - s.height / 2, s.width, s.height)),
-        cells, scaleChannels_);
-    const int perChannel = cells.area();
-    if (i == 0) scaleSamples_.create(static_cast<int>(factors.size()), perChannel * kCellChannels, CV_32F);
-    float *row = scaleSamples_.ptr<float>(static_cast<int>(i));
-    for (int c = 0; c < kCellChannels; ++c) {
-      const cv::Mat flat = scaleChannels_[c].reshape(1, 1);
-      std::copy(flat.ptr<float>(), flat.ptr<float>() + perChannel, row + c * perChannel);
+  const int perChannel = cells.area();
+  scaleSamples_.create(static_cast<int>(factors.size()), perChannel * kCellChannels, CV_32F);
+  // Each candidate reads the integral and writes its own row, so OpenCV's thread pool takes them in turn.
+  cv::parallel_for_(cv::Range(0, static_cast<int>(factors.size())), [&](const cv::Range &candidates) {
+    thread_local std::vector<cv::Mat> channels;
+    for (int i = candidates.start; i < candidates.end; ++i) {
+      const cv::Size2d s = size * factors[i];
+      scaleIntegral_.features(
+          sampler_.toSampled(cv::Rect2d(centre.x - s.width / 2, centre.y - s.height / 2, s.width, s.height)),
+          cells, channels);
+      float *row = scaleSamples_.ptr<float>(i);
+      for (int c = 0; c < kCellChannels; ++c) {
+        const cv::Mat flat = channels[c].reshape(1, 1);
+        std::copy(flat.ptr<float>(), flat.ptr<float>() + perChannel, row + c * perChannel);
+      }
     }
-  }
+  });
 }
 
 void FusedDetector::colourResponse(const BinMapper &colors, const ColorLikelihood &likelihood,
@@ -127,22 +135,24 @@ void FusedDetector::colourResponse(const BinMapper &colors, const ColorLikelihoo
 FusedDetector::Estimate FusedDetector::locate(const ImageSource &frame, cv::Point2d centre, cv::Size2d size,
                                               const BinMapper &colors, const ColorLikelihood &likelihood,
                                               bool withScale) {
-  windowFeatures(frame, centre, size);
+  readWindow(frame, centre, size);
   // Normalised px per frame px, and where the window actually lies (its position snapped to whole pixels).
   const double zx = window_.width / windowRect_.width, zy = window_.height / windowRect_.height;
   const cv::Point2d windowCentre(windowRect_.x + windowRect_.width / 2,
                                  windowRect_.y + windowRect_.height / 2);
-  // The two cues read the same window and write nothing the other reads, so with a second core (OpenCV's
-  // thread pool) they run side by side; with one thread, one after the other. The result is the same.
+  // The shape cue's features and the colour cue read the same window and write nothing the other reads, so
+  // with a second core (OpenCV's thread pool) they run side by side; with one thread, one after the other.
+  // The result is the same.
   cv::Mat response, colour;
   cv::parallel_for_(cv::Range(0, 2), [&](const cv::Range &cues) {
     for (int cue = cues.start; cue < cues.end; ++cue) {
       if (cue == 0)
-        translation_.respond(channels_, response);
+        cellFeatures(gray_, kCell, channels_);
       else if (!likelihood.empty())
         colourResponse(colors, likelihood, cv::Size2d(size.width * zx, size.height * zy), colour);
     }
   });
+  translation_.respond(channels_, response);
   if (!colour.empty()) cv::addWeighted(response, 1 - kColourWeight, colour, kColourWeight, 0, response);
   cv::Point peak;
   cv::minMaxLoc(response, nullptr, nullptr, nullptr, &peak);

@@ -50,7 +50,10 @@ class FusedDetector {
                                             int count);
 
  private:
+  // The search window around `centre` for a target of `size`: readWindow() resamples it into patch_ (colour)
+  // and gray_, windowFeatures() also computes its feature channels.
   void windowFeatures(const ImageSource &frame, cv::Point2d centre, cv::Size2d size);
+  void readWindow(const ImageSource &frame, cv::Point2d centre, cv::Size2d size);
   void scaleSamples(const ImageSource &frame, cv::Point2d centre, cv::Size2d size);
   void colourResponse(const BinMapper &colors, const ColorLikelihood &likelihood, cv::Size2d targetNormalised,
                       cv::Mat &response);
@@ -67,7 +70,7 @@ class FusedDetector {
   // Scratch reused across frames.
   PatchSampler sampler_;
   cv::Mat patch_, gray_, scaleSamples_, bins_, probability_, integral_, reduced_;
-  std::vector<cv::Mat> channels_, scaleChannels_;
+  std::vector<cv::Mat> channels_;
   CellFeatureIntegral scaleIntegral_;
 };
 
