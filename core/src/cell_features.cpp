@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <opencv2/core/hal/intrin.hpp>
+#include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 
 namespace colortrack {
@@ -164,24 +165,37 @@ void cellFeatures(const cv::Mat &gray, int cell, std::vector<cv::Mat> &channels)
 void CellFeatureIntegral::build(const cv::Mat &gray) {
   CV_Assert(gray.type() == CV_32FC1 && !gray.empty());
   const int stride = kPlanes;
-  sums_.assign(static_cast<size_t>(gray.rows + 1) * (gray.cols + 1) * stride, 0.0);
+  const size_t rowLength = static_cast<size_t>(gray.cols + 1) * stride;
+  sums_.resize((gray.rows + 1) * rowLength);
+  std::fill(sums_.begin(), sums_.begin() + rowLength, 0.0);
   size_ = gray.size();
-  thread_local cv::Mat magnitude, angle;
-  orientedGradients(gray, magnitude, angle);
-  for (int y = 0; y < gray.rows; ++y) {
-    const double *above = &sums_[static_cast<size_t>(y) * (gray.cols + 1) * stride];
-    double *here = &sums_[static_cast<size_t>(y + 1) * (gray.cols + 1) * stride];
-    const float *m = magnitude.ptr<float>(y), *a = angle.ptr<float>(y), *g = gray.ptr<float>(y);
-    double rowSum[kPlanes] = {};
-    for (int x = 0; x < gray.cols; ++x) {
-      // The pixel's two orientation votes go straight into the row's running sums (a vote of zero would not
-      // change them), then each plane's integral is the row above plus the running sum.
-      vote(m[x], a[x], rowSum);
-      rowSum[kOrientations] += g[x];
-      const double *up = above + (x + 1) * stride;
-      double *out = here + (x + 1) * stride;
-      for (int c = 0; c < kPlanes; ++c) out[c] = up[c] + rowSum[c];
-    }
+  // Each row's running sums first, two halves of the rows on OpenCV's thread pool (the gradients of a half
+  // read the neighbouring rows of the whole image, as one pass would): the pixel's two orientation votes go
+  // straight into the row's running sums (a vote of zero would not change them).
+  cv::parallel_for_(
+      cv::Range(0, gray.rows),
+      [&](const cv::Range &rows) {
+        thread_local cv::Mat magnitude, angle;
+        orientedGradients(gray.rowRange(rows.start, rows.end), magnitude, angle);
+        for (int y = rows.start; y < rows.end; ++y) {
+          double *here = &sums_[(y + 1) * rowLength];
+          std::fill(here, here + stride, 0.0);
+          const float *m = magnitude.ptr<float>(y - rows.start), *a = angle.ptr<float>(y - rows.start),
+                      *g = gray.ptr<float>(y);
+          double rowSum[kPlanes] = {};
+          for (int x = 0; x < gray.cols; ++x) {
+            vote(m[x], a[x], rowSum);
+            rowSum[kOrientations] += g[x];
+            std::copy(rowSum, rowSum + kPlanes, here + (x + 1) * stride);
+          }
+        }
+      },
+      2);
+  // Then each plane's integral is the row above plus the running sum.
+  for (int y = 1; y < gray.rows; ++y) {
+    const double *__restrict above = &sums_[y * rowLength];
+    double *__restrict here = &sums_[(y + 1) * rowLength];
+    for (size_t i = stride; i < rowLength; ++i) here[i] += above[i];
   }
 }
 

@@ -125,15 +125,16 @@ void FusedMethod::follow(const ImageSource &frame, double dt, TrackOutput &out) 
   d.box = centredBox(e.centre.x, e.centre.y, e.size);
   d.score = e.confidence;
   // The edge check and the two learners read the frame and write nothing the others read, so with a second
-  // core (OpenCV's thread pool) they run side by side; with one thread, in turn. The result is the same.
-  cv::parallel_for_(cv::Range(0, 2), [&](const cv::Range &tasks) {
+  // core (OpenCV's thread pool) they run side by side; with one thread, in turn. The result is the same. The
+  // longest (the colour learner) goes first, so the other two share the second thread.
+  cv::parallel_for_(cv::Range(0, 3), [&](const cv::Range &tasks) {
     for (int task = tasks.start; task < tasks.end; ++task) {
-      if (task == 0) {
-        d.verified = verified(frame, d.box);
-      } else {
-        fused_.learn(frame, e);
+      if (task == 0)
         colourCue_.learn(frame, d.box);
-      }
+      else if (task == 1)
+        d.verified = verified(frame, d.box);
+      else
+        fused_.learn(frame, e);
     }
   });
   track.update(d.box);
