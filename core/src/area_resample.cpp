@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <vector>
 
+#include <opencv2/core/utility.hpp>
+
 namespace colortrack {
 
 namespace {
@@ -33,12 +35,13 @@ void areaTaps(int inputs, int outputs, std::vector<Tap> &taps, std::vector<int> 
 
 // Output row (or, on a transposed image, column) i as the weighted sum of the input rows its interval covers,
 // a whole row at a time so the compiler vectorises it. `In` is uchar for the source, float for row sums.
+// Only outputs `outputs.start` .. `outputs.end` - 1, into rows 0 .. of `output`.
 template <typename In>
 void combineRows(const cv::Mat &input, const std::vector<Tap> &taps, const std::vector<int> &first,
-                 cv::Mat &output) {
+                 cv::Range outputs, cv::Mat &output) {
   const int values = input.cols * input.channels();
-  for (int i = 0; i + 1 < static_cast<int>(first.size()); ++i) {
-    float *__restrict sum = output.ptr<float>(i);
+  for (int i = outputs.start; i < outputs.end; ++i) {
+    float *__restrict sum = output.ptr<float>(i - outputs.start);
     // The first tap is stored rather than added to zero: the same value, as w * in is never -0 (weights are
     // positive, inputs non-negative).
     const int begin = first[i], end = first[i + 1];
@@ -69,21 +72,32 @@ void shrinkByArea(const cv::Mat &source, cv::Size size, cv::Mat &out) {
   CV_Assert(source.depth() == CV_8U && source.channels() <= 4 && size.width >= 1 && size.height >= 1 &&
             size.width <= source.cols && size.height <= source.rows);
   const int channels = source.channels();
-  thread_local std::vector<Tap> rowTaps, columnTaps;
-  thread_local std::vector<int> rowFirst, columnFirst;
+  // (References, so that the pool's threads read this thread's taps, not their own.)
+  thread_local std::vector<Tap> rowTapsStore, columnTapsStore;
+  thread_local std::vector<int> rowFirstStore, columnFirstStore;
+  std::vector<Tap> &rowTaps = rowTapsStore, &columnTaps = columnTapsStore;
+  std::vector<int> &rowFirst = rowFirstStore, &columnFirst = columnFirstStore;
   areaTaps(source.rows, size.height, rowTaps, rowFirst);
   areaTaps(source.cols, size.width, columnTaps, columnFirst);
 
   // Rows, then columns as rows of the transposed row sums (pixels stay whole: CV_32FC(n) transposes by
-  // pixel). Each output value is sum_t weight_t * input_t in tap order, as OpenCV sums them.
-  thread_local cv::Mat rows, transposed, columns, result;
-  rows.create(size.height, source.cols, CV_32FC(channels));
-  combineRows<uchar>(source, rowTaps, rowFirst, rows);
-  cv::transpose(rows, transposed);
-  columns.create(size.width, size.height, CV_32FC(channels));
-  combineRows<float>(transposed, columnTaps, columnFirst, columns);
-  cv::transpose(columns, result);
-  result.convertTo(out, source.type());
+  // pixel). Each output value is sum_t weight_t * input_t in tap order, as OpenCV sums them. Two halves of the
+  // output rows on OpenCV's thread pool: each value is computed the same way in either half.
+  out.create(size, source.type());
+  cv::parallel_for_(
+      cv::Range(0, size.height),
+      [&](const cv::Range &outputRows) {
+        thread_local cv::Mat rows, transposed, columns, result;
+        rows.create(outputRows.size(), source.cols, CV_32FC(channels));
+        combineRows<uchar>(source, rowTaps, rowFirst, outputRows, rows);
+        cv::transpose(rows, transposed);
+        columns.create(size.width, outputRows.size(), CV_32FC(channels));
+        combineRows<float>(transposed, columnTaps, columnFirst, cv::Range(0, size.width), columns);
+        cv::transpose(columns, result);
+        cv::Mat part = out.rowRange(outputRows.start, outputRows.end);
+        result.convertTo(part, source.type());
+      },
+      2);
 }
 
 }  // namespace colortrack
