@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <string>
+#include <vector>
 
+#include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "colortrack/tracker.hpp"
@@ -284,4 +287,31 @@ TEST(FusedTracker, KeepsTrackingThroughSettingChanges) {
   s.method = Method::Fused;
   tracker.setSettings(s);
   EXPECT_GE(follow(80, 110), 27) << "after switching back to fused";
+}
+
+// The fused method spreads a frame's independent pieces over OpenCV's thread pool. Each piece computes every
+// value as one thread would, so the boxes and scores are the same to the bit with one thread and with two.
+TEST(FusedTracker, SameResultOnOneThreadAsOnSeveral) {
+  const Scene scene(hardConfig());
+  const int threadsBefore = cv::getNumThreads();
+  auto run = [&](int threads) {
+    cv::setNumThreads(threads);
+    Tracker tracker;
+    tracker.setTemplateFromBox(MatImageSource(scene.render(0).bgr), scene.initBox());
+    std::vector<TrackOutput> outputs;
+    for (int i = 1; i < 60; ++i) outputs.push_back(tracker.process(MatImageSource(scene.render(i).bgr)));
+    return outputs;
+  };
+  const std::vector<TrackOutput> one = run(1), several = run(2);
+  cv::setNumThreads(threadsBefore);
+  ASSERT_EQ(one.size(), several.size());
+  int tracking = 0;
+  for (size_t i = 0; i < one.size(); ++i) {
+    SCOPED_TRACE("frame " + std::to_string(i + 1));
+    EXPECT_EQ(one[i].state, several[i].state);
+    EXPECT_EQ(one[i].box, several[i].box);
+    EXPECT_EQ(one[i].score, several[i].score);
+    tracking += one[i].state == TrackState::Tracking;
+  }
+  EXPECT_GE(tracking, 50);  // the comparison is over a track, not over empty outputs
 }
