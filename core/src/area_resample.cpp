@@ -81,8 +81,8 @@ void shrinkByArea(const cv::Mat &source, cv::Size size, cv::Mat &out) {
   areaTaps(source.cols, size.width, columnTaps, columnFirst);
 
   // Rows, then columns as rows of the transposed row sums (pixels stay whole: CV_32FC(n) transposes by
-  // pixel). Each output value is sum_t weight_t * input_t in tap order, as OpenCV sums them. Two halves of the
-  // output rows on OpenCV's thread pool: each value is computed the same way in either half.
+  // pixel). Each output value is sum_t weight_t * input_t in tap order, as OpenCV sums them. Two halves of
+  // the output rows on OpenCV's thread pool: each value is computed the same way in either half.
   out.create(size, source.type());
   cv::parallel_for_(
       cv::Range(0, size.height),
