@@ -39,9 +39,9 @@ GstBuffer *frameWithTracks(int frame) {
 
 // Milliseconds per frame through `element`.
 double run(const std::string &element, int frames) {
-  const std::string launch = "appsrc name=src format=time caps=video/x-raw,format=GRAY8,width=" +
-                             std::to_string(kWidth) + ",height=" + std::to_string(kHeight) +
-                             ",framerate=30/1 ! " + element + " ! fakesink sync=false";
+  const std::string launch =
+      "appsrc name=src format=time caps=video/x-raw,format=GRAY8,width=" + std::to_string(kWidth) +
+      ",height=" + std::to_string(kHeight) + ",framerate=30/1 ! " + element + " ! fakesink sync=false";
   GError *error = nullptr;
   GstElement *pipeline = gst_parse_launch(launch.c_str(), &error);
   if (!pipeline) {
@@ -56,9 +56,10 @@ double run(const std::string &element, int frames) {
   for (GstBuffer *b : buffers) gst_app_src_push_buffer(GST_APP_SRC(src), b);
   gst_app_src_end_of_stream(GST_APP_SRC(src));
   GstBus *bus = gst_element_get_bus(pipeline);
-  GstMessage *msg = gst_bus_timed_pop_filtered(bus, GST_CLOCK_TIME_NONE,
-                                               static_cast<GstMessageType>(GST_MESSAGE_EOS | GST_MESSAGE_ERROR));
-  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  GstMessage *msg = gst_bus_timed_pop_filtered(
+      bus, GST_CLOCK_TIME_NONE, static_cast<GstMessageType>(GST_MESSAGE_EOS | GST_MESSAGE_ERROR));
+  const double ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (GST_MESSAGE_TYPE(msg) == GST_MESSAGE_ERROR) {
     std::fprintf(stderr, "error in %s\n", element.c_str());
     std::exit(1);
