@@ -87,6 +87,10 @@ void KalmanFilter9::holdForCoasting() {
   for (int index : {2, 5, 7, 8}) state_(index) = 0;  // ax, ay, vs, as
 }
 
+void KalmanFilter9::dropAcceleration() {
+  for (int index : {2, 5}) state_(index) = 0;  // ax, ay
+}
+
 void KalmanFilter9::correct(double x, double y, double scale) {
   if (!initialised_) {
     init(x, y, scale);

@@ -45,6 +45,8 @@ struct MultiTracker::Track {
   int mergedFrames = 0;            // frames coasted inside a merged blob since last measured
   bool left = false;               // coasting, and its prediction has left the frame
   std::optional<int> returningId;  // the id of the track whose object this one seems to be, back in the frame
+  KalmanFilter9 beforePrediction;  // the filter before this frame's prediction
+  bool measuredBefore = false;     // measured in the previous frame
 
   double side() const { return filter.scale() * referenceSide; }
   cv::Size2d size() const {
@@ -141,6 +143,8 @@ void MultiTracker::reset() {
 }
 
 void MultiTracker::predict(Track &track, cv::Size frame, double dt) const {
+  track.beforePrediction = track.filter;
+  track.measuredBefore = track.measured;
   // A track not measured last frame (coasting or merged) keeps velocity and size but no acceleration.
   if (!track.measured) {
     track.filter.holdForCoasting();
@@ -384,6 +388,14 @@ std::vector<TrackedObject> MultiTracker::update(const std::vector<Blob> &blobs, 
     if (merged[j] && correctShared(j, blobs, labels, owner, occludedIn)) continue;
     if (!merged[j]) correct(tracks_[owner], blobs[j]);  // a merged blob's owner coasts, see findMerges
   }
+  // A track that has just lost its object coasts from where it was seen without the acceleration the filter
+  // had then: right after a turn that estimate overshoots, and coasting would carry the error on.
+  for (Track &t : tracks_)
+    if (!t.measured && t.measuredBefore) {
+      t.filter = t.beforePrediction;
+      t.filter.dropAcceleration();
+      t.filter.predict(dt);
+    }
   for (int i = 0; i < static_cast<int>(tracks_.size()); ++i)
     if (!tracks_[i].measured && !(occludedIn[i] >= 0 && ++tracks_[i].mergedFrames <= kMaxMergedFrames))
       ++tracks_[i].misses;

@@ -32,6 +32,8 @@ class KalmanFilter9 {
   // Without measurements, extrapolating accelerations (and a changing size) runs away within a few frames:
   // while coasting, keep moving at constant velocity and constant size.
   void holdForCoasting();
+  // Only the position's acceleration (ax, ay) set to zero: a prediction at constant velocity, size as before.
+  void dropAcceleration();
 
   double x() const { return state_(0); }
   double y() const { return state_(3); }
