@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -782,6 +783,46 @@ GST_START_TEST(test_bad_settings_give_clear_errors) {
               std::string::npos);
   fail_unless(startError(src + "robotctl location=/nonexistent-dir/x").find("/nonexistent-dir/x") !=
               std::string::npos);
+  // MAVLink and UDP: each error names the property (and says what is wrong); none waits.
+  const std::string mavlink = src + "robotctl protocol=mavlink ";
+  for (const char *bad : {"udp://127.0.0.1", "udp://127.0.0.1:70000", "udp://127.0.0.1:0", "udp://:14550",
+                          "udp://::1:14550", "udp://nonexistent.invalid:14550"}) {
+    const std::string text = startError(mavlink + "location=" + bad);
+    fail_unless(text.find("'location'") != std::string::npos && text.find(bad) != std::string::npos, "%s",
+                text.c_str());
+  }
+  fail_unless(startError(mavlink + "location=udp://127.0.0.1:14550 system-id=0").find("'system-id'") !=
+              std::string::npos);
+  fail_unless(
+      startError(mavlink + "location=udp://127.0.0.1:14550 component-id=256").find("'component-id'") !=
+      std::string::npos);
+  fail_unless(startError(mavlink + "location=/dev/null target-system=300").find("'target-system'") !=
+              std::string::npos);
+  fail_unless(startError(mavlink + "location=/dev/null hfov=0").find("'hfov'") != std::string::npos);
+  fail_unless(startError(mavlink + "location=/dev/null hfov=180").find("'hfov'") != std::string::npos);
+}
+GST_END_TEST;
+
+// hfov NaN is refused by GLib's range check (a warning naming the property); 0 while running is refused by
+// robotctl with a warning naming it, keeping the old value.
+GST_START_TEST(test_bad_field_of_view_while_running) {
+  Ctl ctl("protocol=mavlink rate=100 hfov=70");
+  ctl.decide({roi(kRight)});
+  GstElement *element = gst_harness_find_element(ctl.h, "robotctl");
+  ASSERT_WARNING(g_object_set(element, "hfov", std::nan(""), nullptr));
+  g_object_set(element, "hfov", 0.0, nullptr);
+  gdouble hfov = 0;
+  g_object_get(element, "hfov", &hfov, nullptr);
+  fail_unless_equals_float(hfov, 70.0);
+  GstMessage *m = gst_bus_pop_filtered(ctl.bus, GST_MESSAGE_WARNING);
+  fail_unless(m != nullptr, "no warning for hfov=0");
+  GError *error = nullptr;
+  gst_message_parse_warning(m, &error, nullptr);
+  std::printf("hfov=0 while playing: warning \"%s\"\n", error->message);
+  fail_unless(std::string(error->message).find("'hfov'") != std::string::npos);
+  g_error_free(error);
+  gst_message_unref(m);
+  gst_object_unref(element);
 }
 GST_END_TEST;
 
@@ -808,6 +849,7 @@ Suite *robotctl_suite(void) {
   tcase_add_test(tc, test_follows_cvtracker);
   tcase_add_test(tc, test_message_fields);
   tcase_add_test(tc, test_bad_settings_give_clear_errors);
+  tcase_add_test(tc, test_bad_field_of_view_while_running);
   return s;
 }
 
