@@ -14,11 +14,13 @@
 #include <cstdlib>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "colortrack/mavlink.hpp"
 #include "gst_test_util.hpp"
 
 #include <glib/gstdio.h>
@@ -803,6 +805,56 @@ GST_START_TEST(test_bad_settings_give_clear_errors) {
 }
 GST_END_TEST;
 
+// The MAVLink commands in `bytes` (a pty carries them like a serial link), heartbeats left out.
+std::vector<colortrack::mavlink::Frame> mavlinkCommands(const Bytes &bytes) {
+  std::vector<colortrack::mavlink::Frame> frames;
+  std::size_t at = 0, used = 0;
+  while (at < bytes.size()) {
+    const auto frame = colortrack::mavlink::parseFrame(bytes.data() + at, bytes.size() - at, &used);
+    fail_unless(frame.has_value(), "not a MAVLink frame at byte %zu", at);
+    if (frame->messageId != colortrack::mavlink::kHeartbeat.id) frames.push_back(*frame);
+    at += used;
+  }
+  return frames;
+}
+
+// Yaw rate and forward velocity (follow) or pitch rate (gimbal) of the last command in `bytes`.
+std::pair<float, float> lastRates(const Bytes &bytes) {
+  const std::vector<colortrack::mavlink::Frame> frames = mavlinkCommands(bytes);
+  fail_if(frames.empty(), "no MAVLink command");
+  const colortrack::mavlink::Frame &f = frames.back();
+  if (f.messageId == colortrack::mavlink::kGimbalManagerSetPitchyaw.id)
+    return {colortrack::mavlink::payloadFloat(f.payload, 16),
+            colortrack::mavlink::payloadFloat(f.payload, 12)};
+  return {colortrack::mavlink::payloadFloat(f.payload, 44), colortrack::mavlink::payloadFloat(f.payload, 16)};
+}
+
+// Every failsafe sends MAVLink's stop form (zero rates, zero velocity), over a serial-like link (a pty).
+GST_START_TEST(test_mavlink_stop_form_on_every_failsafe) {
+  for (const char *mode : {"gimbal", "follow"}) {
+    for (const char *failsafe : {"eos", "pause", "stalled", "lost"}) {
+      Ctl ctl(std::string("protocol=mavlink controller=proportional rate=50 lost-timeout=300 mavlink-mode=") +
+              mode);
+      Bytes bytes;
+      for (int i = 0; i < 4; ++i) bytes = ctl.decide({roi(kRight)});  // the slew limit ramps up
+      const auto moving = lastRates(bytes);
+      fail_unless(moving.first > 0, "%s: target right, yaw rate %g", mode, moving.first);
+      if (std::string(failsafe) == "eos")
+        fail_unless(gst_harness_push_event(ctl.h, gst_event_new_eos()));
+      else if (std::string(failsafe) == "pause")
+        gst_element_set_state(ctl.h->element, GST_STATE_PAUSED);
+      else if (std::string(failsafe) == "lost")
+        for (int i = 0; i < 12; ++i) ctl.decide({});  // 400 ms of stream time without a target
+      const auto stopped = lastRates(ctl.pty.readFor(std::string(failsafe) == "stalled" ? 500 : 100));
+      std::printf("mavlink %s, %s: yaw rate %g -> %g, %s %g -> %g\n", mode, failsafe, moving.first,
+                  stopped.first, std::string(mode) == "gimbal" ? "pitch rate" : "vx", moving.second,
+                  stopped.second);
+      fail_unless(stopped.first == 0 && stopped.second == 0, "%s, %s: not the stop form", mode, failsafe);
+    }
+  }
+}
+GST_END_TEST;
+
 // hfov NaN is refused by GLib's range check (a warning naming the property); 0 while running is refused by
 // robotctl with a warning naming it, keeping the old value.
 GST_START_TEST(test_bad_field_of_view_while_running) {
@@ -850,6 +902,7 @@ Suite *robotctl_suite(void) {
   tcase_add_test(tc, test_message_fields);
   tcase_add_test(tc, test_bad_settings_give_clear_errors);
   tcase_add_test(tc, test_bad_field_of_view_while_running);
+  tcase_add_test(tc, test_mavlink_stop_form_on_every_failsafe);
   return s;
 }
 
