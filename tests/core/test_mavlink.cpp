@@ -72,7 +72,7 @@ Case position(std::uint8_t seq, double vx, double yawRate, std::uint32_t timeBoo
   char json[512];
   std::snprintf(json, sizeof json,
                 R"({"message":"position","sysid":1,"compid":191,"seq":%d,"timeBootMs":%u,"targetSystem":1,)"
-                R"("targetComponent":1,"coordinateFrame":9,"typeMask":1527,"x":0,"y":0,"z":0,"vx":%.17g,)"
+                R"("targetComponent":1,"coordinateFrame":9,"typeMask":1479,"x":0,"y":0,"z":0,"vx":%.17g,)"
                 R"("vy":0,"vz":0,"afx":0,"afy":0,"afz":0,"yaw":0,"yawRate":%.17g})",
                 seq, timeBootMs, vx, yawRate);
   mavlink::SetPositionTargetLocalNed m;
@@ -89,8 +89,9 @@ TEST(Mavlink, EveryMessageMatchesNodeMavlink) {
     nodeMissing = true;
     GTEST_SKIP() << why;
   }
-  // 1527 = every ignore bit but vx's (8) and yaw_rate's (2048), FORCE_SET (512) clear.
-  ASSERT_EQ(mavlink::kVelocityAndYawRateOnly, 1527);
+  // 1479 = the ignore bits of x, y, z (1, 2, 4), afx, afy, afz (64, 128, 256) and yaw (1024); velocity and
+  // yaw rate used, FORCE_SET (512) clear.
+  ASSERT_EQ(mavlink::kVelocityAndYawRate, 1479);
   const std::vector<Case> cases = {
       heartbeat(1, 191, 0),
       heartbeat(42, 1, 255),
@@ -163,7 +164,7 @@ TEST(Mavlink, FollowVelocityYawRateAndStop) {
   EXPECT_EQ(go.messageId, 84u);
   EXPECT_FLOAT_EQ(mavlink::payloadFloat(go.payload, 16), 0.4f);                             // vx, m/s
   EXPECT_FLOAT_EQ(mavlink::payloadFloat(go.payload, 44), static_cast<float>(0.2 * scale));  // yaw rate
-  EXPECT_EQ(go.payload[48] | (go.payload[49] << 8), 1527);                                  // type_mask
+  EXPECT_EQ(go.payload[48] | (go.payload[49] << 8), 1479);                                  // type_mask
   EXPECT_EQ(go.payload[52], 9);  // MAV_FRAME_BODY_OFFSET_NED
   const mavlink::Frame stop = parsed(encoder.encode(DriveOutput()));
   EXPECT_EQ(mavlink::payloadFloat(stop.payload, 16), 0.0f);

@@ -60,11 +60,12 @@ struct GimbalManagerSetPitchyaw {
 };
 
 constexpr std::uint8_t kFrameBodyOffsetNed = 9;  // MAV_FRAME_BODY_OFFSET_NED
-// POSITION_TARGET_TYPEMASK: every ignore bit except vx's and yaw_rate's.
-constexpr std::uint16_t kVelocityAndYawRateOnly = 0x0001 | 0x0002 | 0x0004 |  // x, y, z
-                                                  0x0010 | 0x0020 |           // vy, vz
-                                                  0x0040 | 0x0080 | 0x0100 |  // afx, afy, afz
-                                                  0x0400;                     // yaw
+// POSITION_TARGET_TYPEMASK: position, acceleration and yaw ignored; the velocity (robotctl sends vy = vz =
+// 0: no sideways drift, altitude held) and the yaw rate used. Not vy and vz ignored too: ArduPilot reads
+// the velocity as ignored when any of its three bits is set, and with nothing left to follow it stops.
+constexpr std::uint16_t kVelocityAndYawRate = 0x0001 | 0x0002 | 0x0004 |  // x, y, z
+                                              0x0040 | 0x0080 | 0x0100 |  // afx, afy, afz
+                                              0x0400;                     // yaw
 
 // SET_POSITION_TARGET_LOCAL_NED (84). NED: x forward (in the body frames), z down; yaw rate > 0 clockwise
 // seen from above.
@@ -72,7 +73,7 @@ struct SetPositionTargetLocalNed {
   std::uint32_t timeBootMs = 0;
   std::uint8_t targetSystem = 1, targetComponent = 1;
   std::uint8_t coordinateFrame = kFrameBodyOffsetNed;
-  std::uint16_t typeMask = kVelocityAndYawRateOnly;
+  std::uint16_t typeMask = kVelocityAndYawRate;
   float x = 0, y = 0, z = 0, vx = 0, vy = 0, vz = 0, afx = 0, afy = 0, afz = 0, yaw = 0, yawRate = 0;
 };
 
