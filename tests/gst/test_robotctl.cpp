@@ -22,6 +22,7 @@
 
 #include "colortrack/mavlink.hpp"
 #include "gst_test_util.hpp"
+#include "udp_receiver.hpp"
 
 #include <glib/gstdio.h>
 #include <gst/app/gstappsrc.h>
@@ -855,6 +856,23 @@ GST_START_TEST(test_mavlink_stop_form_on_every_failsafe) {
 }
 GST_END_TEST;
 
+// location=udp://HOST:PORT carries any protocol: here the text protocol, one datagram per command.
+GST_START_TEST(test_text_protocol_over_udp) {
+  colortrack::gst_test_util::UdpReceiver receiver;
+  fail_unless(receiver.port() > 0);
+  Ctl ctl("protocol=text rate=100 lost-timeout=5000", receiver.location());
+  ctl.decide({roi(kRight)});
+  const auto datagrams = receiver.drain();
+  fail_if(datagrams.empty(), "nothing received on %s", receiver.location().c_str());
+  for (const auto &d : datagrams) {
+    const std::string line(d.bytes.begin(), d.bytes.end());
+    fail_unless(line == "L=0 R=0\n" || line == "L=77 R=-77\n", "datagram \"%s\"", line.c_str());
+  }
+  const std::string last(datagrams.back().bytes.begin(), datagrams.back().bytes.end());
+  fail_unless_equals_string(last.c_str(), "L=77 R=-77\n");  // zone controller: right at max-angular 0.3
+}
+GST_END_TEST;
+
 // hfov NaN is refused by GLib's range check (a warning naming the property); 0 while running is refused by
 // robotctl with a warning naming it, keeping the old value.
 GST_START_TEST(test_bad_field_of_view_while_running) {
@@ -903,6 +921,7 @@ Suite *robotctl_suite(void) {
   tcase_add_test(tc, test_bad_settings_give_clear_errors);
   tcase_add_test(tc, test_bad_field_of_view_while_running);
   tcase_add_test(tc, test_mavlink_stop_form_on_every_failsafe);
+  tcase_add_test(tc, test_text_protocol_over_udp);
   return s;
 }
 
