@@ -156,10 +156,19 @@ colortrack::Protocol toProtocol(GstRobotCtlProtocol protocol) {
   return colortrack::Protocol::ZoneChar;
 }
 
+colortrack::MavlinkMode toMavlinkMode(GstRobotCtlMavlinkMode mode) {
+  switch (mode) {
+    case GST_ROBOT_CTL_MAVLINK_MODE_FOLLOW:
+      return colortrack::MavlinkMode::Follow;
+    case GST_ROBOT_CTL_MAVLINK_MODE_GIMBAL:
+      break;
+  }
+  return colortrack::MavlinkMode::Gimbal;
+}
+
 colortrack::MavlinkSettings toMavlinkSettings(const robotctl::Settings &s) {
   colortrack::MavlinkSettings m;
-  m.mode = s.mavlinkMode == GST_ROBOT_CTL_MAVLINK_MODE_FOLLOW ? colortrack::MavlinkMode::Follow
-                                                              : colortrack::MavlinkMode::Gimbal;
+  m.mode = toMavlinkMode(s.mavlinkMode);
   // Each checked to be within a byte (robotctl-settings.cpp).
   m.systemId = static_cast<std::uint8_t>(s.systemId);
   m.componentId = static_cast<std::uint8_t>(s.componentId);
