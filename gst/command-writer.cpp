@@ -13,6 +13,8 @@ using Clock = std::chrono::steady_clock;
 // Reconnection back-off: from the first to the longest wait between attempts to reopen a lost port.
 constexpr auto kFirstRetry = std::chrono::milliseconds(100);
 constexpr auto kLongestRetry = std::chrono::milliseconds(2000);
+// MAVLink's heartbeat: once a second, whatever the command rate.
+constexpr auto kHeartbeatPeriod = std::chrono::seconds(1);
 // The final stop may wait this long for a slow port before the element gives up on it.
 constexpr int kFinalStopTimeoutMs = 250;
 
@@ -100,14 +102,28 @@ void CommandWriter::run() {
   const auto period =
       std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / config_.rate));
   auto nextTick = Clock::now();
+  auto nextHeartbeat = nextTick;  // the first one goes out with the first command
+  const bool heartbeats = encoder_.hasHeartbeat();
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
-    wake_.wait_until(lock, nextTick, [this] { return quit_ || urgent_; });
+    wake_.wait_until(lock, heartbeats ? std::min(nextTick, nextHeartbeat) : nextTick,
+                     [this] { return quit_ || urgent_; });
     if (quit_) break;
+    if (heartbeats && Clock::now() >= nextHeartbeat) {
+      // On its own clock, so its period holds whatever the rate and however often a stop restarts the
+      // commands' rhythm.
+      lock.unlock();
+      sendHeartbeat(writeTimeoutMs(period));
+      lock.lock();
+      nextHeartbeat += kHeartbeatPeriod;
+      if (nextHeartbeat <= Clock::now()) nextHeartbeat = Clock::now() + kHeartbeatPeriod;
+      if (quit_) break;
+      if (!urgent_ && Clock::now() < nextTick) continue;  // only the heartbeat was due
+    }
     const bool urgent = urgent_;
     urgent_ = false;
-    const bool stalled = playing_ && bufferWatchdog_.expired(monotonicSeconds()) &&
-                         pending_.output.command != colortrack::DriveCommand::Stop;
+    const bool stalled =
+        playing_ && bufferWatchdog_.expired(monotonicSeconds()) && !colortrack::isStill(pending_.output);
     if (stalled) {
       pending_ = Command{};
       pending_.reason = "stalled";
@@ -156,7 +172,7 @@ bool CommandWriter::reopen(const Command &command, Clock::time_point deadline) {
   Command stop;
   stop.reason = "reconnected";
   if (!write(stop, deadline)) return false;
-  return command.output.command != colortrack::DriveCommand::Stop;
+  return !colortrack::isStill(command.output);
 }
 
 // Sends the tail of the frame cut by an earlier timeout; true when there is none left.
@@ -169,7 +185,7 @@ bool CommandWriter::finishUnsent(Clock::time_point deadline) {
   switch (result) {
     case WriteResult::Written:
       retryDelay_ = kFirstRetry;
-      listener_.sent(unsentCommand_);
+      if (unsentCommand_) listener_.sent(*unsentCommand_);
       return true;
     case WriteResult::Busy:
       listener_.busy(port_->describe(), true, unsent_.size());
@@ -182,13 +198,24 @@ bool CommandWriter::finishUnsent(Clock::time_point deadline) {
 }
 
 bool CommandWriter::write(const Command &command, Clock::time_point deadline) {
-  const std::vector<std::uint8_t> bytes = encoder_.encode(command.output);
+  return writeFrame(encoder_.encode(command.output), command, deadline);
+}
+
+// Waits for no reopen (the commands' ticks do that), but comes after the rest of a cut frame.
+void CommandWriter::sendHeartbeat(int timeoutMs) {
+  const auto deadline = Clock::now() + std::chrono::milliseconds(timeoutMs);
+  if (!port_->isOpen() || !finishUnsent(deadline)) return;
+  writeFrame(encoder_.heartbeat(), std::nullopt, deadline);
+}
+
+bool CommandWriter::writeFrame(const std::vector<std::uint8_t> &bytes, const std::optional<Command> &command,
+                               Clock::time_point deadline) {
   std::size_t written = 0;
   std::string why;
   switch (port_->write(bytes, msUntil(deadline), written, why)) {
     case WriteResult::Written:
       retryDelay_ = kFirstRetry;
-      listener_.sent(command);
+      if (command) listener_.sent(*command);
       return true;
     case WriteResult::Busy:
       if (written > 0) {

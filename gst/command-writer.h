@@ -1,6 +1,7 @@
-// robotctl's writer: a thread that sends the newest drive command to a Port at a fixed rate, stops the robot
-// when buffers stall, reconnects a lost port with back-off and completes frames a slow port cut. It knows no
-// GStreamer: what happens is reported to a WriterListener (the element turns that into bus messages).
+// robotctl's writer: a thread that sends the newest drive command to a Port at a fixed rate (and the
+// protocol's heartbeat once a second, MAVLink's), stops the robot when buffers stall, reconnects a lost port
+// with back-off and completes frames a slow port cut. It knows no GStreamer: what happens is reported to a
+// WriterListener (the element turns that into bus messages).
 #pragma once
 
 #include <chrono>
@@ -8,6 +9,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -84,14 +86,18 @@ class CommandWriter {
   bool reopen(const Command &command, Clock::time_point deadline);
   bool finishUnsent(Clock::time_point deadline);
   bool write(const Command &command, Clock::time_point deadline);
+  void sendHeartbeat(int timeoutMs);
+  // `command`: what `bytes` carry, reported sent once they are all out; none for a heartbeat.
+  bool writeFrame(const std::vector<std::uint8_t> &bytes, const std::optional<Command> &command,
+                  Clock::time_point deadline);
   void connectionLost(const std::string &why);
 
   std::unique_ptr<Port> port_;
   WriterConfig config_;
   WriterListener &listener_;
-  colortrack::ProtocolEncoder encoder_;  // writer thread only, like the next five
-  std::vector<std::uint8_t> unsent_;     // the tail of a frame a timed-out write cut
-  Command unsentCommand_;                // the command that frame carries
+  colortrack::ProtocolEncoder encoder_;   // writer thread only, like the next five
+  std::vector<std::uint8_t> unsent_;      // the tail of a frame a timed-out write cut
+  std::optional<Command> unsentCommand_;  // the command that frame carries (none: a heartbeat)
   Clock::duration retryDelay_;
   Clock::time_point retryAt_;
   std::string waitingFor_;  // why the last reopen failed ("" while connected)

@@ -18,9 +18,18 @@
  * with a proportional, an integral (without wind-up) and a rate term, limits and an acceleration limit, as
  * left/right wheel speeds, and stops once the target is well within the deadbands.
  *
- * Three protocols (#GstRobotCtl:protocol): "zone-char" (one character per command, #GstRobotCtl:zone-chars,
- * default "FBLRS"), "text" ("L=<int> R=<int>\n", wheel speeds times #GstRobotCtl:output-scale) and "binary"
- * (0xA5, sequence, length, command, flags, left, right, CRC-8; see docs/robotctl.md).
+ * Four protocols (#GstRobotCtl:protocol): "zone-char" (one character per command, #GstRobotCtl:zone-chars,
+ * default "FBLRS"), "text" ("L=<int> R=<int>\n", wheel speeds times #GstRobotCtl:output-scale), "binary"
+ * (0xA5, sequence, length, command, flags, left, right, CRC-8; see docs/robotctl.md) and "mavlink"
+ * (MAVLink 2 for a flight controller or a gimbal, with a HEARTBEAT at 1 Hz from #GstRobotCtl:system-id and
+ * #GstRobotCtl:component-id). With MAVLink, #GstRobotCtl:mavlink-mode "gimbal" sends
+ * GIMBAL_MANAGER_SET_PITCHYAW with pitch and yaw rates that centre the target (the proportional law on both
+ * axes, whatever #GstRobotCtl:controller says), "follow" sends SET_POSITION_TARGET_LOCAL_NED in the body
+ * frame with a forward velocity and a yaw rate; a turn of 1.0 is tan(#GstRobotCtl:hfov / 2) rad/s, a speed
+ * of 1.0 is 1 m/s; every stop is zero rates (and zero velocity).
+ *
+ * #GstRobotCtl:location may also be "udp://HOST:PORT": each frame a datagram to that address (a flight
+ * controller, mavlink-router, a ground station), for any protocol.
  *
  * Commands go out at a fixed #GstRobotCtl:rate from a writer thread, repeated when unchanged so a watchdog
  * on the robot stays fed; the streaming thread only leaves the newest command for it and never waits for the
@@ -53,6 +62,12 @@
  * gst-launch-1.0 v4l2src ! videoconvert ! cvtracker object-initial-x=100 object-initial-y=80 \
  *     object-initial-width=60 object-initial-height=60 ! robotctl roi-type=object location=/tmp/commands.txt
  * ]| Follows the box of gst-plugins-bad's cvtracker.
+ * |[
+ * gst-launch-1.0 v4l2src ! videoconvert ! colortrack template-location=ball.png ! \
+ *     robotctl protocol=mavlink mavlink-mode=gimbal hfov=62 location=udp://127.0.0.1:14550 \
+ *     turn-gain=3 max-angular=1
+ * ]| Turns a MAVLink gimbal (through the autopilot's gimbal manager, or mavlink-router) to keep the ball
+ * centred.
  */
 
 #include "gstrobotctl.h"
@@ -62,6 +77,7 @@
 #include "robotctl-listener.h"
 #include "robotctl-settings.h"
 #include "track-params.h"
+#include "udp-port.h"
 
 #include <algorithm>
 #include <atomic>
@@ -132,10 +148,34 @@ colortrack::Protocol toProtocol(GstRobotCtlProtocol protocol) {
       return colortrack::Protocol::Text;
     case GST_ROBOT_CTL_PROTOCOL_BINARY:
       return colortrack::Protocol::Binary;
+    case GST_ROBOT_CTL_PROTOCOL_MAVLINK:
+      return colortrack::Protocol::Mavlink;
     case GST_ROBOT_CTL_PROTOCOL_ZONE_CHAR:
       break;
   }
   return colortrack::Protocol::ZoneChar;
+}
+
+colortrack::MavlinkMode toMavlinkMode(GstRobotCtlMavlinkMode mode) {
+  switch (mode) {
+    case GST_ROBOT_CTL_MAVLINK_MODE_FOLLOW:
+      return colortrack::MavlinkMode::Follow;
+    case GST_ROBOT_CTL_MAVLINK_MODE_GIMBAL:
+      break;
+  }
+  return colortrack::MavlinkMode::Gimbal;
+}
+
+colortrack::MavlinkSettings toMavlinkSettings(const robotctl::Settings &s) {
+  colortrack::MavlinkSettings m;
+  m.mode = toMavlinkMode(s.mavlinkMode);
+  // Each checked to be within a byte (robotctl-settings.cpp).
+  m.systemId = static_cast<std::uint8_t>(s.systemId);
+  m.componentId = static_cast<std::uint8_t>(s.componentId);
+  m.targetSystem = static_cast<std::uint8_t>(s.targetSystem);
+  m.targetComponent = static_cast<std::uint8_t>(s.targetComponent);
+  m.rateScale = colortrack::mavlinkRateScale(s.hfov);
+  return m;
 }
 
 double monotonicSeconds() {
@@ -146,6 +186,7 @@ double monotonicSeconds() {
 struct State {
   std::unique_ptr<colortrack::RobotController> controller;
   colortrack::ControllerKind controllerKind = colortrack::ControllerKind::Zone;  // of `controller`
+  colortrack::ControlAxes axes = colortrack::ControlAxes::TurnDrive;  // from the protocol, read at start
   guint64 appliedControllerGeneration = 0;
   cv::Size frameSize;
   std::string roiType;
@@ -173,12 +214,18 @@ GST_ELEMENT_REGISTER_DEFINE(robotctl, "robotctl", GST_RANK_NONE, GST_TYPE_ROBOT_
 // ---------------------------------------------------------------------------------------------------------
 // Enum types
 
-COLORTRACK_DEFINE_ENUM_TYPE(gst_robot_ctl_protocol_get_type, "GstRobotCtlProtocol",
-                            {GST_ROBOT_CTL_PROTOCOL_ZONE_CHAR, "One character per command (zone-chars)",
-                             "zone-char"},
-                            {GST_ROBOT_CTL_PROTOCOL_TEXT, "One line \"L=<int> R=<int>\" per command", "text"},
-                            {GST_ROBOT_CTL_PROTOCOL_BINARY, "Framed packet with sequence number and CRC-8",
-                             "binary"})
+COLORTRACK_DEFINE_ENUM_TYPE(
+    gst_robot_ctl_protocol_get_type, "GstRobotCtlProtocol",
+    {GST_ROBOT_CTL_PROTOCOL_ZONE_CHAR, "One character per command (zone-chars)", "zone-char"},
+    {GST_ROBOT_CTL_PROTOCOL_TEXT, "One line \"L=<int> R=<int>\" per command", "text"},
+    {GST_ROBOT_CTL_PROTOCOL_BINARY, "Framed packet with sequence number and CRC-8", "binary"},
+    {GST_ROBOT_CTL_PROTOCOL_MAVLINK, "MAVLink 2 (mavlink-mode), with a 1 Hz heartbeat", "mavlink"})
+COLORTRACK_DEFINE_ENUM_TYPE(gst_robot_ctl_mavlink_mode_get_type, "GstRobotCtlMavlinkMode",
+                            {GST_ROBOT_CTL_MAVLINK_MODE_GIMBAL,
+                             "GIMBAL_MANAGER_SET_PITCHYAW: pitch and yaw rates", "gimbal"},
+                            {GST_ROBOT_CTL_MAVLINK_MODE_FOLLOW,
+                             "SET_POSITION_TARGET_LOCAL_NED, body frame: forward velocity and yaw rate",
+                             "follow"})
 COLORTRACK_DEFINE_ENUM_TYPE(gst_robot_ctl_controller_get_type, "GstRobotCtlController",
                             {GST_ROBOT_CTL_CONTROLLER_ZONE, "Forward/backward/left/right/stop by frame zone",
                              "zone"},
@@ -255,14 +302,21 @@ namespace {
 // The port the settings name, opened; null (with an error posted) when it cannot be opened.
 std::unique_ptr<robotctl::Port> openPort(GstRobotCtl *self, const robotctl::Settings &s) {
   std::unique_ptr<robotctl::Port> port;
+  const bool udp = s.device.empty() && robotctl::isUdpLocation(s.location);
   if (!s.device.empty())
     port = std::make_unique<robotctl::SerialPort>(robotctl::SerialConfig{
         s.device, s.baudRate, s.dataBits, s.stopBits, toParity(s.parity), toFlowControl(s.flowControl)});
+  else if (udp)
+    port = std::make_unique<robotctl::UdpPort>(s.location);
   else
     port = std::make_unique<robotctl::FilePort>(s.location);
   std::string why;
   if (!port->open(why)) {
-    if (!s.device.empty())
+    if (udp)
+      GST_ELEMENT_ERROR(self, RESOURCE, OPEN_WRITE,
+                        ("Cannot send to '%s' (property 'location'): %s", s.location.c_str(), why.c_str()),
+                        (nullptr));
+    else if (!s.device.empty())
       GST_ELEMENT_ERROR(
           self, RESOURCE, OPEN_WRITE,
           ("Could not open serial port '%s' (property 'device'): %s", s.device.c_str(), why.c_str()),
@@ -284,7 +338,7 @@ bool checkSettings(GstRobotCtl *self, const robotctl::Settings &s, const std::st
     GST_ELEMENT_ERROR(
         self, RESOURCE, NOT_FOUND,
         ("No output: set 'device' (a serial port) or 'location' (a file, FIFO, pseudo-terminal, "
-         "or '-' for stdout)."),
+         "udp://HOST:PORT, or '-' for stdout)."),
         (nullptr));
     return false;
   }
@@ -341,13 +395,16 @@ static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
   config.protocol.protocol = toProtocol(s.protocol);
   config.protocol.zoneChars = *zoneChars;
   config.protocol.outputScale = s.outputScale;
+  config.protocol.mavlink = toMavlinkSettings(s);
   config.rate = s.rate;
   config.stallTimeout = s.failsafe.lostTimeout;
 
   State &state = stateOf(self);
   state = State{};
-  state.controller = std::make_unique<colortrack::RobotController>(s.controller, s.failsafe);
-  state.controllerKind = s.controller.kind;
+  const colortrack::ControllerSettings controller = robotctl::controllerSettings(s);
+  state.controller = std::make_unique<colortrack::RobotController>(controller, s.failsafe);
+  state.controllerKind = controller.kind;
+  state.axes = controller.axes;
   state.appliedControllerGeneration = version;
   self->priv->resetRequested = false;
 
@@ -474,13 +531,14 @@ static GstFlowReturn gst_robot_ctl_render(GstBaseSink *sink, GstBuffer *buffer) 
   GST_OBJECT_LOCK(self);
   const robotctl::Settings &shared = storeOf(self).settings;
   const guint64 generation = storeOf(self).versions[0];
-  const colortrack::ControllerSettings controllerSettings = shared.controller;
+  colortrack::ControllerSettings controllerSettings = shared.controller;
   const colortrack::FailsafeSettings failsafeSettings = shared.failsafe;
   const GQuark roiType = g_quark_from_string(shared.roiType.c_str());
   const gint targetId = shared.targetId;
   state.lock.setPolicy(shared.lockOn);
   GST_OBJECT_UNLOCK(self);
 
+  controllerSettings.axes = state.axes;  // the protocol's, as it was at start
   if (generation != state.appliedControllerGeneration) {
     // A new gain or limit keeps the ramp and the lost-target hold; only another controller starts afresh.
     if (controllerSettings.kind != state.controllerKind) {
@@ -584,6 +642,7 @@ static void gst_robot_ctl_class_init(GstRobotCtlClass *klass) {
   sink_class->render = GST_DEBUG_FUNCPTR(gst_robot_ctl_render);
 
   gst_type_mark_as_plugin_api(GST_TYPE_ROBOT_CTL_PROTOCOL, static_cast<GstPluginAPIFlags>(0));
+  gst_type_mark_as_plugin_api(GST_TYPE_ROBOT_CTL_MAVLINK_MODE, static_cast<GstPluginAPIFlags>(0));
   gst_type_mark_as_plugin_api(GST_TYPE_ROBOT_CTL_CONTROLLER, static_cast<GstPluginAPIFlags>(0));
   gst_type_mark_as_plugin_api(GST_TYPE_ROBOT_CTL_DISTANCE_CUE, static_cast<GstPluginAPIFlags>(0));
   gst_type_mark_as_plugin_api(GST_TYPE_ROBOT_CTL_PARITY, static_cast<GstPluginAPIFlags>(0));

@@ -16,12 +16,26 @@ G_BEGIN_DECLS
  * @GST_ROBOT_CTL_PROTOCOL_TEXT: one line "L=<int> R=<int>\n" per command
  * @GST_ROBOT_CTL_PROTOCOL_BINARY: a 10-byte packet: 0xA5, sequence, length 6, command, flags, left and
  *   right (int16 little-endian), CRC-8
+ * @GST_ROBOT_CTL_PROTOCOL_MAVLINK: MAVLink 2 frames for a gimbal or a drone (#GstRobotCtl:mavlink-mode), and
+ *   a HEARTBEAT at 1 Hz
  */
 typedef enum {
   GST_ROBOT_CTL_PROTOCOL_ZONE_CHAR = 0,
   GST_ROBOT_CTL_PROTOCOL_TEXT = 1,
   GST_ROBOT_CTL_PROTOCOL_BINARY = 2,
+  GST_ROBOT_CTL_PROTOCOL_MAVLINK = 3,
 } GstRobotCtlProtocol;
+
+/**
+ * GstRobotCtlMavlinkMode:
+ * @GST_ROBOT_CTL_MAVLINK_MODE_GIMBAL: GIMBAL_MANAGER_SET_PITCHYAW: pitch and yaw rates that centre the target
+ * @GST_ROBOT_CTL_MAVLINK_MODE_FOLLOW: SET_POSITION_TARGET_LOCAL_NED in the body frame: forward velocity and
+ *   yaw rate
+ */
+typedef enum {
+  GST_ROBOT_CTL_MAVLINK_MODE_GIMBAL = 0,
+  GST_ROBOT_CTL_MAVLINK_MODE_FOLLOW = 1,
+} GstRobotCtlMavlinkMode;
 
 /**
  * GstRobotCtlController:
@@ -86,12 +100,14 @@ typedef enum {
 } GstRobotCtlLockOn;
 
 GType gst_robot_ctl_protocol_get_type(void);
+GType gst_robot_ctl_mavlink_mode_get_type(void);
 GType gst_robot_ctl_controller_get_type(void);
 GType gst_robot_ctl_distance_cue_get_type(void);
 GType gst_robot_ctl_parity_get_type(void);
 GType gst_robot_ctl_flow_control_get_type(void);
 GType gst_robot_ctl_lock_on_get_type(void);
 #define GST_TYPE_ROBOT_CTL_PROTOCOL (gst_robot_ctl_protocol_get_type())
+#define GST_TYPE_ROBOT_CTL_MAVLINK_MODE (gst_robot_ctl_mavlink_mode_get_type())
 #define GST_TYPE_ROBOT_CTL_CONTROLLER (gst_robot_ctl_controller_get_type())
 #define GST_TYPE_ROBOT_CTL_DISTANCE_CUE (gst_robot_ctl_distance_cue_get_type())
 #define GST_TYPE_ROBOT_CTL_PARITY (gst_robot_ctl_parity_get_type())

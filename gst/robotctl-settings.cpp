@@ -108,6 +108,25 @@ const char *refuseNegativeGain(const GValue *v) {
                                    : nullptr;
 }
 
+// The ranges of the id properties admit more than a byte only so that robotctl can refuse them with a clear
+// error naming MAVLink's rule.
+const char *refuseSenderId(const GValue *v) {
+  const guint id = g_value_get_uint(v);
+  return id < 1 || id > 255 ? "a MAVLink system or component id of ours is 1-255 (0 is the broadcast address)"
+                            : nullptr;
+}
+
+const char *refuseTargetId(const GValue *v) {
+  return g_value_get_uint(v) > 255 ? "a MAVLink target id is 0-255 (0: all)" : nullptr;
+}
+
+const char *refuseFieldOfView(const GValue *v) {
+  // NaN never gets here: GLib refuses it against the range, with a warning naming the property.
+  const double hfov = g_value_get_double(v);
+  return !(hfov > 0 && hfov < 180) ? "the horizontal field of view is more than 0 and less than 180 degrees"
+                                   : nullptr;
+}
+
 const char *refuseEmptyRoiType(const GValue *v) {
   // An empty type matches no region: the robot would never see a target.
   return textOf(v).empty() ? "it names the type of the regions to follow (e.g. colortrack, object)" : nullptr;
@@ -159,7 +178,8 @@ const Def kProperties[] = {
      [](GParamFlags f) {
        return g_param_spec_string("location", "Location",
                                   "File, FIFO or pseudo-terminal to write the commands to, '-' for "
-                                  "stdout (dry runs, tests); exclusive with 'device'; read at start",
+                                  "stdout (dry runs, tests), or udp://HOST:PORT to send each as a datagram; "
+                                  "exclusive with 'device'; read at start",
                                   nullptr, f);
      },
      getTextOrNull<&Settings::location>, setText<&Settings::location>},
@@ -186,6 +206,56 @@ const Def kProperties[] = {
            Settings{}.outputScale, f);
      },
      getValue<&Settings::outputScale>, setValue<&Settings::outputScale>},
+    {Apply::AtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_enum("mavlink-mode", "MAVLink mode",
+                                "protocol=mavlink: what the commands drive: a gimbal (pitch and yaw rates, "
+                                "always the proportional law) or a drone (forward velocity and yaw rate); "
+                                "read at start",
+                                GST_TYPE_ROBOT_CTL_MAVLINK_MODE, Settings{}.mavlinkMode, f);
+     },
+     getValue<&Settings::mavlinkMode>, setValue<&Settings::mavlinkMode>},
+    {Apply::AtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_uint("system-id", "System id",
+                                "protocol=mavlink: our MAVLink system id, 1-255 (usually the vehicle's); "
+                                "read at start",
+                                0, G_MAXUINT, Settings{}.systemId, f);
+     },
+     getValue<&Settings::systemId>, setValue<&Settings::systemId>, refuseSenderId},
+    {Apply::AtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_uint("component-id", "Component id",
+                                "protocol=mavlink: our MAVLink component id, 1-255 (191: onboard "
+                                "computer); read at start",
+                                0, G_MAXUINT, Settings{}.componentId, f);
+     },
+     getValue<&Settings::componentId>, setValue<&Settings::componentId>, refuseSenderId},
+    {Apply::AtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_uint("target-system", "Target system",
+                                "protocol=mavlink: system id the commands are for, 0-255 (0: all); read at "
+                                "start",
+                                0, G_MAXUINT, Settings{}.targetSystem, f);
+     },
+     getValue<&Settings::targetSystem>, setValue<&Settings::targetSystem>, refuseTargetId},
+    {Apply::AtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_uint("target-component", "Target component",
+                                "protocol=mavlink: component id the commands are for, 0-255 (1: the "
+                                "autopilot, which is usually also the gimbal manager; 0: all); read at start",
+                                0, G_MAXUINT, Settings{}.targetComponent, f);
+     },
+     getValue<&Settings::targetComponent>, setValue<&Settings::targetComponent>, refuseTargetId},
+    {Apply::AtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_double("hfov", "Horizontal field of view",
+                                  "protocol=mavlink: the camera's horizontal field of view in degrees, more "
+                                  "than 0 and less than 180 (the vertical one follows from the frame's "
+                                  "aspect ratio); turns a turn of 1.0 into tan(hfov/2) rad/s; read at start",
+                                  0.0, 180.0, Settings{}.hfov, f);
+     },
+     getValue<&Settings::hfov>, setValue<&Settings::hfov>, refuseFieldOfView},
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_double(
@@ -430,6 +500,16 @@ const Def kProperties[] = {
 };
 
 }  // namespace
+
+bool drivesGimbal(const Settings &s) {
+  return s.protocol == GST_ROBOT_CTL_PROTOCOL_MAVLINK && s.mavlinkMode == GST_ROBOT_CTL_MAVLINK_MODE_GIMBAL;
+}
+
+colortrack::ControllerSettings controllerSettings(const Settings &s) {
+  colortrack::ControllerSettings controller = s.controller;
+  controller.axes = drivesGimbal(s) ? colortrack::ControlAxes::PanTilt : colortrack::ControlAxes::TurnDrive;
+  return controller;
+}
 
 const gstglue::PropertyTable<Settings> &properties() {
   static const gstglue::PropertyTable<Settings> table(kProperties);

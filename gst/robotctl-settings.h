@@ -22,6 +22,12 @@ struct Settings {
   GstRobotCtlProtocol protocol = GST_ROBOT_CTL_PROTOCOL_ZONE_CHAR;
   std::string zoneChars = "FBLRS";  // checked at start
   gint outputScale = 255;
+  // MAVLink (read at start): ours and the receiver's ids, what the commands drive, the camera's field of
+  // view.
+  GstRobotCtlMavlinkMode mavlinkMode = GST_ROBOT_CTL_MAVLINK_MODE_GIMBAL;
+  guint systemId = 1, componentId = 191;  // an onboard computer: MAV_COMP_ID_ONBOARD_COMPUTER
+  guint targetSystem = 1, targetComponent = 1;
+  gdouble hfov = 60.0;  // degrees
   gdouble rate = 10.0;
   // A change of these (a versioned property) bumps the store's version: the controller takes it.
   colortrack::ControllerSettings controller;
@@ -33,6 +39,11 @@ struct Settings {
 };
 
 using PropertyStore = gstglue::PropertyStore<Settings>;
+
+// The MAVLink commands drive a gimbal: the controller pans and tilts (and is proportional).
+bool drivesGimbal(const Settings &settings);
+// The controller's settings as the protocol needs them (a gimbal: PanTilt).
+colortrack::ControllerSettings controllerSettings(const Settings &settings);
 
 // In the order gst-inspect-1.0 lists them.
 const gstglue::PropertyTable<Settings> &properties();

@@ -27,10 +27,12 @@ demo_packages=(
 )
 # The tests, benchmarks and examples on top: gst-inspect-1.0, cvtracker (-bad and -opencv) for the
 # evaluation, GoogleTest, gst-rtsp-server for the RTSP test, PyGObject for the Python example, the mosquitto
-# broker the trackpublish tests start on loopback, paho-mqtt for the Python MQTT consumer example.
+# broker the trackpublish tests start on loopback, paho-mqtt for the Python MQTT consumer example, node and
+# npm for node-mavlink (the MAVLink tests' independent implementation, see below).
 test_packages=(
   gstreamer1.0-tools gstreamer1.0-plugins-bad gstreamer1.0-opencv libgtest-dev libgstrtspserver-1.0-dev
   python3-gi gir1.2-gstreamer-1.0 gir1.2-gst-plugins-base-1.0 mosquitto openssl python3-paho-mqtt
+  nodejs npm
 )
 packages=("${demo_packages[@]}")
 [ "$mode" = demo ] || packages+=("${test_packages[@]}")
@@ -62,6 +64,13 @@ if dpkg --compare-versions "$(dpkg-query -W -f='${Version}' libgstreamer1.0-dev)
 fi
 if $analytics_added && [ -f build/build.ninja ]; then
   meson setup --reconfigure build
+fi
+
+# node-mavlink, pinned by tests/mavlink/package-lock.json: the MAVLink tests check robotctl's frames against
+# it. Installed once (npm ci); the tests report "skipped" where it is missing.
+if [ "$mode" = all ] && [ ! -d tests/mavlink/node_modules/node-mavlink ]; then
+  echo "== installing node-mavlink for the MAVLink tests (npm ci in tests/mavlink)"
+  (cd tests/mavlink && npm ci --no-audit --no-fund)
 fi
 
 # The value of a boolean build option of build/ ("true" or "false").

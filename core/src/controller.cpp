@@ -42,6 +42,14 @@ double horizontalOffset(const cv::Rect2d &box, cv::Size frame) {
   return (box.x + box.width / 2.0 - half) / half;
 }
 
+double verticalOffset(const cv::Rect2d &box, cv::Size frame) {
+  return (box.y + box.height / 2.0 - frame.height / 2.0) / (frame.width / 2.0);
+}
+
+bool isStill(const DriveOutput &output) {
+  return output.command == DriveCommand::Stop && output.tilt == 0;
+}
+
 double distanceCue(const cv::Rect2d &box, cv::Size frame, DistanceCue cue) {
   const double extent = cue == DistanceCue::Size ? box.height : box.y + box.height;
   return extent / frame.height;
@@ -170,6 +178,12 @@ DriveOutput ProportionalController::update(const Errors &e, double dt) {
                             s.distanceDeadband, s.maxLinear,         s.maxLinearAccel};
   // Offset > 0 (target right) turns right: a negative angular.
   const double angular = -turn_.update(turn, e.offset, e.offsetRate, dt);
+  if (s.axes == ControlAxes::PanTilt) {
+    // Vertical > 0 (target below) tilts down; the same gains and limits as the pan.
+    DriveOutput out = makeOutput(0, angular, true);
+    out.tilt = -tilt_.update(turn, e.vertical, e.verticalRate, dt);
+    return out;
+  }
   const double linear = drive_.update(drive, e.distance, e.distanceRate, dt);
   return makeOutput(linear, angular, true);
 }
@@ -184,7 +198,7 @@ RobotController::RobotController(const ControllerSettings &controller, const Fai
       watchdog_(failsafe.lostTimeout) {}
 
 void RobotController::setSettings(const ControllerSettings &controller, const FailsafeSettings &failsafe) {
-  if (controller.kind != settings_.kind) {
+  if (controller.kind != settings_.kind || controller.axes != settings_.axes) {
     zone_.reset();
     proportional_.reset();
   }
@@ -225,6 +239,7 @@ DriveOutput RobotController::update(const Observation &o) {
     Errors e;
     e.offset = horizontalOffset(*o.box, o.frameSize);
     e.distance = distanceError(*o.box, o.frameSize, settings_.distanceCue, settings_.setPoint);
+    e.vertical = verticalOffset(*o.box, o.frameSize);
     if (lastErrors_ && dt > 0) {
       // Rates by differences, smoothed over ~0.1 s: the boxes come rounded to whole pixels.
       constexpr double kSmoothing = 0.1;  // s
@@ -233,11 +248,16 @@ DriveOutput RobotController::update(const Observation &o) {
           lastErrors_->offsetRate + a * ((e.offset - lastErrors_->offset) / dt - lastErrors_->offsetRate);
       e.distanceRate = lastErrors_->distanceRate +
                        a * ((e.distance - lastErrors_->distance) / dt - lastErrors_->distanceRate);
+      e.verticalRate = lastErrors_->verticalRate +
+                       a * ((e.vertical - lastErrors_->vertical) / dt - lastErrors_->verticalRate);
     } else if (lastErrors_) {
       e.offsetRate = lastErrors_->offsetRate, e.distanceRate = lastErrors_->distanceRate;
+      e.verticalRate = lastErrors_->verticalRate;
     }
     lastErrors_ = e;
-    last_ = settings_.kind == ControllerKind::Zone ? zone_.update(e, o.time) : proportional_.update(e, dt);
+    // A gimbal has no zones: its rates are always proportional.
+    const bool zone = settings_.kind == ControllerKind::Zone && settings_.axes == ControlAxes::TurnDrive;
+    last_ = zone ? zone_.update(e, o.time) : proportional_.update(e, dt);
     lastOffset_ = e.offset;
     return last_;
   }

@@ -84,7 +84,47 @@ SentSpeeds sentSpeeds(const DriveOutput &output, int scale) {
   return SentSpeeds{scaledSpeed(output.left, scale), scaledSpeed(output.right, scale)};
 }
 
+double mavlinkRateScale(double hfovDegrees) {
+  return std::tan(hfovDegrees * M_PI / 360.0);
+}
+
+std::vector<std::uint8_t> ProtocolEncoder::heartbeat() {
+  if (!hasHeartbeat()) return {};
+  mavlink::Sender sender{settings_.mavlink.systemId, settings_.mavlink.componentId, sequence_};
+  std::vector<std::uint8_t> bytes = mavlink::encode(mavlink::Heartbeat(), sender);
+  sequence_ = sender.sequence;
+  return bytes;
+}
+
+std::vector<std::uint8_t> ProtocolEncoder::encodeMavlink(const DriveOutput &output) {
+  const MavlinkSettings &m = settings_.mavlink;
+  mavlink::Sender sender{m.systemId, m.componentId, sequence_};
+  // Exactly zero when stopped. MAVLink's yaw rates turn clockwise seen from above (to the right) and its
+  // pitch rate up; angular > 0 turns left.
+  const bool still = isStill(output);
+  const auto rate = [&](double v) { return still ? 0.0f : static_cast<float>(v * m.rateScale); };
+  std::vector<std::uint8_t> bytes;
+  if (m.mode == MavlinkMode::Gimbal) {
+    mavlink::GimbalManagerSetPitchyaw message;
+    message.targetSystem = m.targetSystem;
+    message.targetComponent = m.targetComponent;
+    message.pitchRate = rate(output.tilt);
+    message.yawRate = rate(-output.angular);
+    bytes = mavlink::encode(message, sender);
+  } else {
+    mavlink::SetPositionTargetLocalNed message;
+    message.targetSystem = m.targetSystem;
+    message.targetComponent = m.targetComponent;
+    message.vx = still ? 0.0f : static_cast<float>(output.linear * m.speedScale);
+    message.yawRate = rate(-output.angular);
+    bytes = mavlink::encode(message, sender);
+  }
+  sequence_ = sender.sequence;
+  return bytes;
+}
+
 std::vector<std::uint8_t> ProtocolEncoder::encode(const DriveOutput &output) {
+  if (settings_.protocol == Protocol::Mavlink) return encodeMavlink(output);
   const auto [left, right] = sentSpeeds(output, settings_.outputScale);
 
   switch (settings_.protocol) {
@@ -96,6 +136,7 @@ std::vector<std::uint8_t> ProtocolEncoder::encode(const DriveOutput &output) {
       return std::vector<std::uint8_t>(line, line + n);
     }
     case Protocol::Binary:
+    case Protocol::Mavlink:  // encodeMavlink()
       break;
   }
 

@@ -334,6 +334,38 @@ TEST(RobotController, ProportionalRampsAndFollows) {
   EXPECT_NEAR(out.left, 0.4, 1e-12);
 }
 
+TEST(RobotController, PanTiltTurnsAndTiltsAGimbalAndNeverDrives) {
+  ControllerSettings c;  // kind zone: PanTilt is proportional all the same
+  c.axes = ControlAxes::PanTilt;
+  c.maxAngularAccel = 0;
+  c.turnIntegralGain = c.turnRateGain = 0;
+  FailsafeSettings f;
+  RobotController gimbal(c, f);
+  Observation o = seen(0.0, 0.0, 24);
+  o.box = cv::Rect2d(200, 150, 24, 24);  // right of centre (offset 0.325) and below (42 px: 0.2625)
+  const DriveOutput out = gimbal.update(o);
+  EXPECT_NEAR(out.angular, -c.turnGain * 0.325, 1e-12);  // pan right
+  EXPECT_NEAR(out.tilt, -c.turnGain * 0.2625, 1e-12);    // tilt down, the vertical offset in half widths
+  EXPECT_DOUBLE_EQ(out.linear, 0.0);                     // far, but a gimbal does not drive
+  EXPECT_EQ(out.command, DriveCommand::Right);
+  EXPECT_FALSE(isStill(out));
+  // Straight below: the pan's command name says stop, but the tilt moves.
+  o.time = 0.1;
+  o.box = cv::Rect2d(148, 150, 24, 24);
+  const DriveOutput below = gimbal.update(o);
+  EXPECT_EQ(below.command, DriveCommand::Stop);
+  EXPECT_LT(below.tilt, 0);
+  EXPECT_FALSE(isStill(below));
+  // Lost: stop, tilt included.
+  EXPECT_TRUE(isStill(gimbal.update(unseen(1.0))));
+  // A robot never tilts.
+  c.axes = ControlAxes::TurnDrive;
+  c.kind = ControllerKind::Proportional;
+  RobotController robot(c, f);
+  o.time = 0;
+  EXPECT_DOUBLE_EQ(robot.update(o).tilt, 0.0);
+}
+
 TEST(RobotController, RatesFromSuccessiveBoxesClearedWhenLost) {
   ControllerSettings c;
   c.kind = ControllerKind::Proportional;

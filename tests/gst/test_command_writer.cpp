@@ -9,8 +9,10 @@
 #include <functional>
 #include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "colortrack/mavlink.hpp"
 #include "command-writer.h"
 
 namespace robotctl {
@@ -337,6 +339,44 @@ TEST(CommandWriter, StallStopsAMovingRobot) {
   const std::string text = rig.received();
   EXPECT_EQ(text.substr(text.rfind(lineOf(kForward)) + lineOf(kForward).size(), kStopLine.size()), kStopLine);
   EXPECT_EQ(rig.wire.read([&] { return rig.wire.stalled; }), 1);
+}
+
+// MAVLink's heartbeat keeps its own 1 Hz clock: with a command every 2 s, and a stop that restarts the
+// commands' rhythm in between; one sequence number counts every frame.
+TEST(CommandWriter, MavlinkHeartbeatOnItsOwnClock) {
+  WriterConfig config;
+  config.protocol.protocol = colortrack::Protocol::Mavlink;
+  config.rate = 0.5;
+  config.stallTimeout = 60;
+  const auto start = Clock::now();
+  Rig rig(config);
+  std::vector<double> heartbeats;  // s after the start
+  std::vector<int> sequence;
+  std::size_t parsed = 0;
+  bool stopped = false;
+  while (heartbeats.size() < 3 && Clock::now() - start < std::chrono::seconds(4)) {
+    const std::string received = rig.received();
+    std::size_t used = 0;
+    while (const auto frame = colortrack::mavlink::parseFrame(
+               reinterpret_cast<const std::uint8_t *>(received.data()) + parsed, received.size() - parsed,
+               &used)) {
+      parsed += used;
+      sequence.push_back(frame->sequence);
+      if (frame->messageId == colortrack::mavlink::kHeartbeat.id)
+        heartbeats.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+    }
+    if (!stopped && Clock::now() - start > std::chrono::milliseconds(500)) {
+      rig.writer->stopNow("test");
+      stopped = true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  ASSERT_EQ(heartbeats.size(), 3u);
+  EXPECT_NEAR(heartbeats[1] - heartbeats[0], 1.0, 0.05);
+  EXPECT_NEAR(heartbeats[2] - heartbeats[1], 1.0, 0.05);
+  // Heartbeat, stop (first tick), stop (stopNow), heartbeat, heartbeat: the commands did not add ticks.
+  EXPECT_EQ(sequence, (std::vector<int>{0, 1, 2, 3, 4}));
+  EXPECT_EQ(rig.sends(), 2u);
 }
 
 }  // namespace

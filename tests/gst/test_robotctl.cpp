@@ -9,16 +9,20 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "colortrack/mavlink.hpp"
 #include "gst_test_util.hpp"
+#include "udp_receiver.hpp"
 
 #include <glib/gstdio.h>
 #include <gst/app/gstappsrc.h>
@@ -782,6 +786,113 @@ GST_START_TEST(test_bad_settings_give_clear_errors) {
               std::string::npos);
   fail_unless(startError(src + "robotctl location=/nonexistent-dir/x").find("/nonexistent-dir/x") !=
               std::string::npos);
+  // MAVLink and UDP: each error names the property (and says what is wrong); none waits.
+  const std::string mavlink = src + "robotctl protocol=mavlink ";
+  for (const char *bad : {"udp://127.0.0.1", "udp://127.0.0.1:70000", "udp://127.0.0.1:0", "udp://:14550",
+                          "udp://::1:14550", "udp://nonexistent.invalid:14550"}) {
+    const std::string text = startError(mavlink + "location=" + bad);
+    fail_unless(text.find("'location'") != std::string::npos && text.find(bad) != std::string::npos, "%s",
+                text.c_str());
+  }
+  fail_unless(startError(mavlink + "location=udp://127.0.0.1:14550 system-id=0").find("'system-id'") !=
+              std::string::npos);
+  fail_unless(
+      startError(mavlink + "location=udp://127.0.0.1:14550 component-id=256").find("'component-id'") !=
+      std::string::npos);
+  fail_unless(startError(mavlink + "location=/dev/null target-system=300").find("'target-system'") !=
+              std::string::npos);
+  fail_unless(startError(mavlink + "location=/dev/null hfov=0").find("'hfov'") != std::string::npos);
+  fail_unless(startError(mavlink + "location=/dev/null hfov=180").find("'hfov'") != std::string::npos);
+}
+GST_END_TEST;
+
+// The MAVLink commands in `bytes` (a pty carries them like a serial link), heartbeats left out.
+std::vector<colortrack::mavlink::Frame> mavlinkCommands(const Bytes &bytes) {
+  std::vector<colortrack::mavlink::Frame> frames;
+  std::size_t at = 0, used = 0;
+  while (at < bytes.size()) {
+    const auto frame = colortrack::mavlink::parseFrame(bytes.data() + at, bytes.size() - at, &used);
+    fail_unless(frame.has_value(), "not a MAVLink frame at byte %zu", at);
+    if (frame->messageId != colortrack::mavlink::kHeartbeat.id) frames.push_back(*frame);
+    at += used;
+  }
+  return frames;
+}
+
+// Yaw rate and forward velocity (follow) or pitch rate (gimbal) of the last command in `bytes`.
+std::pair<float, float> lastRates(const Bytes &bytes) {
+  const std::vector<colortrack::mavlink::Frame> frames = mavlinkCommands(bytes);
+  fail_if(frames.empty(), "no MAVLink command");
+  const colortrack::mavlink::Frame &f = frames.back();
+  if (f.messageId == colortrack::mavlink::kGimbalManagerSetPitchyaw.id)
+    return {colortrack::mavlink::payloadFloat(f.payload, 16),
+            colortrack::mavlink::payloadFloat(f.payload, 12)};
+  return {colortrack::mavlink::payloadFloat(f.payload, 44), colortrack::mavlink::payloadFloat(f.payload, 16)};
+}
+
+// Every failsafe sends MAVLink's stop form (zero rates, zero velocity), over a serial-like link (a pty).
+GST_START_TEST(test_mavlink_stop_form_on_every_failsafe) {
+  for (const char *mode : {"gimbal", "follow"}) {
+    for (const char *failsafe : {"eos", "pause", "stalled", "lost"}) {
+      Ctl ctl(std::string("protocol=mavlink controller=proportional rate=50 lost-timeout=300 mavlink-mode=") +
+              mode);
+      Bytes bytes;
+      for (int i = 0; i < 4; ++i) bytes = ctl.decide({roi(kRight)});  // the slew limit ramps up
+      const auto moving = lastRates(bytes);
+      fail_unless(moving.first > 0, "%s: target right, yaw rate %g", mode, moving.first);
+      if (std::string(failsafe) == "eos")
+        fail_unless(gst_harness_push_event(ctl.h, gst_event_new_eos()));
+      else if (std::string(failsafe) == "pause")
+        gst_element_set_state(ctl.h->element, GST_STATE_PAUSED);
+      else if (std::string(failsafe) == "lost")
+        for (int i = 0; i < 12; ++i) ctl.decide({});  // 400 ms of stream time without a target
+      const auto stopped = lastRates(ctl.pty.readFor(std::string(failsafe) == "stalled" ? 500 : 100));
+      std::printf("mavlink %s, %s: yaw rate %g -> %g, %s %g -> %g\n", mode, failsafe, moving.first,
+                  stopped.first, std::string(mode) == "gimbal" ? "pitch rate" : "vx", moving.second,
+                  stopped.second);
+      fail_unless(stopped.first == 0 && stopped.second == 0, "%s, %s: not the stop form", mode, failsafe);
+    }
+  }
+}
+GST_END_TEST;
+
+// location=udp://HOST:PORT carries any protocol: here the text protocol, one datagram per command.
+GST_START_TEST(test_text_protocol_over_udp) {
+  colortrack::gst_test_util::UdpReceiver receiver;
+  fail_unless(receiver.port() > 0);
+  Ctl ctl("protocol=text rate=100 lost-timeout=5000", receiver.location());
+  ctl.decide({roi(kRight)});
+  const auto datagrams = receiver.drain();
+  fail_if(datagrams.empty(), "nothing received on %s", receiver.location().c_str());
+  for (const auto &d : datagrams) {
+    const std::string line(d.bytes.begin(), d.bytes.end());
+    fail_unless(line == "L=0 R=0\n" || line == "L=77 R=-77\n", "datagram \"%s\"", line.c_str());
+  }
+  const std::string last(datagrams.back().bytes.begin(), datagrams.back().bytes.end());
+  fail_unless_equals_string(last.c_str(), "L=77 R=-77\n");  // zone controller: right at max-angular 0.3
+}
+GST_END_TEST;
+
+// hfov NaN is refused by GLib's range check (a warning naming the property); 0 while running is refused by
+// robotctl with a warning naming it, keeping the old value.
+GST_START_TEST(test_bad_field_of_view_while_running) {
+  Ctl ctl("protocol=mavlink rate=100 hfov=70");
+  ctl.decide({roi(kRight)});
+  GstElement *element = gst_harness_find_element(ctl.h, "robotctl");
+  ASSERT_WARNING(g_object_set(element, "hfov", std::nan(""), nullptr));
+  g_object_set(element, "hfov", 0.0, nullptr);
+  gdouble hfov = 0;
+  g_object_get(element, "hfov", &hfov, nullptr);
+  fail_unless_equals_float(hfov, 70.0);
+  GstMessage *m = gst_bus_pop_filtered(ctl.bus, GST_MESSAGE_WARNING);
+  fail_unless(m != nullptr, "no warning for hfov=0");
+  GError *error = nullptr;
+  gst_message_parse_warning(m, &error, nullptr);
+  std::printf("hfov=0 while playing: warning \"%s\"\n", error->message);
+  fail_unless(std::string(error->message).find("'hfov'") != std::string::npos);
+  g_error_free(error);
+  gst_message_unref(m);
+  gst_object_unref(element);
 }
 GST_END_TEST;
 
@@ -808,6 +919,9 @@ Suite *robotctl_suite(void) {
   tcase_add_test(tc, test_follows_cvtracker);
   tcase_add_test(tc, test_message_fields);
   tcase_add_test(tc, test_bad_settings_give_clear_errors);
+  tcase_add_test(tc, test_bad_field_of_view_while_running);
+  tcase_add_test(tc, test_mavlink_stop_form_on_every_failsafe);
+  tcase_add_test(tc, test_text_protocol_over_udp);
   return s;
 }
 

@@ -64,10 +64,6 @@ double RobotSim::distanceForSizeCue(double cue) const {
   return 2 * focal_ * config_.ballRadius / (cue * config_.frameSize.height);
 }
 
-namespace {
-
-// A shaded red ball with a highlight, filling `box` (nothing when empty); sub-pixel centre (shift) so it
-// moves smoothly.
 void drawBall(cv::Mat &image, const cv::Rect2d &box) {
   if (box.empty()) return;
   constexpr int kShift = 4;
@@ -81,8 +77,6 @@ void drawBall(cv::Mat &image, const cv::Rect2d &box) {
   cv::circle(image, centre - cv::Point(cvRound(radius * 0.35 * scale), cvRound(radius * 0.35 * scale)),
              cvRound(radius * 0.25 * scale), cv::Scalar(120, 120, 245), cv::FILLED, cv::LINE_AA, kShift);
 }
-
-}  // namespace
 
 cv::Mat RobotSim::render() const {
   const cv::Size size = config_.frameSize;

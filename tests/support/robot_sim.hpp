@@ -78,6 +78,10 @@ class RobotSim {
   bool hidden_ = false;
 };
 
+// A shaded red ball with a highlight, filling `box` (nothing when empty); sub-pixel centre (shift) so it
+// moves smoothly. The simulators' target.
+void drawBall(cv::Mat &image, const cv::Rect2d &box);
+
 // One decoded command: wheel speeds in [-1, 1] (and the character of zone-char).
 struct WheelCommand {
   char zone = 0;

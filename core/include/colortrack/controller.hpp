@@ -3,9 +3,11 @@
 // behaviour is exactly reproducible in tests.
 //
 // Conventions: the horizontal offset is (target centre - frame centre) / (frame width / 2), in [-1, 1],
-// positive when the target is right of centre. Outputs are fractions of full scale in [-1, 1]: linear > 0
-// drives forward, angular > 0 turns left (counter-clockwise seen from above), and the wheel speeds are
-// left = linear - angular, right = linear + angular (scaled down together if either exceeds 1).
+// positive when the target is right of centre; the vertical offset is measured in the same unit (half the
+// frame width, so both are the same angle per unit with square pixels), positive when the target is below.
+// Outputs are fractions of full scale in [-1, 1]: linear > 0 drives forward, angular > 0 turns left
+// (counter-clockwise seen from above), and the wheel speeds are left = linear - angular, right = linear +
+// angular (scaled down together if either exceeds 1).
 #pragma once
 
 #include <optional>
@@ -24,6 +26,10 @@ const char *toString(DriveCommand command);
 enum class ControllerKind { Zone, Proportional };
 const char *toString(ControllerKind kind);
 
+// What the proportional controller moves: a base that turns and drives (a robot, a drone), or a camera that
+// pans and tilts (a gimbal: the turn's gains also tilt, nothing drives).
+enum class ControlAxes { TurnDrive, PanTilt };
+
 // What says how far away the target is.
 enum class DistanceCue {
   Size,      // box height / frame height: a closer target looks bigger
@@ -41,6 +47,7 @@ struct Observation {
 
 struct ControllerSettings {
   ControllerKind kind = ControllerKind::Zone;
+  ControlAxes axes = ControlAxes::TurnDrive;  // PanTilt: always proportional, whatever `kind` says
   DistanceCue distanceCue = DistanceCue::Size;
   double setPoint = 0.3;          // wanted distance cue (fraction of the frame height)
   double turnDeadband = 0.1;      // |offset| below which the target counts as centred
@@ -78,12 +85,17 @@ struct FailsafeSettings {
 struct DriveOutput {
   DriveCommand command = DriveCommand::Stop;
   double linear = 0, angular = 0;
+  double tilt = 0;  // PanTilt: > 0 tilts up (the command names the pan alone)
   double left = 0, right = 0;
   bool targetVisible = false;  // a confirmed target drove this decision
 };
 
+// Nothing moves: stop, and no tilt either.
+bool isStill(const DriveOutput &output);
+
 // Horizontal offset and relative distance error of a box (see the conventions above); error > 0 = too far.
 double horizontalOffset(const cv::Rect2d &box, cv::Size frame);
+double verticalOffset(const cv::Rect2d &box, cv::Size frame);
 double distanceCue(const cv::Rect2d &box, cv::Size frame, DistanceCue cue);
 double distanceError(const cv::Rect2d &box, cv::Size frame, DistanceCue cue, double setPoint);
 
@@ -91,6 +103,7 @@ double distanceError(const cv::Rect2d &box, cv::Size frame, DistanceCue cue, dou
 struct Errors {
   double offset = 0, distance = 0;
   double offsetRate = 0, distanceRate = 0;
+  double vertical = 0, verticalRate = 0;  // the vertical offset (PanTilt)
 };
 
 // Wheel speeds from linear/angular, scaled down together so neither exceeds 1 (the turn is kept).
@@ -147,14 +160,15 @@ class PiAxis {
 };
 
 // The control law: angular = -(turn terms on the offset), linear = drive terms on the distance error,
-// clamped to the limits and slew-limited (see PiAxis).
+// clamped to the limits and slew-limited (see PiAxis). PanTilt: tilt = -(turn terms on the vertical
+// offset) instead of the drive.
 class ProportionalController {
  public:
   explicit ProportionalController(const ControllerSettings &settings) : settings_(settings) {}
   // dt: seconds since the previous update (the slew limit allows accel * dt of change).
   DriveOutput update(const Errors &errors, double dt);
   // Starts again from standstill (after a stop, the slew limit ramps up from zero, integrators empty).
-  void reset() { turn_.reset(), drive_.reset(); }
+  void reset() { turn_.reset(), drive_.reset(), tilt_.reset(); }
   // New gains and limits from the next update; the current speeds and integrators are kept.
   void setSettings(const ControllerSettings &settings) { settings_ = settings; }
   const PiAxis &turnAxis() const { return turn_; }
@@ -162,7 +176,7 @@ class ProportionalController {
 
  private:
   ControllerSettings settings_;
-  PiAxis turn_, drive_;
+  PiAxis turn_, drive_, tilt_;
 };
 
 // No-target timing, from given times: has there been a confirmed target within the timeout?
@@ -190,7 +204,7 @@ class RobotController {
   RobotController(const ControllerSettings &controller, const FailsafeSettings &failsafe);
   // New settings from the next update, keeping the dynamic state: the slew-limited speeds, the zones, the
   // last decision and when the target was last confirmed (a held command stays held). A change of
-  // `controller.kind` starts both controllers from standstill (the idle one's state is stale).
+  // `controller.kind` or `axes` starts both controllers from standstill (the idle one's state is stale).
   void setSettings(const ControllerSettings &controller, const FailsafeSettings &failsafe);
   DriveOutput update(const Observation &observation);
   bool confirmed(const Observation &observation) const;

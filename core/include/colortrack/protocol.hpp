@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "colortrack/controller.hpp"
+#include "colortrack/mavlink.hpp"
 
 namespace colortrack {
 
@@ -15,7 +16,26 @@ enum class Protocol {
   ZoneChar,  // one byte per command: the command's character
   Text,      // "L=<int> R=<int>\n", wheel speeds scaled by outputScale
   Binary,    // framed packet: start byte, sequence, length, payload, CRC-8
+  Mavlink,   // MAVLink 2 (see MavlinkSettings), with a heartbeat
 };
+
+// What the MAVLink commands drive.
+enum class MavlinkMode {
+  Gimbal,  // GIMBAL_MANAGER_SET_PITCHYAW: pitch and yaw rates (DriveOutput tilt and angular)
+  Follow,  // SET_POSITION_TARGET_LOCAL_NED, body frame: forward velocity and yaw rate (linear and angular)
+};
+
+struct MavlinkSettings {
+  MavlinkMode mode = MavlinkMode::Gimbal;
+  std::uint8_t systemId = 1, componentId = 191;        // ours: an onboard computer's usual ids
+  std::uint8_t targetSystem = 1, targetComponent = 1;  // the autopilot (also the usual gimbal manager)
+  // rad/s at angular (or tilt) 1.0: tan(hfov / 2), the rate at which a target near the centre crosses half
+  // the frame width per second (mavlinkRateScale), so a turn gain means the same whatever the lens.
+  double rateScale = 0.57735;
+  double speedScale = 1.0;  // m/s at linear 1.0
+};
+// tan(hfov / 2) for a horizontal field of view in degrees.
+double mavlinkRateScale(double hfovDegrees);
 
 // Characters for stop, forward, backward, left, right, in the order of the `zone-chars` text "FBLRS".
 struct ZoneChars {
@@ -30,6 +50,7 @@ struct ProtocolSettings {
   Protocol protocol = Protocol::ZoneChar;
   ZoneChars zoneChars;
   int outputScale = 255;  // wheel speed 1.0 in the text and binary protocols
+  MavlinkSettings mavlink;
 };
 
 namespace binary {
@@ -61,11 +82,15 @@ class ProtocolEncoder {
   const ProtocolSettings &settings() const { return settings_; }
 
   // The bytes of one command. The binary protocol numbers its packets (wrapping at 256) so a receiver can
-  // tell lost packets; every call is one packet.
+  // tell lost packets; every call is one packet (MAVLink: one frame, numbered with the heartbeats).
   std::vector<std::uint8_t> encode(const DriveOutput &output);
+  // What the protocol sends once a second whatever the commands (MAVLink's HEARTBEAT); empty for the others.
+  std::vector<std::uint8_t> heartbeat();
+  bool hasHeartbeat() const { return settings_.protocol == Protocol::Mavlink; }
   std::uint8_t nextSequence() const { return sequence_; }
 
  private:
+  std::vector<std::uint8_t> encodeMavlink(const DriveOutput &output);
   ProtocolSettings settings_;
   std::uint8_t sequence_ = 0;
 };

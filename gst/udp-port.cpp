@@ -1,0 +1,129 @@
+#include "udp-port.h"
+
+#include <gio/gio.h>
+
+#include <cstdlib>
+
+namespace robotctl {
+
+namespace {
+
+bool fail(GError *error, std::string &why) {
+  why = error ? error->message : "unknown error";
+  g_clear_error(&error);
+  return false;
+}
+
+}  // namespace
+
+bool isUdpLocation(const std::string &location) {
+  return location.rfind(kUdpScheme, 0) == 0;
+}
+
+std::optional<UdpEndpoint> parseUdpLocation(const std::string &location, std::string &why) {
+  const std::string rest = location.substr(std::string(kUdpScheme).size());
+  UdpEndpoint endpoint;
+  std::string port;
+  if (!rest.empty() && rest[0] == '[') {
+    const std::size_t close = rest.find(']');
+    if (close == std::string::npos || close + 1 >= rest.size() || rest[close + 1] != ':') {
+      why = "expected udp://[IPV6-ADDRESS]:PORT";
+      return std::nullopt;
+    }
+    endpoint.host = rest.substr(1, close - 1);
+    port = rest.substr(close + 2);
+  } else {
+    const std::size_t colon = rest.rfind(':');
+    if (colon == std::string::npos) {
+      why = "expected udp://HOST:PORT (e.g. udp://127.0.0.1:14550): no port";
+      return std::nullopt;
+    }
+    endpoint.host = rest.substr(0, colon);
+    port = rest.substr(colon + 1);
+    if (endpoint.host.find(':') != std::string::npos) {
+      why = "an IPv6 address goes in brackets: udp://[ADDRESS]:PORT";
+      return std::nullopt;
+    }
+  }
+  if (endpoint.host.empty()) {
+    why = "expected udp://HOST:PORT: no host";
+    return std::nullopt;
+  }
+  if (port.empty() || port.size() > 5 || port.find_first_not_of("0123456789") != std::string::npos ||
+      std::atoi(port.c_str()) < 1 || std::atoi(port.c_str()) > 65535) {
+    why = "the port '" + port + "' is not a number from 1 to 65535";
+    return std::nullopt;
+  }
+  endpoint.port = static_cast<std::uint16_t>(std::atoi(port.c_str()));
+  return endpoint;
+}
+
+bool UdpPort::open(std::string &why) {
+  const std::optional<UdpEndpoint> endpoint = parseUdpLocation(location_, why);
+  if (!endpoint) return false;
+  GError *error = nullptr;
+  GSocketConnectable *connectable = g_network_address_new(endpoint->host.c_str(), endpoint->port);
+  GSocketAddressEnumerator *addresses = g_socket_connectable_enumerate(connectable);
+  GSocketAddress *address = g_socket_address_enumerator_next(addresses, nullptr, &error);
+  g_object_unref(addresses);
+  g_object_unref(connectable);
+  if (!address) {
+    if (!error) why = "the host '" + endpoint->host + "' has no address";
+    return error ? fail(error, why) : false;
+  }
+  // A throwaway connected socket asks the kernel for a route without sending anything: a host nothing leads
+  // to is an error now, not datagrams silently dropped later.
+  GSocket *probe = g_socket_new(g_socket_address_get_family(address), G_SOCKET_TYPE_DATAGRAM,
+                                G_SOCKET_PROTOCOL_UDP, &error);
+  const bool routed = probe && g_socket_connect(probe, address, nullptr, &error);
+  if (probe) g_object_unref(probe);
+  if (!routed) {
+    g_object_unref(address);
+    return fail(error, why);
+  }
+  socket_ = g_socket_new(g_socket_address_get_family(address), G_SOCKET_TYPE_DATAGRAM, G_SOCKET_PROTOCOL_UDP,
+                         &error);
+  if (!socket_) {
+    g_object_unref(address);
+    return fail(error, why);
+  }
+  g_socket_set_blocking(socket_, FALSE);
+  address_ = address;
+  return true;
+}
+
+void UdpPort::close() {
+  if (socket_) g_object_unref(socket_);
+  if (address_) g_object_unref(address_);
+  socket_ = nullptr;
+  address_ = nullptr;
+}
+
+WriteResult UdpPort::write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::size_t &written,
+                           std::string &why) {
+  written = 0;
+  const gchar *data = reinterpret_cast<const gchar *>(bytes.data());
+  GError *error = nullptr;
+  gssize sent = g_socket_send_to(socket_, address_, data, bytes.size(), nullptr, &error);
+  if (sent < 0 && g_error_matches(error, G_IO_ERROR, G_IO_ERROR_WOULD_BLOCK)) {
+    // The send buffer is full: wait for room, at most the write's timeout.
+    g_clear_error(&error);
+    if (!g_socket_condition_timed_wait(socket_, G_IO_OUT, static_cast<gint64>(timeoutMs) * 1000, nullptr,
+                                       nullptr))
+      return WriteResult::Busy;
+    sent = g_socket_send_to(socket_, address_, data, bytes.size(), nullptr, &error);
+    if (sent < 0 && g_error_matches(error, G_IO_ERROR, G_IO_ERROR_WOULD_BLOCK)) {
+      g_clear_error(&error);
+      return WriteResult::Busy;
+    }
+  }
+  if (sent < 0) {
+    fail(error, why);
+    return WriteResult::Failed;
+  }
+  // A datagram goes whole or not at all.
+  written = static_cast<std::size_t>(sent);
+  return WriteResult::Written;
+}
+
+}  // namespace robotctl

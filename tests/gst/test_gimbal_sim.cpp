@@ -1,0 +1,168 @@
+// Closed loop through MAVLink: a simulated camera on a rate-limited two-axis gimbal (tests/support/
+// gimbal_sim.hpp) renders its view, appsrc ! colortrack ! robotctl protocol=mavlink mavlink-mode=gimbal
+// sends GIMBAL_MANAGER_SET_PITCHYAW to a UDP socket on loopback, and the test turns the gimbal at the rates
+// it reads (decoded with core's parser: the frames' bytes are checked against node-mavlink elsewhere).
+//
+// Centring: the ball starts 15 degrees off the camera's axis (12 right, 9 up); frame by frame (each pushed,
+// then the test waits for the command decided on it, so the loop does not depend on the machine's speed),
+// it must be within 1 degree by frame 60 at 30 fps and stay there. Vanishing: then in real time, the ball
+// drifts right at 5 deg/s for a second (the gimbal follows it: rates not zero), disappears, and zero rates
+// must arrive within lost-timeout + 100 ms (the last rates are held until lost-timeout, as for a robot). The
+// figures are printed
+// (`meson test -C build gst-gimbal-sim -v`).
+// C++ headers first: gstcheck.h defines macros (fail, ...) that clash with names in the standard library.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "colortrack/mavlink.hpp"
+#include "gimbal_sim.hpp"
+#include "gst_test_util.hpp"
+#include "udp_receiver.hpp"
+
+#include <gst/app/gstappsrc.h>
+#include <gst/check/gstcheck.h>
+
+namespace {
+
+using colortrack::gimbal_sim::GimbalSim;
+using colortrack::gimbal_sim::GimbalSimConfig;
+using colortrack::gst_test_util::bgrBuffer;
+using colortrack::gst_test_util::kFps;
+using colortrack::gst_test_util::UdpReceiver;
+using colortrack::gst_test_util::waitForCommandOf;
+namespace mavlink = colortrack::mavlink;
+
+constexpr int kCentreWithin = 60;      // frames
+constexpr double kCentred = 1.0;       // degrees
+constexpr guint kLostTimeoutMs = 500;  // robotctl's default
+
+struct Rates {
+  double pitch = 0, yaw = 0;  // rad/s
+};
+
+// The last GIMBAL_MANAGER_SET_PITCHYAW of the datagrams (heartbeats skipped); every frame must parse.
+std::optional<Rates> lastRates(const std::vector<colortrack::node_mavlink::Datagram> &datagrams) {
+  std::optional<Rates> rates;
+  for (const auto &d : datagrams) {
+    const std::optional<mavlink::Frame> frame = mavlink::parseFrame(d.bytes.data(), d.bytes.size());
+    fail_unless(frame.has_value(), "a datagram that is no valid MAVLink frame");
+    if (frame->messageId != mavlink::kGimbalManagerSetPitchyaw.id) continue;
+    rates = Rates{mavlink::payloadFloat(frame->payload, 12), mavlink::payloadFloat(frame->payload, 16)};
+  }
+  return rates;
+}
+
+GST_START_TEST(test_gimbal_centres_the_target_and_stops_when_it_vanishes) {
+  UdpReceiver receiver;
+  fail_unless(receiver.port() > 0);
+  GimbalSimConfig config;
+  config.targetAzimuth = 12;
+  config.targetElevation = 9;
+  GimbalSim gimbal(config);
+  std::printf("start: %.2f degrees off the axis\n", gimbal.errorDegrees());
+  fail_unless(std::abs(gimbal.errorDegrees() - 15) < 0.1);
+
+  const cv::Rect2d first = gimbal.targetBox();
+  // A gimbal's gains: a turn of 1.0 is tan(hfov/2) rad/s (33 deg/s here); turn-gain 3 centres with a time
+  // constant of a third of a second. rate=200: every frame's decision is out before the next frame.
+  char launch[1024];
+  std::snprintf(
+      launch, sizeof launch,
+      "appsrc name=src format=time caps=video/x-raw,format=BGR,width=%d,height=%d,framerate=%d/1 ! "
+      "colortrack mode=threshold init-box=%d,%d,%d,%d draw=0 ! "
+      "robotctl name=ctl location=%s sync=false post-messages=true rate=200 protocol=mavlink "
+      "mavlink-mode=gimbal hfov=%g turn-gain=3 max-angular=1 max-angular-accel=20 turn-deadband=0.05 "
+      "lost-timeout=%u",
+      config.frameSize.width, config.frameSize.height, kFps, cvRound(first.x), cvRound(first.y),
+      cvRound(first.width), cvRound(first.height), receiver.location().c_str(), config.horizontalFovDegrees,
+      kLostTimeoutMs);
+  GError *error = nullptr;
+  GstElement *pipeline = gst_parse_launch(launch, &error);
+  fail_unless(pipeline != nullptr, "%s", error ? error->message : "");
+  GstElement *src = gst_bin_get_by_name(GST_BIN(pipeline), "src");
+  GstBus *bus = gst_element_get_bus(pipeline);
+  fail_unless(gst_element_set_state(pipeline, GST_STATE_PLAYING) != GST_STATE_CHANGE_FAILURE);
+
+  // Centring, frame by frame.
+  const double dt = 1.0 / kFps;
+  int frame = 0, centredAt = -1;
+  Rates rates;
+  for (; frame <= kCentreWithin + 30; ++frame) {
+    fail_unless(gst_app_src_push_buffer(GST_APP_SRC(src), bgrBuffer(gimbal.render(), frame)) == GST_FLOW_OK);
+    waitForCommandOf(bus, gst_util_uint64_scale_int(frame, GST_SECOND, kFps));
+    const std::optional<Rates> received = lastRates(receiver.drain());
+    fail_unless(received.has_value(), "frame %d: no GIMBAL_MANAGER_SET_PITCHYAW", frame);
+    rates = *received;
+    gimbal.turn(rates.pitch, rates.yaw, dt);
+    const double error = gimbal.errorDegrees();
+    if (frame % 10 == 0)
+      std::printf("frame %2d: error %.2f deg (yaw %.2f, pitch %.2f), rates pitch %+.3f yaw %+.3f rad/s\n",
+                  frame, error, gimbal.yawDegrees(), gimbal.pitchDegrees(), rates.pitch, rates.yaw);
+    if (error < kCentred && centredAt < 0) centredAt = frame;
+    if (error >= kCentred) centredAt = -1;  // must stay centred
+  }
+  std::printf("centred (< %.0f degree) from frame %d on; final error %.2f degrees\n", kCentred, centredAt,
+              gimbal.errorDegrees());
+  fail_unless(centredAt >= 0 && centredAt <= kCentreWithin, "centred from frame %d", centredAt);
+
+  // Following a drifting ball, then vanishing, in real time.
+  constexpr int kDriftFrames = kFps;
+  gimbal.setTargetAzimuthRate(5);
+  const double start = UdpReceiver::now();
+  double hiddenAt = 0, stoppedAfter = -1;
+  Rates atLoss;
+  for (int i = 0; i < kDriftFrames + 40 && stoppedAfter < 0; ++i, ++frame) {
+    if (i == kDriftFrames) {
+      gimbal.setTargetHidden(true);
+      hiddenAt = UdpReceiver::now();
+      atLoss = rates;
+    }
+    fail_unless(gst_app_src_push_buffer(GST_APP_SRC(src), bgrBuffer(gimbal.render(), frame)) == GST_FLOW_OK);
+    while (UdpReceiver::now() - start < (i + 1.0) * dt && stoppedAfter < 0) {
+      for (const auto &d : receiver.drain()) {
+        const std::optional<Rates> r = lastRates({d});
+        if (!r) continue;
+        rates = *r;
+        if (i >= kDriftFrames && r->pitch == 0 && r->yaw == 0) {
+          stoppedAfter = d.time - hiddenAt;
+          break;
+        }
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    gimbal.turn(rates.pitch, rates.yaw, dt);
+    gimbal.moveTarget(dt);
+  }
+  std::printf(
+      "following at 5 deg/s: yaw rate %.3f rad/s when the target vanished; zero rates %.0f ms later "
+      "(lost-timeout %u ms)\n",
+      atLoss.yaw, stoppedAfter * 1000, kLostTimeoutMs);
+  fail_unless(atLoss.yaw > 0.03, "not following the drifting target: yaw rate %.3f rad/s", atLoss.yaw);
+  fail_unless(stoppedAfter >= 0 && stoppedAfter < kLostTimeoutMs / 1000.0 + 0.1, "stopped after %.3f s",
+              stoppedAfter);
+
+  gst_element_set_state(pipeline, GST_STATE_NULL);
+  gst_object_unref(bus);
+  gst_object_unref(src);
+  gst_object_unref(pipeline);
+}
+GST_END_TEST;
+
+Suite *gimbal_sim_suite(void) {
+  Suite *s = suite_create("gimbal-sim");
+  TCase *tc = tcase_create("general");
+  suite_add_tcase(s, tc);
+  tcase_add_test(tc, test_gimbal_centres_the_target_and_stops_when_it_vanishes);
+  return s;
+}
+
+}  // namespace
+
+GST_CHECK_MAIN(gimbal_sim);
