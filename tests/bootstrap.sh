@@ -32,7 +32,7 @@ demo_packages=(
 test_packages=(
   gstreamer1.0-tools gstreamer1.0-plugins-bad gstreamer1.0-opencv libgtest-dev libgstrtspserver-1.0-dev
   python3-gi gir1.2-gstreamer-1.0 gir1.2-gst-plugins-base-1.0 mosquitto openssl python3-paho-mqtt
-  nodejs npm
+  nodejs
 )
 packages=("${demo_packages[@]}")
 [ "$mode" = demo ] || packages+=("${test_packages[@]}")
@@ -68,6 +68,11 @@ fi
 
 # node-mavlink, pinned by tests/mavlink/package-lock.json: the MAVLink tests check robotctl's frames against
 # it. Installed once (npm ci); the tests report "skipped" where it is missing.
+# npm comes with Node.js packaged elsewhere (NodeSource's nodejs conflicts with Debian's npm package), so
+# Debian's npm is installed only when there is no npm at all.
+if [ "$mode" = all ] && ! command -v npm >/dev/null; then
+  install_missing npm
+fi
 if [ "$mode" = all ] && [ ! -d tests/mavlink/node_modules/node-mavlink ]; then
   echo "== installing node-mavlink for the MAVLink tests (npm ci in tests/mavlink)"
   (cd tests/mavlink && npm ci --no-audit --no-fund)
