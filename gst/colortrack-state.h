@@ -8,6 +8,7 @@
 
 #include <gst/gst.h>
 
+#include "colortrack/scratch_image.hpp"
 #include "colortrack/threshold_tracker.hpp"
 #include "colortrack/tracker.hpp"
 #include "analytics-meta.h"
@@ -27,6 +28,7 @@ struct Snapshot : Settings {
 // What the streaming thread owns (and start()/stop(), which never run concurrently with it).
 struct State {
   std::unique_ptr<colortrack::Tracker> templateTracker;
+  colortrack::ScratchImage frameCache;  // the frame view's converted pixels, kept from frame to frame
   std::unique_ptr<colortrack::ThresholdTracker> thresholdTracker;
   guint64 appliedTrackerGeneration = 0;
   guint64 appliedTemplateGeneration = 0;

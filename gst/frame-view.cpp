@@ -2,6 +2,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "colortrack/scratch_image.hpp"
+
 namespace colortrack_gst {
 
 bool isSupportedFormat(GstVideoFormat format) {
@@ -41,10 +43,11 @@ cv::Mat planeMat(const GstVideoFrame *frame, int plane, cv::Size size, int type)
                  static_cast<size_t>(GST_VIDEO_FRAME_PLANE_STRIDE(frame, plane)));
 }
 
-FrameView::FrameView(const GstVideoFrame *frame)
+FrameView::FrameView(const GstVideoFrame *frame, colortrack::ScratchImage *cacheStorage)
     : frame_(frame),
       format_(GST_VIDEO_FRAME_FORMAT(frame)),
-      size_(GST_VIDEO_FRAME_WIDTH(frame), GST_VIDEO_FRAME_HEIGHT(frame)) {
+      size_(GST_VIDEO_FRAME_WIDTH(frame), GST_VIDEO_FRAME_HEIGHT(frame)),
+      cacheStorage_(cacheStorage) {
   if (GST_VIDEO_FORMAT_INFO_IS_RGB(frame->info.finfo)) packed_ = packedLayout(frame->info.finfo);
 }
 
@@ -106,6 +109,7 @@ void FrameView::bgr(const cv::Rect &rect, cv::Mat &out) const {
   convert(rect, out);
   const std::lock_guard<std::mutex> lock(cacheMutex_);
   if (rect.area() > cachedRect_.area()) {
+    if (cacheStorage_) cached_ = cacheStorage_->view(out.size(), out.type());
     out.copyTo(cached_);
     cachedRect_ = rect;
   }
@@ -164,7 +168,8 @@ void FrameView::sampledBgr(const cv::Rect &rect, int step, cv::Mat &out) const {
   // YUV: gather every step-th luma pixel and the chroma sample under it into a small I420 image, then let
   // OpenCV convert that, so the sample goes through the very matrix bgr() uses (cvtColor's BT.601 I420).
   const cv::Size even(target.width + (target.width & 1), target.height + (target.height & 1));
-  cv::Mat yuv(even.height * 3 / 2, even.width, CV_8UC1);
+  thread_local colortrack::ScratchImage yuvScratch, convertedScratch;  // kept across frames, see scratch_image.hpp
+  cv::Mat yuv = yuvScratch.view(cv::Size(even.width, even.height * 3 / 2), CV_8UC1);
   uchar *uOut = yuv.ptr(even.height), *vOut = uOut + even.area() / 4;
   const int maxX = size_.width - 1, maxY = size_.height - 1;
   auto lumaX = [&](int i) { return std::min(rect.x + i * step, maxX); };
@@ -207,7 +212,7 @@ void FrameView::sampledBgr(const cv::Rect &rect, int step, cv::Mat &out) const {
       }
     }
   }
-  cv::Mat converted;
+  cv::Mat converted = convertedScratch.view(even, CV_8UC3);
   cv::cvtColor(yuv, converted, cv::COLOR_YUV2BGR_I420);
   converted(cv::Rect(cv::Point(), target)).copyTo(out);
 }
@@ -220,7 +225,8 @@ void FrameView::planarToBgr(const cv::Rect &rect, cv::Mat &out) const {
   const cv::Size chromaSize((size_.width + 1) / 2, (size_.height + 1) / 2);
 
   // cvtColor wants the planes back to back: h luma rows, then the chroma (U then V, or interleaved UV).
-  cv::Mat yuv(h + h / 2, w, CV_8UC1);
+  thread_local colortrack::ScratchImage yuvScratch, fullScratch;  // kept across frames, see scratch_image.hpp
+  cv::Mat yuv = yuvScratch.view(cv::Size(w, h + h / 2), CV_8UC1);
   cv::Mat lumaOut = yuv.rowRange(0, h);
   // With an odd frame width or height the grown rect can run one pixel past the luma plane (never past
   // the chroma plane, which is ceil(size / 2)): replicate the last row/column into it.
@@ -248,7 +254,7 @@ void FrameView::planarToBgr(const cv::Rect &rect, cv::Mat &out) const {
   if (w == rect.width && h == rect.height) {
     cv::cvtColor(yuv, out, code);
   } else {
-    cv::Mat full;
+    cv::Mat full = fullScratch.view(cv::Size(w, h), CV_8UC3);
     cv::cvtColor(yuv, full, code);
     full(cv::Rect(rect.x - x0, rect.y - y0, rect.width, rect.height)).copyTo(out);
   }

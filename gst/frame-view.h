@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 
 #include "colortrack/image_source.hpp"
+#include "colortrack/scratch_image.hpp"
 
 namespace colortrack_gst {
 
@@ -38,8 +39,10 @@ cv::Mat planeMat(const GstVideoFrame *frame, int plane, cv::Size size, int type)
 // absorbs it.)
 class FrameView : public colortrack::ImageSource {
  public:
-  // `frame` must stay mapped for the lifetime of the view.
-  explicit FrameView(const GstVideoFrame *frame);
+  // `frame` must stay mapped for the lifetime of the view. `cacheStorage`, if given, holds the cache of
+  // converted pixels (below) and keeps its memory for the next frame's view; it belongs to one element, which
+  // makes one view at a time.
+  explicit FrameView(const GstVideoFrame *frame, colortrack::ScratchImage *cacheStorage = nullptr);
 
   cv::Size size() const override { return size_; }
   void bgr(const cv::Rect &rect, cv::Mat &out) const override;
@@ -63,7 +66,8 @@ class FrameView : public colortrack::ImageSource {
   // The largest region converted so far, for the regions inside it (the tracker may read from two threads).
   mutable std::mutex cacheMutex_;
   mutable cv::Rect cachedRect_;
-  mutable cv::Mat cached_;
+  mutable cv::Mat cached_;  // in *cacheStorage_ when there is one
+  colortrack::ScratchImage *cacheStorage_;
 };
 
 }  // namespace colortrack_gst

@@ -413,7 +413,7 @@ static void report_frame(GstColorTrack *self, GstVideoFrame *frame, const Snapsh
 static GstFlowReturn track_frame(GstColorTrack *self, GstVideoFrame *frame, const Snapshot &snapshot,
                                  const colortrack_gst::Requests &requests, guint64 frameNumber, double dt) {
   State &state = stateOf(self);
-  const colortrack_gst::FrameView view(frame);
+  const colortrack_gst::FrameView view(frame, &state.frameCache);
   const bool threshold = snapshot.mode == GST_COLOR_TRACK_MODE_THRESHOLD;
   const bool prepared = threshold ? colortrack_gst::prepareThresholdFrame(self, snapshot, requests, view)
                                   : colortrack_gst::prepareTemplateFrame(self, snapshot, requests, view);

@@ -36,11 +36,16 @@ inline void vote(float magnitude, float angle, Bin *bins, int stride = 1) {
 // [-1 0 1] gradients (the border repeated) as magnitude and angle in degrees, the whole patch at once:
 // cartToPolar is vectorised (angle error ~0.3 degrees), where a per-pixel fastAtan2 call cost a fifth of the
 // feature time.
-void orientedGradients(const cv::Mat &gray, cv::Mat &magnitude, cv::Mat &angle) {
-  thread_local cv::Mat dx, dy;
-  cv::Sobel(gray, dx, CV_32F, 1, 0, 1, 1, 0, cv::BORDER_REPLICATE);
-  cv::Sobel(gray, dy, CV_32F, 0, 1, 1, 1, 0, cv::BORDER_REPLICATE);
-  cv::cartToPolar(dx, dy, magnitude, angle, true);
+// Each caller keeps its own buffers (one set per call site and thread): shared, they would be resized between
+// the window's size and the scale region's every frame.
+struct Gradients {
+  cv::Mat dx, dy, magnitude, angle;
+};
+
+void orientedGradients(const cv::Mat &gray, Gradients &g) {
+  cv::Sobel(gray, g.dx, CV_32F, 1, 0, 1, 1, 0, cv::BORDER_REPLICATE);
+  cv::Sobel(gray, g.dy, CV_32F, 0, 1, 1, 1, 0, cv::BORDER_REPLICATE);
+  cv::cartToPolar(g.dx, g.dy, g.magnitude, g.angle, true);
 }
 
 // From raw orientation histograms (planar: row o holds orientation o of every cell, cells in row order) and
@@ -148,8 +153,10 @@ void normaliseCells(const cv::Mat &hist, const cv::Mat &intensity, std::vector<c
 void cellFeatures(const cv::Mat &gray, int cell, std::vector<cv::Mat> &channels) {
   CV_Assert(gray.type() == CV_32FC1 && cell >= 1);
   const int cw = gray.cols / cell, ch = gray.rows / cell;
-  thread_local cv::Mat hist, intensity, magnitude, angle;
-  orientedGradients(gray, magnitude, angle);
+  thread_local cv::Mat hist, intensity;
+  thread_local Gradients gradients;
+  orientedGradients(gray, gradients);
+  const cv::Mat &magnitude = gradients.magnitude, &angle = gradients.angle;
   hist.create(kOrientations, ch * cw, CV_32F);
   hist.setTo(0);
   const int plane = ch * cw;
@@ -175,8 +182,9 @@ void CellFeatureIntegral::build(const cv::Mat &gray) {
   cv::parallel_for_(
       cv::Range(0, gray.rows),
       [&](const cv::Range &rows) {
-        thread_local cv::Mat magnitude, angle;
-        orientedGradients(gray.rowRange(rows.start, rows.end), magnitude, angle);
+        thread_local Gradients gradients;
+        orientedGradients(gray.rowRange(rows.start, rows.end), gradients);
+        const cv::Mat &magnitude = gradients.magnitude, &angle = gradients.angle;
         for (int y = rows.start; y < rows.end; ++y) {
           double *here = &sums_[(y + 1) * rowLength];
           std::fill(here, here + stride, 0.0);

@@ -77,8 +77,8 @@ void FusedDetector::readWindow(const ImageSource &frame, cv::Point2d centre, cv:
                         window.height);
   sampler_.load(frame, rect, PatchSampler::stepFor(window, window_));
   windowRect_ = sampler_.extract(rect, window_, patch_);
-  cv::cvtColor(patch_, gray_, cv::COLOR_BGR2GRAY);
-  gray_.convertTo(gray_, CV_32F, 1.0 / 255);
+  cv::cvtColor(patch_, grayBytes_, cv::COLOR_BGR2GRAY);
+  grayBytes_.convertTo(gray_, CV_32F, 1.0 / 255);
 }
 
 void FusedDetector::scaleSamples(const ImageSource &frame, cv::Point2d centre, cv::Size2d size) {
@@ -198,12 +198,18 @@ std::vector<cv::Point2d> FusedDetector::colourCandidates(const ImageSource &fram
   if (likelihood.empty()) return out;
   const cv::Size frameSize = frame.size();
   const int f = std::max(1, static_cast<int>(std::min(size.width, size.height) / kCandidateSide));
-  frame.sampledBgr(cv::Rect(cv::Point(), frameSize), f, reduced_);
-  colors.map(reduced_, bins_);
-  likelihood.map(BinImage{bins_, cv::Point()}, probability_);
+  const cv::Rect frameRect(cv::Point(), frameSize);
+  // The whole frame at a step that changes with the size tried: views of buffers kept for this.
+  const cv::Size reducedSize = sampledSize(frameRect, f);
+  cv::Mat reduced = candidateScratch_[0].view(reducedSize, CV_8UC3);
+  cv::Mat bins = candidateScratch_[1].view(reducedSize, CV_8UC3);
+  cv::Mat probability = candidateScratch_[2].view(reducedSize, CV_32FC1);
+  cv::Mat mean = candidateScratch_[3].view(reducedSize, CV_32FC1);
+  frame.sampledBgr(frameRect, f, reduced);
+  colors.map(reduced, bins);
+  likelihood.map(BinImage{bins, cv::Point()}, probability);
   const cv::Size window(std::max(1, cvRound(size.width / f)), std::max(1, cvRound(size.height / f)));
-  cv::Mat mean;
-  cv::boxFilter(probability_, mean, CV_32F, window, cv::Point(-1, -1), true, cv::BORDER_CONSTANT);
+  cv::boxFilter(probability, mean, CV_32F, window, cv::Point(-1, -1), true, cv::BORDER_CONSTANT);
   for (int i = 0; i < count; ++i) {
     double best;
     cv::Point at;

@@ -63,6 +63,7 @@ void PatchSampler::load(const ImageSource &frame, const cv::Rect2d &region, int 
     inside = cv::Rect(x, y, 1, 1);
   }
   step_ = std::max(1, step);
+  pixels_ = read_.view(sampledSize(inside, step_), CV_8UC3);
   frame.sampledBgr(inside, step_, pixels_);
   origin_ = inside.tl();
   // Where the region reaches outside the frame, repeat the frame's border, so that everything cut from the
@@ -72,7 +73,8 @@ void PatchSampler::load(const ImageSource &frame, const cv::Rect2d &region, int 
   const int right = std::max(0, (wanted.br().x - (origin_.x + pixels_.cols * step_) + step_ - 1) / step_);
   const int bottom = std::max(0, (wanted.br().y - (origin_.y + pixels_.rows * step_) + step_ - 1) / step_);
   if (left > 0 || top > 0 || right > 0 || bottom > 0) {
-    cv::Mat padded;
+    cv::Mat padded = padded_.view(
+        cv::Size(pixels_.cols + std::max(0, left) + right, pixels_.rows + std::max(0, top) + bottom), CV_8UC3);
     cv::copyMakeBorder(pixels_, padded, std::max(0, top), bottom, std::max(0, left), right,
                        cv::BORDER_REPLICATE);
     pixels_ = padded;
@@ -81,9 +83,11 @@ void PatchSampler::load(const ImageSource &frame, const cv::Rect2d &region, int 
 }
 
 void PatchSampler::toGray() {
-  cv::Mat gray;
+  cv::Mat gray = grayBytes_.view(pixels_.size(), CV_8UC1);
   cv::cvtColor(pixels_, gray, cv::COLOR_BGR2GRAY);
-  gray.convertTo(pixels_, CV_32F, 1.0 / 255);
+  cv::Mat grayFloat = gray_.view(pixels_.size(), CV_32FC1);
+  gray.convertTo(grayFloat, CV_32F, 1.0 / 255);
+  pixels_ = grayFloat;
 }
 
 cv::Rect2d PatchSampler::extract(const cv::Rect2d &rect, cv::Size size, cv::Mat &out) const {

@@ -12,6 +12,7 @@
 #include "colortrack/correlation_filter.hpp"
 #include "colortrack/image_source.hpp"
 #include "colortrack/likelihood.hpp"
+#include "colortrack/scratch_image.hpp"
 
 namespace colortrack {
 
@@ -69,7 +70,8 @@ class FusedDetector {
 
   // Scratch reused across frames.
   PatchSampler sampler_;
-  cv::Mat patch_, gray_, scaleSamples_, bins_, probability_, integral_, reduced_;
+  cv::Mat patch_, grayBytes_, gray_, scaleSamples_, bins_, probability_, integral_;
+  ScratchImage candidateScratch_[4];  // colourCandidates(): the reduced frame, its bins, likelihood, means
   std::vector<cv::Mat> channels_;
   CellFeatureIntegral scaleIntegral_;
 };

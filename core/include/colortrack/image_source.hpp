@@ -6,6 +6,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "colortrack/scratch_image.hpp"
+
 namespace colortrack {
 
 // Size of a sample of `rect` taking every `step`-th pixel, and the part of `rect` it covers exactly (so that
@@ -90,7 +92,8 @@ class PatchSampler {
   static int stepFor(const cv::Size2d &rect, cv::Size size);
 
  private:
-  cv::Mat pixels_;
+  cv::Mat pixels_;  // a view of one of the buffers below
+  ScratchImage read_, padded_, grayBytes_, gray_;
   cv::Point origin_;  // frame coordinates of pixels_(0, 0)
   int step_ = 1;
 };
