@@ -168,7 +168,8 @@ void FrameView::sampledBgr(const cv::Rect &rect, int step, cv::Mat &out) const {
   // YUV: gather every step-th luma pixel and the chroma sample under it into a small I420 image, then let
   // OpenCV convert that, so the sample goes through the very matrix bgr() uses (cvtColor's BT.601 I420).
   const cv::Size even(target.width + (target.width & 1), target.height + (target.height & 1));
-  thread_local colortrack::ScratchImage yuvScratch, convertedScratch;  // kept across frames, see scratch_image.hpp
+  thread_local colortrack::ScratchImage yuvScratch,
+      convertedScratch;  // kept across frames, see scratch_image.hpp
   cv::Mat yuv = yuvScratch.view(cv::Size(even.width, even.height * 3 / 2), CV_8UC1);
   uchar *uOut = yuv.ptr(even.height), *vOut = uOut + even.area() / 4;
   const int maxX = size_.width - 1, maxY = size_.height - 1;

@@ -74,7 +74,8 @@ void PatchSampler::load(const ImageSource &frame, const cv::Rect2d &region, int 
   const int bottom = std::max(0, (wanted.br().y - (origin_.y + pixels_.rows * step_) + step_ - 1) / step_);
   if (left > 0 || top > 0 || right > 0 || bottom > 0) {
     cv::Mat padded = padded_.view(
-        cv::Size(pixels_.cols + std::max(0, left) + right, pixels_.rows + std::max(0, top) + bottom), CV_8UC3);
+        cv::Size(pixels_.cols + std::max(0, left) + right, pixels_.rows + std::max(0, top) + bottom),
+        CV_8UC3);
     cv::copyMakeBorder(pixels_, padded, std::max(0, top), bottom, std::max(0, left), right,
                        cv::BORDER_REPLICATE);
     pixels_ = padded;
