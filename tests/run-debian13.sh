@@ -128,9 +128,19 @@ rm -rf "$stage"
 echo "$changed files changed"
 end "copy"
 
+# The host's certificate authorities for npm's HTTPS requests from inside the chroot (tests/bootstrap.sh
+# installs node-mavlink): the host may reach the registry through a proxy whose CA only the host trusts.
+# apt in the chroot uses the Debian mirror over HTTP and needs none of this.
+ca_env=()
+host_ca=${NODE_EXTRA_CA_CERTS:-/etc/ssl/certs/ca-certificates.crt}
+if [ -r "$host_ca" ]; then
+  cp "$host_ca" "$root/etc/colortrack-host-ca.crt"
+  ca_env=(NODE_EXTRA_CA_CERTS=/etc/colortrack-host-ca.crt npm_config_cafile=/etc/colortrack-host-ca.crt)
+fi
+
 in_chroot() {
   chroot "$root" /usr/bin/env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin HOME=/root LANG=C.UTF-8 \
-    TERM="${TERM:-dumb}" CI="${CI:-}" /bin/bash -c "cd $src && $*"
+    TERM="${TERM:-dumb}" CI="${CI:-}" "${ca_env[@]}" /bin/bash -c "cd $src && $*"
 }
 
 # 3. Packages and build, then the tests.
