@@ -73,7 +73,9 @@ fi
 if [ "$mode" = all ] && ! command -v npm >/dev/null; then
   install_missing npm
 fi
-if [ "$mode" = all ] && [ ! -d tests/mavlink/node_modules/node-mavlink ]; then
+# (A file is tested, not the directory: the Debian 13 run's copy removes a stale tree's files, not its
+# directories.)
+if [ "$mode" = all ] && [ ! -f tests/mavlink/node_modules/node-mavlink/package.json ]; then
   echo "== installing node-mavlink for the MAVLink tests (npm ci in tests/mavlink)"
   (cd tests/mavlink && npm ci --no-audit --no-fund)
 fi
