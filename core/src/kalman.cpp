@@ -109,6 +109,14 @@ void KalmanFilter9::correct(double x, double y, double scale) {
   cov_ = 0.5 * (cov_ + cov_.transpose());
 }
 
+void KalmanFilter9::correctPosition(double x, double y, double scale) {
+  const double vx = state_(1), vy = state_(4);
+  correct(x, y, scale);
+  state_(1) = vx;
+  state_(4) = vy;
+  state_(2) = state_(5) = 0;  // ax, ay
+}
+
 double KalmanFilter9::stdX() const {
   return std::sqrt(std::max(0.0, cov_(0, 0)));
 }

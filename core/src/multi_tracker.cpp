@@ -47,6 +47,7 @@ struct MultiTracker::Track {
   std::optional<int> returningId;  // the id of the track whose object this one seems to be, back in the frame
   KalmanFilter9 beforePrediction;  // the filter before this frame's prediction
   bool measuredBefore = false;     // measured in the previous frame
+  double sigmaAfterMeasured = 0;   // position sigma of the prediction made one frame after a measurement
 
   double side() const { return filter.scale() * referenceSide; }
   cv::Size2d size() const {
@@ -150,6 +151,7 @@ void MultiTracker::predict(Track &track, cv::Size frame, double dt) const {
     track.filter.holdForCoasting();
   }
   track.filter.predict(dt);
+  if (track.measured) track.sigmaAfterMeasured = std::max(track.filter.stdX(), track.filter.stdY());
   // A coasting track whose prediction runs out of the frame has followed its object out: it ends (see
   // update()) rather than waiting at the border, where it would grab the next object to come in.
   const double x = track.filter.x(), y = track.filter.y();
@@ -159,7 +161,12 @@ void MultiTracker::predict(Track &track, cv::Size frame, double dt) const {
 double MultiTracker::gateRadius(const Track &track) const {
   const cv::Size2d size = track.size();
   const double halfDiagonal = 0.5 * std::hypot(size.width, size.height);
-  const double sigma = std::max(track.filter.stdX(), track.filter.stdY());
+  double sigma = std::max(track.filter.stdX(), track.filter.stdY());
+  // Without measurements the filter's uncertainty grows like the fifth power of time (white-noise jerk):
+  // within ten frames a gate covers the frame. A track hidden in a merged blob is known to be in there, so
+  // it keeps the uncertainty it had one frame after its last measurement (and grows only with its misses,
+  // below): otherwise it takes a far-away blob that is another track's object.
+  if (track.mergedFrames > 0) sigma = std::min(sigma, track.sigmaAfterMeasured);
   return std::max(settings_.minGate, settings_.gateSize * halfDiagonal) + 3.0 * sigma +
          settings_.coastGrowth * halfDiagonal * track.misses;
 }
@@ -301,8 +308,10 @@ void MultiTracker::correct(Track &t, const Blob &b, bool shared) {
   t.lastSeen = b.centroid;
   if (shared) {
     // Part of the object may be hidden: its size is kept (a shrinking share would shrink the track, which
-    // would then take fewer pixels still).
-    t.filter.correct(b.centroid.x, b.centroid.y, t.lastScale);
+    // would then take fewer pixels still), and so is its velocity: the share's centroid moves as the other
+    // object covers more or less of it, and a velocity learnt from that would carry the track away from
+    // its object when the blobs merge and it coasts.
+    t.filter.correctPosition(b.centroid.x, b.centroid.y, t.lastScale);
   } else {
     const double side = std::sqrt(static_cast<double>(b.box.area()));
     t.lastScale = side / t.referenceSide;

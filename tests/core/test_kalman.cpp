@@ -208,3 +208,27 @@ TEST(Kalman, CoastingHoldsVelocityAndSize) {
   EXPECT_NEAR(kf.x(), x0 + 10 * vx, 1e-6);  // constant velocity, no acceleration
   EXPECT_NEAR(kf.scale(), scale, 1e-9);     // constant size
 }
+
+TEST(Kalman, CorrectingThePositionOnlyKeepsTheVelocity) {
+  // A target moving at 3 px/frame in x and 1 in y, then measured 6 px and 4 px off its path (part of it
+  // covered): correctPosition moves the estimate towards the measurement and keeps the predicted velocity;
+  // correct, given the same measurement, takes the jump for motion.
+  colortrack::KalmanFilter9 tracked;
+  tracked.init(100, 100, 1.0);
+  for (int t = 1; t <= 30; ++t) {
+    tracked.predict(1);
+    tracked.correct(100 + 3 * t, 100 + t, 1.0);
+  }
+  tracked.predict(1);
+  const double predictedX = tracked.x(), vx = tracked.vx(), vy = tracked.vy();
+  colortrack::KalmanFilter9 full = tracked;
+  tracked.correctPosition(predictedX + 6, tracked.y() - 4, 1.0);
+  full.correct(predictedX + 6, full.y() - 4, 1.0);
+  EXPECT_GT(tracked.x(), predictedX + 1);
+  EXPECT_DOUBLE_EQ(tracked.vx(), vx);
+  EXPECT_DOUBLE_EQ(tracked.vy(), vy);
+  EXPECT_EQ(tracked.state()(2), 0.0);  // ax
+  EXPECT_EQ(tracked.state()(5), 0.0);  // ay
+  EXPECT_GT(full.vx(), vx + 0.5);
+  EXPECT_LT(full.vy(), vy - 0.3);
+}

@@ -243,3 +243,38 @@ TEST(MultiTracker, ShortExitKeepsTheIdLongExitGetsANewOne) {
   EXPECT_EQ(longExit.before, 1);
   EXPECT_EQ(longExit.after, 2);
 }
+
+// A small object passes behind a large one (only the large one's blob is seen while it is hidden), and a
+// third object far away turns back meanwhile. The hidden track must not take the third object's blob:
+// without a measurement the filter's uncertainty grows like t^2.5, and a gate built on it spans the frame
+// within ten frames (issue 12: "a parked or stale track never grabs a far-away newcomer").
+TEST(MultiTracker, ATrackHiddenInAnotherBlobNeverTakesAFarAwayOne) {
+  MultiTracker tracker;
+  const cv::Size frame(640, 480);
+  const cv::Point2d large(200, 200);
+  constexpr double kLargeSide = 60, kSmallSide = 20;
+  int farId = 0, hiddenId = 0, hiddenFrames = 0;
+  for (int i = 0; i < 45; ++i) {
+    const cv::Point2d small(80 + 4.0 * i, 200);  // behind the large one for x in 170-230
+    const cv::Point2d far(360, 260 + (i < 35 ? -3.0 * i : -105 + 3.0 * (i - 35)));  // turns back at 35
+    const bool hidden = std::abs(small.x - large.x) < kLargeSide / 2;
+    hiddenFrames += hidden;
+    std::vector<Blob> blobs = {blobAt(large.x, large.y, kLargeSide), blobAt(far.x, far.y, kSmallSide)};
+    if (!hidden) blobs.push_back(blobAt(small.x, small.y, kSmallSide));
+    const std::vector<TrackedObject> reported = tracker.update(blobs, frame);
+    if (i < 3) continue;  // confirming
+    const TrackedObject *onFar = nearest(reported, far, 5);
+    ASSERT_NE(onFar, nullptr) << "frame " << i;
+    if (farId == 0) farId = onFar->id;
+    EXPECT_EQ(onFar->id, farId) << "frame " << i << ": the far object's blob went to another track";
+    if (hiddenId == 0 && !hidden)
+      hiddenId = nearest(reported, small, 5) ? nearest(reported, small, 5)->id : 0;
+    for (const TrackedObject &o : reported) {
+      if (o.id == hiddenId) {
+        EXPECT_LT(cv::norm(o.centre - small), 30) << "frame " << i << ": the hidden track is off its object";
+      }
+    }
+  }
+  EXPECT_GE(hiddenFrames, 14);
+  EXPECT_NE(hiddenId, 0);
+}

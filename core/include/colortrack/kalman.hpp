@@ -29,6 +29,10 @@ class KalmanFilter9 {
   void predict(double dt = 1.0);
   // Measurement update with a detection.
   void correct(double x, double y, double scale);
+  // Measurement update with a detection that says where the object is but not how it moves (its centroid
+  // jumps as something else covers more or less of it): the predicted velocity is kept and the acceleration
+  // dropped.
+  void correctPosition(double x, double y, double scale);
   // Without measurements, extrapolating accelerations (and a changing size) runs away within a few frames:
   // while coasting, keep moving at constant velocity and constant size.
   void holdForCoasting();
