@@ -91,6 +91,11 @@ void KalmanFilter9::dropAcceleration() {
   for (int index : {2, 5}) state_(index) = 0;  // ax, ay
 }
 
+void KalmanFilter9::setVelocity(double vx, double vy) {
+  state_(1) = vx;
+  state_(4) = vy;
+}
+
 void KalmanFilter9::correct(double x, double y, double scale) {
   if (!initialised_) {
     init(x, y, scale);

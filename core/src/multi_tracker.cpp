@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <optional>
 
@@ -26,6 +27,11 @@ constexpr double kExitDrift = 2.0;
 // A track's share of a split blob corrects it only when it is at least this part of the track's area; a
 // smaller share (an object almost wholly behind another) says little about where it is.
 constexpr double kMinShare = 0.25;
+// Frames over which a track's measured positions give the mean velocity it may start coasting with.
+constexpr double kPathFrames = 8;
+// How far (px per frame) the filter's velocity may be from that mean before it counts as a jump: more than
+// noise and the steady acceleration of a rolling ball make.
+constexpr double kVelocityJump = 1.5;
 
 }  // namespace
 
@@ -48,6 +54,8 @@ struct MultiTracker::Track {
   KalmanFilter9 beforePrediction;  // the filter before this frame's prediction
   bool measuredBefore = false;     // measured in the previous frame
   double sigmaAfterMeasured = 0;   // position sigma of the prediction made one frame after a measurement
+  double clock = 0;                // frames since the track started
+  std::deque<std::pair<double, cv::Point2d>> path;  // (clock, centroid) measured over the last kPathFrames
 
   double side() const { return filter.scale() * referenceSide; }
   cv::Size2d size() const {
@@ -146,6 +154,7 @@ void MultiTracker::reset() {
 void MultiTracker::predict(Track &track, cv::Size frame, double dt) const {
   track.beforePrediction = track.filter;
   track.measuredBefore = track.measured;
+  track.clock += dt;
   // A track not measured last frame (coasting or merged) keeps velocity and size but no acceleration.
   if (!track.measured) {
     track.filter.holdForCoasting();
@@ -304,8 +313,27 @@ bool MultiTracker::correctShared(int blob, const std::vector<Blob> &blobs, const
   return true;
 }
 
+// The filter's velocity follows a sudden jump of the object in the image within two frames (the camera's own
+// turn makes one). Coasting on it would carry the track away from an object that has not moved, so where the
+// velocity is far from its mean over the last kPathFrames, a track starts coasting at the slower of the two
+// (per axis; at rest when they disagree in direction, as after a bounce).
+void MultiTracker::coastingVelocity(Track &t) const {
+  if (t.path.size() < 2) return;
+  const double span = t.path.back().first - t.path.front().first;
+  if (span < kPathFrames / 2) return;
+  const cv::Point2d mean = (t.path.back().second - t.path.front().second) / span;
+  const auto slower = [](double filtered, double windowed) {
+    if (std::abs(filtered - windowed) <= kVelocityJump) return filtered;
+    if (filtered * windowed <= 0) return 0.0;
+    return std::abs(filtered) < std::abs(windowed) ? filtered : windowed;
+  };
+  t.filter.setVelocity(slower(t.filter.vx(), mean.x), slower(t.filter.vy(), mean.y));
+}
+
 void MultiTracker::correct(Track &t, const Blob &b, bool shared) {
   t.lastSeen = b.centroid;
+  t.path.emplace_back(t.clock, b.centroid);
+  while (t.path.front().first < t.clock - kPathFrames) t.path.pop_front();
   if (shared) {
     // Part of the object may be hidden: its size is kept (a shrinking share would shrink the track, which
     // would then take fewer pixels still), and so is its velocity: the share's centroid moves as the other
@@ -362,6 +390,7 @@ void MultiTracker::startTrack(const Blob &b) {
   t.referenceSide = std::max(1.0, std::sqrt(static_cast<double>(b.box.area())));
   t.filter.init(b.centroid.x, b.centroid.y, 1.0);
   t.lastSeen = b.centroid;
+  t.path.emplace_back(0.0, b.centroid);
   t.aspect = static_cast<double>(b.box.width) / std::max(1, b.box.height);
   t.area = t.lastArea = b.area;
   t.score = b.fill;
@@ -399,10 +428,12 @@ std::vector<TrackedObject> MultiTracker::update(const std::vector<Blob> &blobs, 
   }
   // A track that has just lost its object coasts from where it was seen without the acceleration the filter
   // had then: right after a turn that estimate overshoots, and coasting would carry the error on.
+  // Nor with a velocity that followed a jump in the image (see coastingVelocity).
   for (Track &t : tracks_)
     if (!t.measured && t.measuredBefore) {
       t.filter = t.beforePrediction;
       t.filter.dropAcceleration();
+      coastingVelocity(t);
       t.filter.predict(dt);
     }
   for (int i = 0; i < static_cast<int>(tracks_.size()); ++i)

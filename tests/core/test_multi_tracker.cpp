@@ -278,3 +278,24 @@ TEST(MultiTracker, ATrackHiddenInAnotherBlobNeverTakesAFarAwayOne) {
   EXPECT_GE(hiddenFrames, 14);
   EXPECT_NE(hiddenId, 0);
 }
+
+// An object at rest jumps in the image (the camera turned once) and is lost a moment later: its track coasts
+// near where it was seen, not on the jump, which the filter's velocity has followed. One lost while moving
+// steadily is followed at its speed.
+TEST(MultiTracker, CoastingDoesNotFollowAOneFrameJump) {
+  const cv::Size frame(640, 480);
+  for (const bool jump : {true, false}) {
+    const double speed = jump ? 0 : 3;
+    MultiTracker tracker;
+    double x = 300;
+    for (int i = 0; i < 20; ++i, x += speed) tracker.update({blobAt(x, 200, 40)}, frame);
+    if (jump) x -= 13;  // then seen on two frames
+    for (int i = 0; i < 2; ++i, x += speed) tracker.update({blobAt(x, 200, 40)}, frame);
+    const double lostAt = x - speed;
+    std::vector<TrackedObject> reported;
+    for (int i = 0; i < 8; ++i) reported = tracker.update({}, frame);
+    ASSERT_EQ(reported.size(), 1u) << "jump " << jump;
+    EXPECT_EQ(reported[0].state, TrackState::Coasting);
+    EXPECT_NEAR(reported[0].centre.x, lostAt + 8 * speed, 20) << "jump " << jump;  // half its size
+  }
+}

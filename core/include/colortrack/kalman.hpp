@@ -38,6 +38,8 @@ class KalmanFilter9 {
   void holdForCoasting();
   // Only the position's acceleration (ax, ay) set to zero: a prediction at constant velocity, size as before.
   void dropAcceleration();
+  // Sets the position's velocity (vx, vy), e.g. to a slower estimate before coasting.
+  void setVelocity(double vx, double vy);
 
   double x() const { return state_(0); }
   double y() const { return state_(3); }

@@ -86,6 +86,8 @@ class MultiTracker {
                      const std::vector<int> &occludedIn);
   // shared: the blob is the track's share of a split blob, which says where the object is but not how big.
   void correct(Track &track, const Blob &blob, bool shared = false);
+  // The velocity a track that has just lost its object coasts with.
+  void coastingVelocity(Track &track) const;
   void startTrack(const Blob &blob);
   void confirm(Track &track);
   std::optional<int> returningId(const Blob &blob);
