@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "colortrack/round_split.hpp"
+
 namespace colortrack {
 
 namespace {
@@ -27,7 +29,12 @@ ThresholdTracker::ThresholdTracker(const BlobSettings &blobs, const MultiTracker
     : detector_(blobs), tracks_(tracks) {}
 
 FrameReport ThresholdTracker::track(const ImageSource &frame, double dt) {
-  const std::vector<Blob> blobs = detector_.detect(frame.channels(converted_));
+  // Objects touching make one blob; those whose shape shows they are several round objects are split here,
+  // so that each gets its track from the start.
+  const BlobSettings &settings = detector_.settings();
+  const std::vector<Blob> detected = detector_.detect(frame.channels(converted_));
+  const std::vector<Blob> blobs =
+      splitRoundBlobs(detected, detector_.labels(), settings.minArea, settings.maxObjects);
   const std::vector<TrackedObject> objects = tracks_.update(blobs, frame.size(), dt, detector_.labels());
   FrameReport report;
   report.listsTracks = true;

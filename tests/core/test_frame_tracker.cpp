@@ -2,6 +2,7 @@
 // say, with the primary target among the tracks, and forget their tracks on reset().
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -70,6 +71,31 @@ TEST(ThresholdTracker, ReportsEveryBallWithTheLargestAsPrimary) {
   EXPECT_TRUE(afterReset.tracks.empty()) << "new tracks must be confirmed again after a reset";
   EXPECT_EQ(afterReset.primary.state, TrackState::Searching);
   EXPECT_TRUE(afterReset.primary.box.empty());
+}
+
+TEST(ThresholdTracker, BallsThatAppearOverlappingGetATrackEach) {
+  // One blob from the first frame until they part (frame ~12): their shape tells the two balls apart.
+  balls::Ball big, small;
+  big.radius = 24;
+  big.path = {{0, {300, 240}}, {30, {240, 240}}};
+  small.radius = 13;
+  small.path = {{0, {330, 222}}, {30, {390, 222}}};
+  balls::BallSceneConfig config;
+  config.clutterSaturation = 0.3;
+  const balls::BallScene scene(config, {big, small});
+  ThresholdTracker tracker(saturatedColours());
+  for (int i = 0; i < 6; ++i) {
+    const FrameReport report = tracker.track(MatImageSource(scene.render(i)), 1.0);
+    if (i < 2) continue;  // tracks are confirmed on their third frame
+    ASSERT_EQ(report.tracks.size(), 2u) << "frame " << i;
+    for (int b = 0; b < 2; ++b) {
+      const balls::BallTruth truth = scene.truthOf(b, i);
+      const auto near = std::count_if(report.tracks.begin(), report.tracks.end(), [&](const TrackReport &t) {
+        return cv::norm(t.centre - truth.centre) < 0.5 * truth.radius;
+      });
+      EXPECT_EQ(near, 1) << "ball " << b << ", frame " << i;
+    }
+  }
 }
 
 TEST(TemplateTracker, ReportsItsTrackAsThePrimaryAndOnlyTrack) {
