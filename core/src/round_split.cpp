@@ -117,19 +117,4 @@ std::vector<Blob> splitRound(const Blob &blob, const BlobLabels &labels, int min
   return parts;
 }
 
-std::vector<Blob> splitRoundBlobs(const std::vector<Blob> &blobs, const BlobLabels &labels, int minArea,
-                                  int maxObjects) {
-  std::vector<Blob> out;
-  for (const Blob &blob : blobs) {
-    const std::vector<Blob> parts = splitRound(blob, labels, minArea);
-    if (parts.empty())
-      out.push_back(blob);
-    else
-      out.insert(out.end(), parts.begin(), parts.end());
-  }
-  std::sort(out.begin(), out.end(), [](const Blob &a, const Blob &b) { return a.area > b.area; });
-  if (static_cast<int>(out.size()) > maxObjects) out.resize(std::max(0, maxObjects));
-  return out;
-}
-
 }  // namespace colortrack

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 
-#include "colortrack/round_split.hpp"
-
 namespace colortrack {
 
 namespace {
@@ -26,15 +24,23 @@ TrackReport reportOf(const TrackedObject &o) {
 }  // namespace
 
 ThresholdTracker::ThresholdTracker(const BlobSettings &blobs, const MultiTrackerSettings &tracks)
-    : detector_(blobs), tracks_(tracks) {}
+    : detector_(blobs) {
+  setTrackSettings(tracks);
+}
+
+void ThresholdTracker::setBlobSettings(const BlobSettings &settings) {
+  detector_.setSettings(settings);
+  setTrackSettings(tracks_.settings());
+}
+
+void ThresholdTracker::setTrackSettings(const MultiTrackerSettings &settings) {
+  MultiTrackerSettings s = settings;
+  s.minObjectArea = detector_.settings().minArea;  // one notion of the smallest object
+  tracks_.setSettings(s);
+}
 
 FrameReport ThresholdTracker::track(const ImageSource &frame, double dt) {
-  // Objects touching make one blob; those whose shape shows they are several round objects are split here,
-  // so that each gets its track from the start.
-  const BlobSettings &settings = detector_.settings();
-  const std::vector<Blob> detected = detector_.detect(frame.channels(converted_));
-  const std::vector<Blob> blobs =
-      splitRoundBlobs(detected, detector_.labels(), settings.minArea, settings.maxObjects);
+  const std::vector<Blob> blobs = detector_.detect(frame.channels(converted_));
   const std::vector<TrackedObject> objects = tracks_.update(blobs, frame.size(), dt, detector_.labels());
   FrameReport report;
   report.listsTracks = true;

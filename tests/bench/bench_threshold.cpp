@@ -21,7 +21,6 @@
 #include "balls.hpp"
 #include "colortrack/blobs.hpp"
 #include "colortrack/multi_tracker.hpp"
-#include "colortrack/round_split.hpp"
 
 namespace {
 
@@ -105,10 +104,8 @@ Result run(cv::Size size, int objects, bool i420, int frames) {
     const cv::Mat &frame = rendered[(i + kDistinctFrames) % kDistinctFrames];
     const SampledFrame sampled = i420 ? sampledI420(frame, size) : sampledBgr(frame);
     auto start = Clock::now();
-    // As ThresholdTracker runs them: blobs that are several round objects split, then the tracker.
-    const std::vector<Blob> detected = detector.detect(sampled);
-    const std::vector<Blob> blobs =
-        splitRoundBlobs(detected, detector.labels(), settings.minArea, settings.maxObjects);
+    // With the labels, as ThresholdTracker runs it (shared blobs and new touching objects are split).
+    const std::vector<Blob> blobs = detector.detect(sampled);
     const std::vector<TrackedObject> reported = tracker.update(blobs, size, 1.0, detector.labels());
     const double ms = msSince(start);
     // The stages on their own, for the split (same work as inside detect()).
@@ -160,8 +157,7 @@ int main(int argc, char **argv) {
   std::printf("colortrack threshold-mode benchmark: 1 thread, %d frames per case, OpenCV %s\n", frames,
               CV_VERSION);
   std::printf(
-      "detect (segment + clean + label) + round split + multi-object update; split: segment / open+close / "
-      "label\n");
+      "detect (segment + clean + label) + multi-object update; split: segment / open+close / label\n");
   std::printf("%-10s %4s %-5s %3s %8s %9s %7s %7s %7s %7s %6s %8s\n", "size", "objs", "input", "dec",
               "mean ms", "median ms", "max ms", "seg", "morph", "label", "target", "tracks");
   const cv::Size sizes[] = {{640, 480}, {1280, 720}, {1920, 1080}};

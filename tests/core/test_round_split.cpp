@@ -111,20 +111,13 @@ TEST(RoundSplit, ShapesTheDiscsDoNotExplainAreNotSplit) {
   EXPECT_TRUE(partsOf(mask).empty());
 }
 
-TEST(RoundSplit, SplitBlobsReplaceTheirBlobAndTheLargestAreKept) {
-  cv::Mat mask = cv::Mat::zeros(200, 400, CV_8U);
-  cv::circle(mask, {60, 100}, 30, 255, cv::FILLED);
-  cv::circle(mask, {100, 100}, 20, 255, cv::FILLED);  // with the first: one blob of two balls
-  cv::circle(mask, {250, 100}, 25, 255, cv::FILLED);
-  cv::circle(mask, {350, 100}, 10, 255, cv::FILLED);
+TEST(RoundSplit, PartsUnderTheMinimumAreaOrWithoutLabelsAreNoSplit) {
+  cv::Mat mask = cv::Mat::zeros(200, 300, CV_8U);
+  cv::circle(mask, {100, 100}, 30, 255, cv::FILLED);
+  cv::circle(mask, {135, 120}, 16, 255, cv::FILLED);
   const Labelled l = labelAll(mask);
-  ASSERT_EQ(l.blobs.size(), 3u);
-  const std::vector<Blob> all = splitRoundBlobs(l.blobs, l.labels, 50, 8);
-  ASSERT_EQ(all.size(), 4u);
-  for (size_t i = 1; i < all.size(); ++i) EXPECT_GE(all[i - 1].area, all[i].area);
-  const std::vector<Blob> three = splitRoundBlobs(l.blobs, l.labels, 50, 3);
-  ASSERT_EQ(three.size(), 3u);
-  EXPECT_NEAR(three.back().centroid.x, 100, 2);  // the small ball of the split went; the lone smallest too
-  // Without labels nothing can be split.
-  EXPECT_EQ(splitRoundBlobs(l.blobs, BlobLabels(), 50, 8).size(), 3u);
+  ASSERT_EQ(l.blobs.size(), 1u);
+  EXPECT_EQ(splitRound(l.blobs.front(), l.labels, 50).size(), 2u);
+  EXPECT_TRUE(splitRound(l.blobs.front(), l.labels, 1000).empty());  // the small ball is under it
+  EXPECT_TRUE(splitRound(l.blobs.front(), BlobLabels(), 50).empty());
 }

@@ -22,9 +22,4 @@ std::vector<SplitSeed> roundParts(const Blob &blob, const BlobLabels &labels, do
 // Each part is placed and sized by its disc (its box clipped to the blob's), with its own pixel count.
 std::vector<Blob> splitRound(const Blob &blob, const BlobLabels &labels, int minArea);
 
-// Every blob of a detector's output that is several round objects replaced by its parts; then, as the
-// detector does, the largest maxObjects kept, largest first.
-std::vector<Blob> splitRoundBlobs(const std::vector<Blob> &blobs, const BlobLabels &labels, int minArea,
-                                  int maxObjects);
-
 }  // namespace colortrack
