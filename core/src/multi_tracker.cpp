@@ -1,6 +1,7 @@
 #include "colortrack/multi_tracker.hpp"
 
 #include "colortrack/blob_split.hpp"
+#include "colortrack/round_split.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -221,6 +222,30 @@ TrackedObject MultiTracker::report(const Track &track) const {
   return o;
 }
 
+// Objects that touch when they appear make one blob, which would give them one track until they part. A blob
+// that at most one reported track is predicted in, and whose shape is several round objects, is taken as
+// those objects. A blob that two or more reported tracks share is left whole: they split it by their
+// predictions (correctShared), which know which object is which; a split by shape there, flickering as the
+// objects overlap more or less, swaps their ids.
+std::vector<Blob> MultiTracker::splitNewObjects(const std::vector<Blob> &blobs,
+                                                const BlobLabels &labels) const {
+  if (labels.empty()) return blobs;
+  std::vector<Blob> out;
+  for (const Blob &blob : blobs) {
+    const cv::Rect2d box(blob.box);
+    const auto known = std::count_if(tracks_.begin(), tracks_.end(), [&](const Track &t) {
+      return t.confirmed && box.contains(cv::Point2d(t.filter.x(), t.filter.y()));
+    });
+    std::vector<Blob> parts;
+    if (known <= 1) parts = splitRound(blob, labels, settings_.minObjectArea);
+    if (parts.empty())
+      out.push_back(blob);
+    else
+      out.insert(out.end(), parts.begin(), parts.end());
+  }
+  return out;
+}
+
 // Assigns the still-free blobs to the tracks that are (or are not yet) confirmed, by minimum total cost.
 void MultiTracker::associate(const std::vector<Blob> &blobs, bool confirmed,
                              std::vector<int> &blobTrack) const {
@@ -401,13 +426,14 @@ void MultiTracker::startTrack(const Blob &b) {
   if (settings_.confirmFrames <= 1) confirm(tracks_.back());
 }
 
-std::vector<TrackedObject> MultiTracker::update(const std::vector<Blob> &blobs, cv::Size frame, double dt,
+std::vector<TrackedObject> MultiTracker::update(const std::vector<Blob> &detected, cv::Size frame, double dt,
                                                 const BlobLabels &labels) {
   frame_ = frame;
   for (Track &t : tracks_) {
     predict(t, frame, dt);
     t.measured = false;
   }
+  const std::vector<Blob> blobs = splitNewObjects(detected, labels);
 
   // Confirmed tracks choose first, so a noise blob next to a real object never steals it; tentative tracks
   // get what is left; the rest start new tentative tracks.

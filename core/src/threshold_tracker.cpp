@@ -24,7 +24,20 @@ TrackReport reportOf(const TrackedObject &o) {
 }  // namespace
 
 ThresholdTracker::ThresholdTracker(const BlobSettings &blobs, const MultiTrackerSettings &tracks)
-    : detector_(blobs), tracks_(tracks) {}
+    : detector_(blobs) {
+  setTrackSettings(tracks);
+}
+
+void ThresholdTracker::setBlobSettings(const BlobSettings &settings) {
+  detector_.setSettings(settings);
+  setTrackSettings(tracks_.settings());
+}
+
+void ThresholdTracker::setTrackSettings(const MultiTrackerSettings &settings) {
+  MultiTrackerSettings s = settings;
+  s.minObjectArea = detector_.settings().minArea;  // one notion of the smallest object
+  tracks_.setSettings(s);
+}
 
 FrameReport ThresholdTracker::track(const ImageSource &frame, double dt) {
   const std::vector<Blob> blobs = detector_.detect(frame.channels(converted_));

@@ -104,7 +104,9 @@ Result run(cv::Size size, int objects, bool i420, int frames) {
     const cv::Mat &frame = rendered[(i + kDistinctFrames) % kDistinctFrames];
     const SampledFrame sampled = i420 ? sampledI420(frame, size) : sampledBgr(frame);
     auto start = Clock::now();
-    const std::vector<TrackedObject> reported = tracker.update(detector.detect(sampled), size);
+    // With the labels, as ThresholdTracker runs it (shared blobs and new touching objects are split).
+    const std::vector<Blob> blobs = detector.detect(sampled);
+    const std::vector<TrackedObject> reported = tracker.update(blobs, size, 1.0, detector.labels());
     const double ms = msSince(start);
     // The stages on their own, for the split (same work as inside detect()).
     start = Clock::now();

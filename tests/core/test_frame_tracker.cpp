@@ -2,8 +2,11 @@
 // say, with the primary target among the tracks, and forget their tracks on reset().
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <vector>
+
+#include <opencv2/imgproc.hpp>
 
 #include "balls.hpp"
 #include "colortrack/frame_tracker.hpp"
@@ -70,6 +73,59 @@ TEST(ThresholdTracker, ReportsEveryBallWithTheLargestAsPrimary) {
   EXPECT_TRUE(afterReset.tracks.empty()) << "new tracks must be confirmed again after a reset";
   EXPECT_EQ(afterReset.primary.state, TrackState::Searching);
   EXPECT_TRUE(afterReset.primary.box.empty());
+}
+
+TEST(ThresholdTracker, BallsThatAppearOverlappingGetATrackEach) {
+  // One blob from the first frame until they part (frame ~12): their shape tells the two balls apart.
+  balls::Ball big, small;
+  big.radius = 24;
+  big.path = {{0, {300, 240}}, {30, {240, 240}}};
+  small.radius = 13;
+  small.path = {{0, {330, 222}}, {30, {390, 222}}};
+  balls::BallSceneConfig config;
+  config.clutterSaturation = 0.3;
+  const balls::BallScene scene(config, {big, small});
+  ThresholdTracker tracker(saturatedColours());
+  for (int i = 0; i < 6; ++i) {
+    const FrameReport report = tracker.track(MatImageSource(scene.render(i)), 1.0);
+    if (i < 2) continue;  // tracks are confirmed on their third frame
+    ASSERT_EQ(report.tracks.size(), 2u) << "frame " << i;
+    for (int b = 0; b < 2; ++b) {
+      const balls::BallTruth truth = scene.truthOf(b, i);
+      const auto near = std::count_if(report.tracks.begin(), report.tracks.end(), [&](const TrackReport &t) {
+        return cv::norm(t.centre - truth.centre) < 0.5 * truth.radius;
+      });
+      EXPECT_EQ(near, 1) << "ball " << b << ", frame " << i;
+    }
+  }
+}
+
+TEST(ThresholdTracker, ABallThatAppearsTouchingATrackedOneGetsItsOwnTrack) {
+  // A tracked red ball; from frame 5 a second one lies against it (one blob), and the first keeps its id.
+  ThresholdTracker tracker;  // the default range: red
+  const auto frameAt = [](int i) {
+    cv::Mat bgr(480, 640, CV_8UC3, cv::Scalar(40, 40, 40));
+    cv::circle(bgr, {200 + 2 * i, 200}, 30, cv::Scalar(0, 0, 220), cv::FILLED);
+    if (i >= 5) cv::circle(bgr, {245 + 2 * i, 218}, 16, cv::Scalar(0, 0, 220), cv::FILLED);
+    return bgr;
+  };
+  FrameReport report;
+  for (int i = 0; i < 5; ++i) report = tracker.track(MatImageSource(frameAt(i)), 1.0);
+  ASSERT_EQ(report.tracks.size(), 1u);
+  const int firstId = report.tracks[0].id;
+  for (int i = 5; i < 9; ++i) report = tracker.track(MatImageSource(frameAt(i)), 1.0);
+  ASSERT_EQ(report.tracks.size(), 2u);
+  const cv::Point2d big(200 + 2 * 8, 200), small(245 + 2 * 8, 218);
+  const auto isSmall = [&](const TrackReport &t) { return cv::norm(t.centre - small) < 5.0; };
+  ASSERT_EQ(std::count_if(report.tracks.begin(), report.tracks.end(), isSmall), 1);
+  for (const TrackReport &t : report.tracks) {
+    EXPECT_EQ(!isSmall(t), t.id == firstId);
+    // The big ball's track is fed the whole blob once both are reported (the tracker's merge rule): near
+    // the big ball, not on it.
+    if (!isSmall(t)) {
+      EXPECT_LT(cv::norm(t.centre - big), 15.0);
+    }
+  }
 }
 
 TEST(TemplateTracker, ReportsItsTrackAsThePrimaryAndOnlyTrack) {

@@ -29,6 +29,9 @@ struct MultiTrackerSettings {
   // reported track, is taken as objects merged: none is corrected by its centroid, all coast on their
   // predictions without counting misses until they part.
   double mergeAreaRatio = 1.3;
+  // The smallest object (frame pixels; ThresholdTracker sets the detector's minArea): a blob whose shape is
+  // several round objects is split into them only where each is at least this large.
+  int minObjectArea = 50;
 };
 
 // One track as reported.
@@ -61,7 +64,9 @@ class MultiTracker {
   // Advances every track by dt frames, assigns the blobs (confirmed tracks first, then tentative ones, each
   // by minimum total cost), corrects, creates and drops tracks. Returns the confirmed tracks, by id. With the
   // blobs' `labels`, a blob that several tracks share (objects touching or passing over each other) is split
-  // between them; without, those tracks ride on their predictions until the objects part.
+  // between them; without, those tracks ride on their predictions until the objects part. With them too, a
+  // blob that is several round objects no reported track tells apart (they appeared touching) is split
+  // into them.
   std::vector<TrackedObject> update(const std::vector<Blob> &blobs, cv::Size frame, double dt = 1.0,
                                     const BlobLabels &labels = BlobLabels());
 
@@ -79,6 +84,7 @@ class MultiTracker {
   bool touchesBorder(const Blob &blob) const;
   TrackedObject report(const Track &track) const;
   // The steps of update().
+  std::vector<Blob> splitNewObjects(const std::vector<Blob> &blobs, const BlobLabels &labels) const;
   void associate(const std::vector<Blob> &blobs, bool confirmed, std::vector<int> &blobTrack) const;
   void findMerges(const std::vector<Blob> &blobs, const std::vector<int> &blobTrack,
                   std::vector<char> &merged, std::vector<int> &occludedIn) const;

@@ -16,9 +16,10 @@ class ThresholdTracker : public FrameTracker {
                             const MultiTrackerSettings &tracks = MultiTrackerSettings());
 
   // A new range, clean-up or size limit applies from the next frame; the tracks go on.
-  void setBlobSettings(const BlobSettings &settings) { detector_.setSettings(settings); }
+  void setBlobSettings(const BlobSettings &settings);
   const BlobSettings &blobSettings() const { return detector_.settings(); }
-  void setTrackSettings(const MultiTrackerSettings &settings) { tracks_.setSettings(settings); }
+  // Its minObjectArea is replaced by the blob settings' minArea.
+  void setTrackSettings(const MultiTrackerSettings &settings);
 
   // Reports every confirmed track (by id); the primary target is the largest.
   FrameReport track(const ImageSource &frame, double dt) override;
