@@ -5,7 +5,10 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
+#include <vector>
 
+#include <opencv2/core/hal/intrin.hpp>
 #include <opencv2/imgproc.hpp>
 
 namespace colortrack {
@@ -79,21 +82,141 @@ int autoDecimation(cv::Size frame) {
   return frame.area() <= 640 * 480 ? 1 : 2;
 }
 
+namespace {
+
+// Table indices of one grid row when channel c's sample of grid column x is p_c[x * S_c]: with the strides
+// known at compile time the compiler vectorises the index arithmetic (the table loads that follow cannot be).
+template <int S0, int S1, int S2>
+void stridedIndices(const std::uint8_t *p0, const std::uint8_t *p1, const std::uint8_t *p2, int n, int *idx) {
+  for (int x = 0; x < n; ++x) idx[x] = RangeLut::index(p0[x * S0], p1[x * S1], p2[x * S2]);
+}
+
+// Packed 3-byte pixels (BGR, RGB), every Step-th of them (1 or 2): a stride of 3 or 6 bytes defeats the
+// auto-vectoriser, so the bytes are split with OpenCV's universal intrinsics. offsets[c] is channel c's byte
+// in a pixel; `rowBytes` bounds the reads. Writes whole blocks of 16 indices and returns how many it wrote.
+template <int Step>
+int packed3Indices(const std::uint8_t *row, int rowBytes, const std::array<int, 3> &offsets, int n,
+                   int *idx) {
+  int x = 0;
+#if CV_SIMD128
+  constexpr int block = 16, bytesPerBlock = block * Step * 3;
+  const cv::v_uint16x8 top6 = cv::v_setall_u16(0xFC);  // the bits the table uses, of the low byte
+  for (; x + block <= n && (x + block) * Step * 3 <= rowBytes; x += block) {
+    // Each channel's 16 samples as two vectors of 16-bit lanes (sample in the low byte).
+    std::array<cv::v_uint16x8, 3> lo, hi;
+    cv::v_uint8x16 bytes[2][3];
+    for (int part = 0; part < Step; ++part)
+      cv::v_load_deinterleave(row + x * Step * 3 + part * (bytesPerBlock / Step), bytes[part][0],
+                              bytes[part][1], bytes[part][2]);
+    for (int c = 0; c < 3; ++c) {
+      const int b = offsets[c];
+      if constexpr (Step == 2) {  // the even pixels are the low bytes of the 16-bit lanes
+        lo[c] = cv::v_reinterpret_as_u16(bytes[0][b]) & top6;
+        hi[c] = cv::v_reinterpret_as_u16(bytes[1][b]) & top6;
+      } else {
+        cv::v_expand(bytes[0][b], lo[c], hi[c]);
+        lo[c] = lo[c] & top6;
+        hi[c] = hi[c] & top6;
+      }
+    }
+    // ((c0 >> 2) << 12) | ((c1 >> 2) << 6) | (c2 >> 2), as RangeLut::index: the first two fit 16 bits.
+    const std::array<cv::v_uint16x8, 2> high{cv::v_shl<4>(lo[0]) | cv::v_shr<2>(lo[1]),
+                                             cv::v_shl<4>(hi[0]) | cv::v_shr<2>(hi[1])};
+    const std::array<cv::v_uint16x8, 2> low{cv::v_shr<2>(lo[2]), cv::v_shr<2>(hi[2])};
+    for (int h = 0; h < 2; ++h) {
+      cv::v_uint32x4 high0, high1, low0, low1;
+      cv::v_expand(high[h], high0, high1);
+      cv::v_expand(low[h], low0, low1);
+      cv::v_store(idx + x + 8 * h, cv::v_reinterpret_as_s32(cv::v_shl<6>(high0) | low0));
+      cv::v_store(idx + x + 8 * h + 4, cv::v_reinterpret_as_s32(cv::v_shl<6>(high1) | low1));
+    }
+  }
+#else
+  (void)row, (void)rowBytes, (void)offsets, (void)n, (void)idx;
+#endif
+  return x;
+}
+
+using RowIndices = void (*)(const std::uint8_t *, const std::uint8_t *, const std::uint8_t *, int, int *);
+
+// The common layouts at decimation 2, by the byte stride of each channel from one grid column to the next.
+RowIndices stridedIndicesFor(const std::array<int, 3> &stride) {
+  if (stride == std::array<int, 3>{2, 1, 1}) return stridedIndices<2, 1, 1>;  // I420, YV12
+  if (stride == std::array<int, 3>{2, 2, 2}) return stridedIndices<2, 2, 2>;  // NV12, NV21
+  if (stride == std::array<int, 3>{8, 8, 8}) return stridedIndices<8, 8, 8>;  // BGRx, RGBx, xRGB...
+  return nullptr;
+}
+
+// Byte offsets of the three channels when they are one packed 3-byte plane read at full resolution.
+std::optional<std::array<int, 3>> packed3Offsets(const SampledFrame &frame) {
+  std::array<int, 3> offsets;
+  int seen = 0;
+  for (int c = 0; c < 3; ++c) {
+    const ChannelSampler &ch = frame.channels[c];
+    if (ch.plane.data != frame.channels[0].plane.data || ch.plane.step != frame.channels[0].plane.step ||
+        ch.sampleBytes != 3 || ch.xSub != 1 || ch.ySub != 1 || ch.byteOffset < 0 || ch.byteOffset > 2)
+      return std::nullopt;
+    offsets[c] = ch.byteOffset;
+    seen |= 1 << ch.byteOffset;
+  }
+  if (seen != 7) return std::nullopt;
+  return offsets;
+}
+
+}  // namespace
+
 void segment(const SampledFrame &frame, const RangeLut &lut, int decimation, cv::Mat &mask) {
   const int d = std::max(1, decimation);
   const cv::Size grid((frame.size.width + d - 1) / d, (frame.size.height + d - 1) / d);
   mask.create(grid, CV_8UC1);
-  // Byte offset of every grid column in each channel's row: the inner loop is then three loads and a
-  // table lookup per pixel whatever the format.
+  const std::uint8_t *table = lut.table();
+  constexpr int shift = RangeLut::kShift, bits = RangeLut::kBits;
+
+  // Linear layouts (every channel subsampled by a divisor of d, which covers every format at decimation 2):
+  // channel c's sample of grid column x is at byteOffset + x * stride[c], and a row is done in two passes,
+  // table indices (vectorised for the common layouts) then table loads.
+  bool linear = true;
+  std::array<int, 3> stride;
+  for (int c = 0; c < 3; ++c) {
+    const ChannelSampler &ch = frame.channels[c];
+    linear = linear && d % ch.xSub == 0;
+    stride[c] = d / ch.xSub * ch.sampleBytes;
+  }
+  if (linear) {
+    const std::optional<std::array<int, 3>> packed3 = d <= 2 ? packed3Offsets(frame) : std::nullopt;
+    const RowIndices strided = stridedIndicesFor(stride);
+    std::vector<int> idx(grid.width);
+    for (int y = 0; y < grid.height; ++y) {
+      const int fy = y * d;
+      std::array<const std::uint8_t *, 3> p;
+      for (int c = 0; c < 3; ++c)
+        p[c] = frame.channels[c].plane.ptr(fy / frame.channels[c].ySub) + frame.channels[c].byteOffset;
+      int x = 0;
+      if (packed3) {
+        const ChannelSampler &ch = frame.channels[0];
+        const std::uint8_t *row = ch.plane.ptr(fy);
+        x = d == 1 ? packed3Indices<1>(row, ch.plane.cols, *packed3, grid.width, idx.data())
+                   : packed3Indices<2>(row, ch.plane.cols, *packed3, grid.width, idx.data());
+      } else if (strided) {
+        strided(p[0], p[1], p[2], grid.width, idx.data());
+        x = grid.width;
+      }
+      for (; x < grid.width; ++x)  // the rest, or every column of the layouts not special-cased
+        idx[x] = RangeLut::index(p[0][x * stride[0]], p[1][x * stride[1]], p[2][x * stride[2]]);
+      std::uint8_t *out = mask.ptr(y);
+      for (x = 0; x < grid.width; ++x) out[x] = table[idx[x]];
+    }
+    return;
+  }
+
+  // Any other layout: the byte offset of every grid column in each channel's row from tables.
   std::array<std::vector<int>, 3> columns;
   for (int c = 0; c < 3; ++c) {
     const ChannelSampler &ch = frame.channels[c];
     columns[c].resize(grid.width);
     for (int x = 0; x < grid.width; ++x) columns[c][x] = (x * d / ch.xSub) * ch.sampleBytes + ch.byteOffset;
   }
-  const std::uint8_t *table = lut.table();
   const int *col0 = columns[0].data(), *col1 = columns[1].data(), *col2 = columns[2].data();
-  constexpr int shift = RangeLut::kShift, bits = RangeLut::kBits;
   for (int y = 0; y < grid.height; ++y) {
     const int fy = y * d;
     const std::uint8_t *p0 = frame.channels[0].plane.ptr(fy / frame.channels[0].ySub);
