@@ -355,15 +355,33 @@ std::vector<Blob> BlobDetector::detect(const SampledFrame &frame) {
 
   // Labels only, then the measures from the foreground pixels alone: OpenCV's WithStats variant visits every
   // pixel's statistics and costs ~10x more on a mostly empty mask (3.4 vs 0.25 ms at 960x540).
-  const int count = cv::connectedComponents(mask_, labels_, 8, CV_32S);
+  // And only inside the foreground's bounding box, its corner moved to even coordinates: OpenCV labels 2x2
+  // blocks and numbers components in the order of their first block, so aligned blocks number them as on the
+  // whole mask (tested), while the empty rest costs nothing (1080p, 8 balls: 0.83 ms -> 0.1 for the box and
+  // 0.36 for clearing and labelling). Outside the box labels_ stays zero: only the last labelled box is
+  // cleared.
+  cv::Rect box = cv::boundingRect(mask_);
+  box = cv::Rect(box.x & ~1, box.y & ~1, box.width + (box.x & 1), box.height + (box.y & 1));
+  if (labels_.size() != mask_.size() || labels_.type() != CV_32S) {
+    labels_.create(mask_.size(), CV_32S);
+    labels_.setTo(0);
+  } else {
+    labels_(labelledBox_).setTo(0);
+  }
+  int count = 1;  // the background
+  if (!box.empty()) {
+    cv::Mat inBox = labels_(box);  // the same size and type: connectedComponents writes in place
+    count = cv::connectedComponents(mask_(box), inBox, 8, CV_32S);
+  }
+  labelledBox_ = box;
   moments_.assign(count, GridMoments{});
-  for (int y = 0; y < mask_.rows; ++y) {
+  for (int y = box.y; y < box.y + box.height; ++y) {
     const std::uint8_t *m = mask_.ptr(y);
     const int *l = labels_.ptr<int>(y);
-    int x = 0;
-    while (x < mask_.cols) {
+    int x = box.x;
+    while (x < box.x + box.width) {
       // Skip empty runs eight samples at a time.
-      if (x + 8 <= mask_.cols) {
+      if (x + 8 <= box.x + box.width) {
         std::uint64_t word;
         std::memcpy(&word, m + x, sizeof word);
         if (word == 0) {

@@ -319,6 +319,41 @@ TEST(BlobDetector, ClosingFillsAHole) {
   EXPECT_LT(cv::norm(filled[0].centroid - truth[0].centre), 1.0);
 }
 
+// The detector labels only the foreground's bounding box; its labels must be those of labelling the whole
+// mask, numbers included, frame after frame (boxes at odd and even corners, growing, shrinking, empty), on
+// one thread and on OpenCV's parallel labelling alike.
+TEST(BlobDetector, LabelsMatchLabellingTheWholeMask) {
+  BlobSettings settings;
+  settings.range = kRedRange;
+  settings.morphSize = 0;
+  settings.minArea = 1;
+  settings.maxObjects = 1000;
+  settings.decimation = 1;
+  const int threads = cv::getNumThreads();
+  for (int numThreads : {1, std::max(2, threads)}) {
+    cv::setNumThreads(numThreads);
+    BlobDetector detector(settings);
+    cv::RNG rng(7);
+    for (int frame = 0; frame < 40; ++frame) {
+      cv::Mat bgr(241, 323, CV_8UC3, cv::Scalar(0, 0, 0));
+      const int shapes = frame % 10 == 9 ? 0 : rng.uniform(1, 30);  // every tenth frame empty
+      for (int i = 0; i < shapes; ++i) {
+        const cv::Point centre(rng.uniform(0, bgr.cols), rng.uniform(0, bgr.rows));
+        if (rng.uniform(0, 2))
+          cv::circle(bgr, centre, rng.uniform(0, 12), cv::Scalar(0, 0, 255), cv::FILLED);
+        else
+          bgr.at<cv::Vec3b>(centre) = cv::Vec3b(0, 0, 255);  // single pixels, at odd coordinates too
+      }
+      const std::vector<Blob> blobs = detector.detect(sampledBgr(bgr));
+      cv::Mat expected;
+      const int count = cv::connectedComponents(detector.mask(), expected, 8, CV_32S);
+      ASSERT_EQ(countMismatches(detector.labels().labels, expected), 0) << "frame " << frame;
+      EXPECT_EQ(static_cast<int>(blobs.size()), count - 1) << "frame " << frame;
+    }
+  }
+  cv::setNumThreads(threads);
+}
+
 TEST(BlobDetector, MinAreaAndMaxObjectsKeepTheLargest) {
   std::vector<Ball> five;
   for (int i = 0; i < 5; ++i) {
