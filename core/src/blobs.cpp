@@ -144,8 +144,8 @@ int packed3Indices(const std::uint8_t *row, int rowBytes, int n, int *idx) {
   return x;
 }
 
-// Planar 4:2:0 (I420, YV12) at decimation 2, byte strides 2, 1, 1: GCC vectorises stridedIndices<2, 1, 1>
-// with scalar luma loads (8 instructions a sample in callgrind); this takes about 2.
+// Planar 4:2:0 (I420, YV12) at decimation 2, byte strides 2, 1, 1: GCC vectorised stridedIndices<2, 1, 1>
+// with scalar luma loads (8 instructions a sample in callgrind), hence this (about 2).
 // yBytes, uBytes, vBytes bound the reads. Writes whole blocks of 16 indices and returns how many it wrote.
 int planar420Indices(const std::uint8_t *y, const std::uint8_t *u, const std::uint8_t *v, int yBytes,
                      int uBytes, int vBytes, int n, int *idx) {
