@@ -167,6 +167,82 @@ TEST(Segment, PackedFormatsByByteOffsets) {
   }
 }
 
+// Every layout segment() special-cases (packed 3- and 4-byte pixels, planar and semi-planar 4:2:0, packed
+// 4:2:2) and the general one give exactly the samples the ChannelSampler definition names, looked up one by
+// one, for even and odd sizes, a row stride wider than the row, and decimations 1 to 3.
+TEST(Segment, EveryLayoutMatchesPerSampleLookup) {
+  const HsvRange range = rangeOf({300, 0.2, 0.1}, {120, 0.9, 0.95});  // about half of all colours
+  const RangeLut rgbLut(range, PixelEncoding::Rgb), yuvLut(range, PixelEncoding::Yuv601);
+  cv::RNG rng(3);
+  for (const cv::Size size : {cv::Size(640, 480), cv::Size(641, 363), cv::Size(37, 21), cv::Size(2, 1)}) {
+    const cv::Size half((size.width + 1) / 2, (size.height + 1) / 2);
+    // Rows 5 bytes wider than used, so reading past a row's end would show as a mismatch or a crash.
+    cv::Mat store(size.height + 2 * half.height, size.width * 4 + 5, CV_8UC1);
+    rng.fill(store, cv::RNG::UNIFORM, 0, 256);
+    const auto bytes = [&](int firstRow, int rows, int cols) {
+      return store(cv::Rect(0, firstRow, cols, rows));
+    };
+    struct Layout {
+      const char *name;
+      std::array<ChannelSampler, 3> channels;
+      PixelEncoding encoding;
+    };
+    const int w = size.width, h = size.height, cw = half.width, ch = half.height;
+    const std::vector<Layout> layouts{
+        {"BGR",
+         {{{bytes(0, h, 3 * w), 2, 3}, {bytes(0, h, 3 * w), 1, 3}, {bytes(0, h, 3 * w), 0, 3}}},
+         PixelEncoding::Rgb},
+        {"RGB",
+         {{{bytes(0, h, 3 * w), 0, 3}, {bytes(0, h, 3 * w), 1, 3}, {bytes(0, h, 3 * w), 2, 3}}},
+         PixelEncoding::Rgb},
+        {"RGBx",
+         {{{bytes(0, h, 4 * w), 0, 4}, {bytes(0, h, 4 * w), 1, 4}, {bytes(0, h, 4 * w), 2, 4}}},
+         PixelEncoding::Rgb},
+        {"xBGR",
+         {{{bytes(0, h, 4 * w), 3, 4}, {bytes(0, h, 4 * w), 2, 4}, {bytes(0, h, 4 * w), 1, 4}}},
+         PixelEncoding::Rgb},
+        {"I420",
+         {{{bytes(0, h, w), 0, 1}, {bytes(h, ch, cw), 0, 1, 2, 2}, {bytes(h + ch, ch, cw), 0, 1, 2, 2}}},
+         PixelEncoding::Yuv601},
+        {"NV12",
+         {{{bytes(0, h, w), 0, 1}, {bytes(h, ch, 2 * cw), 0, 2, 2, 2}, {bytes(h, ch, 2 * cw), 1, 2, 2, 2}}},
+         PixelEncoding::Yuv601},
+        {"YUY2",
+         {{{bytes(0, h, 2 * w), 0, 2}, {bytes(0, h, 2 * w), 1, 4, 2, 1}, {bytes(0, h, 2 * w), 3, 4, 2, 1}}},
+         PixelEncoding::Yuv601},
+    };
+    for (const Layout &layout : layouts) {
+      SampledFrame frame;
+      frame.channels = layout.channels;
+      frame.encoding = layout.encoding;
+      frame.size = size;
+      const RangeLut &lut = layout.encoding == PixelEncoding::Rgb ? rgbLut : yuvLut;
+      for (int d : {1, 2, 3}) {
+        cv::Mat mask;
+        segment(frame, lut, d, mask);
+        ASSERT_EQ(mask.size(), cv::Size((w + d - 1) / d, (h + d - 1) / d));
+        int mismatches = 0, inside = 0;
+        for (int y = 0; y < mask.rows; ++y)
+          for (int x = 0; x < mask.cols; ++x) {
+            std::array<std::uint8_t, 3> c;
+            for (int k = 0; k < 3; ++k) {
+              const ChannelSampler &s = frame.channels[k];
+              c[k] = s.plane.ptr(y * d / s.ySub)[(x * d / s.xSub) * s.sampleBytes + s.byteOffset];
+            }
+            const std::uint8_t expected = lut.at(c[0], c[1], c[2]);
+            mismatches += mask.at<std::uint8_t>(y, x) != expected;
+            inside += expected != 0;
+          }
+        EXPECT_EQ(mismatches, 0) << layout.name << " " << size << " decimation " << d;
+        // Both answers occur (random YUV bytes are mostly out of the RGB gamut: about 5% inside).
+        if (mask.total() > 1000) {
+          EXPECT_GT(inside, static_cast<int>(mask.total() / 50)) << layout.name;
+        }
+      }
+    }
+  }
+}
+
 // The paper's case: a red ball (hue across 0 deg) on clutter. Centroid within 2 px on average, one blob.
 TEST(BlobDetector, RedBallCentroidOnClutter) {
   const BallScene scene = redBallScene();
@@ -241,6 +317,41 @@ TEST(BlobDetector, ClosingFillsAHole) {
   std::printf("hole: area %.0f -> %.0f (disc %.0f)\n", open[0].area, filled[0].area, CV_PI * 24 * 24);
   EXPECT_GT(filled[0].area, open[0].area + 10);
   EXPECT_LT(cv::norm(filled[0].centroid - truth[0].centre), 1.0);
+}
+
+// The detector labels only the foreground's bounding box; its labels must be those of labelling the whole
+// mask, numbers included, frame after frame (boxes at odd and even corners, growing, shrinking, empty), on
+// one thread and on OpenCV's parallel labelling alike.
+TEST(BlobDetector, LabelsMatchLabellingTheWholeMask) {
+  BlobSettings settings;
+  settings.range = kRedRange;
+  settings.morphSize = 0;
+  settings.minArea = 1;
+  settings.maxObjects = 1000;
+  settings.decimation = 1;
+  const int threads = cv::getNumThreads();
+  for (int numThreads : {1, std::max(2, threads)}) {
+    cv::setNumThreads(numThreads);
+    BlobDetector detector(settings);
+    cv::RNG rng(7);
+    for (int frame = 0; frame < 40; ++frame) {
+      cv::Mat bgr(241, 323, CV_8UC3, cv::Scalar(0, 0, 0));
+      const int shapes = frame % 10 == 9 ? 0 : rng.uniform(1, 30);  // every tenth frame empty
+      for (int i = 0; i < shapes; ++i) {
+        const cv::Point centre(rng.uniform(0, bgr.cols), rng.uniform(0, bgr.rows));
+        if (rng.uniform(0, 2))
+          cv::circle(bgr, centre, rng.uniform(0, 12), cv::Scalar(0, 0, 255), cv::FILLED);
+        else
+          bgr.at<cv::Vec3b>(centre) = cv::Vec3b(0, 0, 255);  // single pixels, at odd coordinates too
+      }
+      const std::vector<Blob> blobs = detector.detect(sampledBgr(bgr));
+      cv::Mat expected;
+      const int count = cv::connectedComponents(detector.mask(), expected, 8, CV_32S);
+      ASSERT_EQ(countMismatches(detector.labels().labels, expected), 0) << "frame " << frame;
+      EXPECT_EQ(static_cast<int>(blobs.size()), count - 1) << "frame " << frame;
+    }
+  }
+  cv::setNumThreads(threads);
 }
 
 TEST(BlobDetector, MinAreaAndMaxObjectsKeepTheLargest) {

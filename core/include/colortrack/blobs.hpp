@@ -122,6 +122,7 @@ class BlobDetector {
   BlobSettings settings_;
   std::optional<RangeLut> rgbLut_, yuvLut_;
   cv::Mat mask_, labels_;
+  cv::Rect labelledBox_;  // where labels_ may be non-zero
   std::vector<GridMoments> moments_;
   int lastDecimation_ = 1;
   cv::Mat bgr_;
