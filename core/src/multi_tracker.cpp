@@ -173,10 +173,12 @@ double MultiTracker::gateRadius(const Track &track) const {
   const double halfDiagonal = 0.5 * std::hypot(size.width, size.height);
   double sigma = std::max(track.filter.stdX(), track.filter.stdY());
   // Without measurements the filter's uncertainty grows like the fifth power of time (white-noise jerk):
-  // within ten frames a gate covers the frame. A track hidden in a merged blob is known to be in there, so
-  // it keeps the uncertainty it had one frame after its last measurement (and grows only with its misses,
-  // below): otherwise it takes a far-away blob that is another track's object.
-  if (track.mergedFrames > 0) sigma = std::min(sigma, track.sigmaAfterMeasured);
+  // within ten frames a gate covers the frame, and a track hidden in a merged blob took far-away blobs that
+  // were other tracks' objects. Hidden, its object may have gone at its speed in any direction (turned back,
+  // say): the uncertainty it had one frame after its last measurement grows by that speed each frame.
+  if (track.mergedFrames > 0)
+    sigma = std::min(sigma, track.sigmaAfterMeasured +
+                                std::hypot(track.filter.vx(), track.filter.vy()) * track.mergedFrames);
   return std::max(settings_.minGate, settings_.gateSize * halfDiagonal) + 3.0 * sigma +
          settings_.coastGrowth * halfDiagonal * track.misses;
 }

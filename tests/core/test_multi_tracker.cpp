@@ -279,6 +279,34 @@ TEST(MultiTracker, ATrackHiddenInAnotherBlobNeverTakesAFarAwayOne) {
   EXPECT_NE(hiddenId, 0);
 }
 
+// The other side of the same rule: a small object that turns back while it is hidden behind a large one comes
+// out where it went in, further from its coasting prediction than a gate that never grows would reach. Its
+// track takes it back, and no second track is started on it.
+TEST(MultiTracker, AnObjectThatTurnsBackWhileHiddenKeepsItsId) {
+  MultiTracker tracker;
+  const cv::Size frame(640, 480);
+  const cv::Point2d large(200, 200);
+  constexpr double kLargeSide = 60, kSmallSide = 20;
+  int id = 0, hiddenFrames = 0;
+  for (int i = 0; i < 50; ++i) {
+    // Rightwards at 4 px/frame, behind the large one from x = 172, back at 2 px/frame from frame 30 (x =
+    // 200).
+    const cv::Point2d small(i < 30 ? 80 + 4.0 * i : 200 - 2.0 * (i - 30), 200);
+    const bool hidden = std::abs(small.x - large.x) < kLargeSide / 2;
+    hiddenFrames += hidden;
+    std::vector<Blob> blobs = {blobAt(large.x, large.y, kLargeSide)};
+    if (!hidden) blobs.push_back(blobAt(small.x, small.y, kSmallSide));
+    const std::vector<TrackedObject> reported = tracker.update(blobs, frame);
+    if (i < 3 || hidden) continue;
+    const TrackedObject *onSmall = nearest(reported, small, 5);
+    ASSERT_NE(onSmall, nullptr) << "frame " << i;
+    if (id == 0) id = onSmall->id;
+    EXPECT_EQ(onSmall->id, id) << "frame " << i;
+    EXPECT_EQ(reported.size(), 2u) << "frame " << i;  // the large one and the small one, no third track
+  }
+  EXPECT_GE(hiddenFrames, 20);
+}
+
 // An object at rest jumps in the image (the camera turned once) and is lost a moment later: its track coasts
 // near where it was seen, not on the jump, which the filter's velocity has followed. One lost while moving
 // steadily is followed at its speed.
