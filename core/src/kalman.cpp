@@ -115,11 +115,10 @@ void KalmanFilter9::correct(double x, double y, double scale) {
 }
 
 void KalmanFilter9::correctPosition(double x, double y, double scale) {
-  const double vx = state_(1), vy = state_(4);
+  const double vx = this->vx(), vy = this->vy();
   correct(x, y, scale);
-  state_(1) = vx;
-  state_(4) = vy;
-  state_(2) = state_(5) = 0;  // ax, ay
+  setVelocity(vx, vy);
+  dropAcceleration();
 }
 
 double KalmanFilter9::stdX() const {
