@@ -32,11 +32,12 @@ PackedLayout packedLayout(const GstVideoFormatInfo *finfo);
 // `type` gives the element type (CV_8UC1, CV_8UC2 for NV12's UV, CV_8UC4 for YUY2 macro-pixels ...).
 cv::Mat planeMat(const GstVideoFrame *frame, int plane, cv::Size size, int type);
 
-// colortrack::ImageSource over a mapped frame. YUV formats are converted with OpenCV's fixed BT.601
-// limited-range matrix (what cv::cvtColor implements), whatever the caps' colorimetry says: the tracker
-// compares colours against a template taken through the same path, so a consistent matrix matters more than
-// the exact one. (A template loaded from a file is RGB, so a BT.709 stream shifts hues slightly; the V weight
-// absorbs it.)
+// The colorimetry of a YUV frame (matrix, range), as its caps say.
+colortrack::YuvColorimetry yuvColorimetry(const GstVideoInfo *info);
+
+// colortrack::ImageSource over a mapped frame. YUV formats are converted by the caps' colorimetry, as
+// videoconvert would convert them (colortrack::yuvToBgr), so that a source delivering YUV and one delivering
+// the same frames as RGB give the tracker the same image.
 class FrameView : public colortrack::ImageSource {
  public:
   // `frame` must stay mapped for the lifetime of the view. `cacheStorage`, if given, holds the cache of
@@ -55,14 +56,14 @@ class FrameView : public colortrack::ImageSource {
  private:
   void convert(const cv::Rect &rect, cv::Mat &out) const;
   void packedToBgr(const cv::Rect &rect, cv::Mat &out) const;
-  void planarToBgr(const cv::Rect &rect, cv::Mat &out) const;  // I420 and NV12
-  void yuy2ToBgr(const cv::Rect &rect, cv::Mat &out) const;
   void packedToBgr(const cv::Mat &pixels, cv::Mat &out) const;
+  void yuvToBgr(const cv::Rect &rect, int step, cv::Mat &out) const;
 
   const GstVideoFrame *frame_;
   GstVideoFormat format_;
   cv::Size size_;
-  PackedLayout packed_;
+  PackedLayout packed_;                     // RGB formats
+  colortrack::YuvColorimetry colorimetry_;  // YUV formats
   // The largest region converted so far, for the regions inside it (the tracker may read from two threads).
   mutable std::mutex cacheMutex_;
   mutable cv::Rect cachedRect_;

@@ -63,8 +63,8 @@ std::string validateRange(const HsvRange &range) {
   return {};
 }
 
-RangeLut::RangeLut(const HsvRange &range, PixelEncoding encoding)
-    : range_(range), encoding_(encoding), table_(std::size_t{1} << (3 * kBits)) {
+RangeLut::RangeLut(const HsvRange &range, PixelEncoding encoding, const YuvColorimetry &colorimetry)
+    : range_(range), encoding_(encoding), colorimetry_(colorimetry), table_(std::size_t{1} << (3 * kBits)) {
   constexpr int cells = 1 << kBits;
   constexpr double width = 1 << kShift;
   const auto centre = [&](int cell) { return cell * width + (width - 1) / 2; };
@@ -72,7 +72,7 @@ RangeLut::RangeLut(const HsvRange &range, PixelEncoding encoding)
     for (int b = 0; b < cells; ++b)
       for (int c = 0; c < cells; ++c) {
         std::array<double, 3> rgb{centre(a), centre(b), centre(c)};
-        if (encoding == PixelEncoding::Yuv601) rgb = yuv601ToRgb(rgb[0], rgb[1], rgb[2]);
+        if (encoding == PixelEncoding::Yuv) rgb = colorimetry.toRgb(rgb[0], rgb[1], rgb[2]);
         const bool inside = range.contains(hsvOf(rgb[0], rgb[1], rgb[2]));
         table_[(a << (2 * kBits)) | (b << kBits) | c] = inside ? 255 : 0;
       }
@@ -327,9 +327,11 @@ void BlobDetector::setSettings(const BlobSettings &settings) {
   }
 }
 
-const RangeLut &BlobDetector::lutFor(PixelEncoding encoding) {
-  std::optional<RangeLut> &lut = encoding == PixelEncoding::Rgb ? rgbLut_ : yuvLut_;
-  if (!lut) lut.emplace(settings_.range, encoding);
+const RangeLut &BlobDetector::lutFor(const SampledFrame &frame) {
+  const bool rgb = frame.encoding == PixelEncoding::Rgb;
+  std::optional<RangeLut> &lut = rgb ? rgbLut_ : yuvLut_;
+  if (!lut || (!rgb && lut->colorimetry() != frame.colorimetry))
+    lut.emplace(settings_.range, frame.encoding, frame.colorimetry);
   return *lut;
 }
 
@@ -341,7 +343,7 @@ std::vector<Blob> BlobDetector::detect(const ImageSource &frame) {
 std::vector<Blob> BlobDetector::detect(const SampledFrame &frame) {
   const int d = settings_.decimation > 0 ? settings_.decimation : autoDecimation(frame.size);
   lastDecimation_ = d;
-  segment(frame, lutFor(frame.encoding), d, mask_);
+  segment(frame, lutFor(frame), d, mask_);
 
   // The kernel is given in frame pixels; on a decimated grid it shrinks, kept odd (centred) and, when
   // enabled at all, at least 3 so that one-sample specks still go.

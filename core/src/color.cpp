@@ -204,10 +204,28 @@ Yuv rgbToYuv601(std::uint8_t r8, std::uint8_t g8, std::uint8_t b8) {
   return yuv;
 }
 
-std::array<double, 3> yuv601ToRgb(double y, double u, double v) {
-  const double c = 1.164 * (y - 16.0), d = u - 128.0, e = v - 128.0;
-  const auto clamp = [](double x) { return std::clamp(x, 0.0, 255.0); };
-  return {clamp(c + 1.596 * e), clamp(c - 0.391 * d - 0.813 * e), clamp(c + 2.018 * d)};
+cv::Matx34f YuvColorimetry::toBgrMatrix() const {
+  // Y' = Kr R + (1 - Kr - Kb) G + Kb B, and U, V the scaled B - Y' and R - Y' (ITU-R BT.601/709/2020 alike).
+  const double kg = 1 - kr - kb;
+  const double yScale = fullRange ? 1.0 : 255.0 / 219.0, cScale = fullRange ? 1.0 : 255.0 / 224.0;
+  const double yOffset = fullRange ? 0.0 : -16.0 * yScale;
+  const double vToR = 2 * (1 - kr) * cScale, uToB = 2 * (1 - kb) * cScale;
+  const double uToG = -uToB * kb / kg, vToG = -vToR * kr / kg;
+  const auto row = [&](double u, double v) {
+    return std::array<double, 4>{yScale, u, v, yOffset - 128.0 * (u + v)};
+  };
+  const std::array<double, 4> b = row(uToB, 0), g = row(uToG, vToG), r = row(0, vToR);
+  return cv::Matx34f(float(b[0]), float(b[1]), float(b[2]), float(b[3]),  //
+                     float(g[0]), float(g[1]), float(g[2]), float(g[3]),  //
+                     float(r[0]), float(r[1]), float(r[2]), float(r[3]));
+}
+
+std::array<double, 3> YuvColorimetry::toRgb(double y, double u, double v) const {
+  const cv::Matx34f m = toBgrMatrix();
+  const auto channel = [&](int row) {
+    return std::clamp(m(row, 0) * y + m(row, 1) * u + m(row, 2) * v + m(row, 3), 0.0, 255.0);
+  };
+  return {channel(2), channel(1), channel(0)};
 }
 
 BinMapper::BinMapper(ColorSpace space, const BinLayout &layout) : space_(space), layout_(layout) {

@@ -67,7 +67,7 @@ SampledFrame sampledI420(const cv::Mat &i420, cv::Size size) {
   const cv::Size half((size.width + 1) / 2, (size.height + 1) / 2);
   SampledFrame f;
   f.size = size;
-  f.encoding = PixelEncoding::Yuv601;
+  f.encoding = PixelEncoding::Yuv;
   f.channels[0] = {i420.rowRange(0, size.height), 0, 1, 1, 1};
   f.channels[1] = {cv::Mat(half, CV_8UC1, const_cast<uchar *>(i420.ptr(size.height))), 0, 1, 2, 2};
   f.channels[2] = {cv::Mat(half, CV_8UC1, const_cast<uchar *>(i420.ptr(size.height)) + half.area()), 0, 1, 2,
@@ -97,7 +97,7 @@ Result run(cv::Size size, int objects, bool i420, int frames) {
   Result r;
   std::vector<double> total, seg, clean, label;
   const int d = autoDecimation(size);
-  const RangeLut lut(settings.range, i420 ? PixelEncoding::Yuv601 : PixelEncoding::Rgb);
+  const RangeLut lut(settings.range, i420 ? PixelEncoding::Yuv : PixelEncoding::Rgb);
   const int kernel = d == 1 ? settings.morphSize : 3;  // what detect() uses for morph-size 5
   cv::Mat mask, labels;
   for (int i = -5; i < frames; ++i) {  // 5 warm-up frames

@@ -130,14 +130,14 @@ TEST(Segment, YuvPlanesMatchTheirBgrConversion) {
   cv::cvtColor(i420, back, cv::COLOR_YUV2BGR_I420);
   const cv::Size s = bgr.size(), half(s.width / 2, s.height / 2);
   SampledFrame yuv;
-  yuv.encoding = PixelEncoding::Yuv601;
+  yuv.encoding = PixelEncoding::Yuv;
   yuv.size = s;
   yuv.channels[0] = {i420.rowRange(0, s.height), 0, 1, 1, 1};
   const cv::Mat u(half, CV_8UC1, i420.ptr(s.height)), v(half, CV_8UC1, i420.ptr(s.height) + half.area());
   yuv.channels[1] = {u, 0, 1, 2, 2};
   yuv.channels[2] = {v, 0, 1, 2, 2};
   cv::Mat fromYuv, fromBgr;
-  segment(yuv, RangeLut(kRedRange, PixelEncoding::Yuv601), 2, fromYuv);
+  segment(yuv, RangeLut(kRedRange, PixelEncoding::Yuv), 2, fromYuv);
   segment(sampledBgr(back), RangeLut(kRedRange, PixelEncoding::Rgb), 2, fromBgr);
   ASSERT_EQ(fromYuv.size(), cv::Size(320, 240));
   const int inside = cv::countNonZero(fromBgr), differ = countMismatches(fromYuv, fromBgr);
@@ -172,7 +172,7 @@ TEST(Segment, PackedFormatsByByteOffsets) {
 // one, for even and odd sizes, a row stride wider than the row, and decimations 1 to 3.
 TEST(Segment, EveryLayoutMatchesPerSampleLookup) {
   const HsvRange range = rangeOf({300, 0.2, 0.1}, {120, 0.9, 0.95});  // about half of all colours
-  const RangeLut rgbLut(range, PixelEncoding::Rgb), yuvLut(range, PixelEncoding::Yuv601);
+  const RangeLut rgbLut(range, PixelEncoding::Rgb), yuvLut(range, PixelEncoding::Yuv);
   cv::RNG rng(3);
   for (const cv::Size size : {cv::Size(640, 480), cv::Size(641, 363), cv::Size(37, 21), cv::Size(2, 1)}) {
     const cv::Size half((size.width + 1) / 2, (size.height + 1) / 2);
@@ -203,13 +203,13 @@ TEST(Segment, EveryLayoutMatchesPerSampleLookup) {
          PixelEncoding::Rgb},
         {"I420",
          {{{bytes(0, h, w), 0, 1}, {bytes(h, ch, cw), 0, 1, 2, 2}, {bytes(h + ch, ch, cw), 0, 1, 2, 2}}},
-         PixelEncoding::Yuv601},
+         PixelEncoding::Yuv},
         {"NV12",
          {{{bytes(0, h, w), 0, 1}, {bytes(h, ch, 2 * cw), 0, 2, 2, 2}, {bytes(h, ch, 2 * cw), 1, 2, 2, 2}}},
-         PixelEncoding::Yuv601},
+         PixelEncoding::Yuv},
         {"YUY2",
          {{{bytes(0, h, 2 * w), 0, 2}, {bytes(0, h, 2 * w), 1, 4, 2, 1}, {bytes(0, h, 2 * w), 3, 4, 2, 1}}},
-         PixelEncoding::Yuv601},
+         PixelEncoding::Yuv},
     };
     for (const Layout &layout : layouts) {
       SampledFrame frame;

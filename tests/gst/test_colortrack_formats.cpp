@@ -217,6 +217,47 @@ GST_START_TEST(test_format_full_overlay) {
 }
 GST_END_TEST;
 
+// The same decoded frames handed to colortrack in each format give the same track. The frames are I420 as
+// jpegdec gives them (full range, chroma centred: colorimetry 1:4:0:0, chroma-site jpeg) or as most video
+// is (limited range); videoconvert turns them into each other format, as a user's pipeline would.
+GST_START_TEST(test_formats_agree) {
+  const bool jpegLike = __i__ == 0;
+  SceneConfig config;
+  config.frameSize = cv::Size(320, 240);
+  config.objectSize = cv::Size(48, 48);
+  config.frames = 80;
+  config.brightness = 0.3;
+  config.rotationDegrees = 30;
+  config.seed = 5;
+  const Scene scene(config);
+  const cv::Size size = config.frameSize;
+  const std::string decoded =
+      videoCaps("I420", size) + (jpegLike ? ",colorimetry=1:4:0:0,chroma-site=jpeg" : ",colorimetry=bt601");
+  Harness toDecoded("videoconvert ! capsfilter caps=" + decoded, videoCaps("BGR", size));
+  const char *formats[] = {"I420", "BGRx", "RGB", "NV12", "YUY2"};
+  std::vector<std::vector<cv::Rect2d>> boxes(G_N_ELEMENTS(formats));
+  for (size_t k = 0; k < G_N_ELEMENTS(formats); ++k) {
+    const std::string convert =
+        k == 0 ? std::string("identity") : "videoconvert ! capsfilter caps=" + videoCaps(formats[k], size);
+    Harness pipeline(convert + " ! colortrack init-box=" + boxString(scene.initBox()), decoded);
+    for (int i = 0; i < config.frames; ++i) {
+      GstBuffer *out = pipeline.process(toDecoded.process(bgrBuffer(scene.render(i).bgr, i)));
+      const TrackMeta m = readMeta(out);
+      boxes[k].push_back(m.present ? cv::Rect2d(m.box) : cv::Rect2d());
+      gst_buffer_unref(out);
+    }
+  }
+  for (size_t k = 1; k < G_N_ELEMENTS(formats); ++k) {
+    double agreement = 0;
+    for (int i = 0; i < config.frames; ++i) agreement += iou(boxes[0][i], boxes[k][i]) / config.frames;
+    GST_INFO("%s frames: I420 and %s agree at mean IoU %.3f", jpegLike ? "jpeg" : "bt601", formats[k],
+             agreement);
+    fail_unless(agreement >= 0.95, "%s frames: I420 and %s agree at mean IoU %.3f only",
+                jpegLike ? "jpeg" : "bt601", formats[k], agreement);
+  }
+}
+GST_END_TEST;
+
 static Suite *colortrack_formats_suite(void) {
   preloadPlugins({"colortrack", "videoconvertscale"});
   Suite *s = suite_create("colortrack_formats");
@@ -225,6 +266,7 @@ static Suite *colortrack_formats_suite(void) {
   const int cases = static_cast<int>(G_N_ELEMENTS(kCases));
   tcase_add_loop_test(tc, test_format, 0, cases);
   tcase_add_loop_test(tc, test_format_full_overlay, 0, cases);
+  tcase_add_loop_test(tc, test_formats_agree, 0, 2);
   return s;
 }
 

@@ -39,9 +39,11 @@ class RangeLut {
   static constexpr int kBits = 6;
   static constexpr int kShift = 8 - kBits;
 
-  RangeLut(const HsvRange &range, PixelEncoding encoding);
+  // `colorimetry` says what YUV bytes stand for (with PixelEncoding::Yuv).
+  RangeLut(const HsvRange &range, PixelEncoding encoding, const YuvColorimetry &colorimetry = {});
   const HsvRange &range() const { return range_; }
   PixelEncoding encoding() const { return encoding_; }
+  const YuvColorimetry &colorimetry() const { return colorimetry_; }
   static int index(std::uint8_t c0, std::uint8_t c1, std::uint8_t c2) {
     return ((c0 >> kShift) << (2 * kBits)) | ((c1 >> kShift) << kBits) | (c2 >> kShift);
   }
@@ -53,6 +55,7 @@ class RangeLut {
  private:
   HsvRange range_;
   PixelEncoding encoding_;
+  YuvColorimetry colorimetry_;
   std::vector<std::uint8_t> table_;  // 255 inside, 0 outside
 };
 
@@ -118,7 +121,7 @@ class BlobDetector {
   BlobLabels labels() const { return BlobLabels{labels_, lastDecimation_}; }
 
  private:
-  const RangeLut &lutFor(PixelEncoding encoding);
+  const RangeLut &lutFor(const SampledFrame &frame);
   BlobSettings settings_;
   std::optional<RangeLut> rgbLut_, yuvLut_;
   cv::Mat mask_, labels_;

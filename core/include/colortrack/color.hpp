@@ -24,8 +24,23 @@ struct Yuv {
   std::uint8_t y = 16, u = 128, v = 128;
 };
 Yuv rgbToYuv601(std::uint8_t r, std::uint8_t g, std::uint8_t b);
-// r, g, b in [0, 255] (clamped), for y, u, v anywhere in [0, 255].
-std::array<double, 3> yuv601ToRgb(double y, double u, double v);
+
+// How the bytes of a YUV frame stand for RGB: the matrix (by its Kr and Kb) and the range. GStreamer's caps
+// say it (colorimetry): a JPEG decoder's output is full range, most video limited range. Reading a frame by
+// the wrong one changes its contrast and saturation by 14-16 %.
+struct YuvColorimetry {
+  double kr = 0.299, kb = 0.114;  // BT.601
+  bool fullRange = false;
+
+  // r, g, b in [0, 255] (clamped), for y, u, v anywhere in [0, 255].
+  std::array<double, 3> toRgb(double y, double u, double v) const;
+  // The same as an affine map of (Y, U, V) to (B, G, R), for cv::transform.
+  cv::Matx34f toBgrMatrix() const;
+  bool operator==(const YuvColorimetry &o) const {
+    return kr == o.kr && kb == o.kb && fullRange == o.fullRange;
+  }
+  bool operator!=(const YuvColorimetry &o) const { return !(*this == o); }
+};
 
 // Number of bins of each of the three channels, in channel order (H,S,V) or (R,G,B). 1..256 each.
 struct BinLayout {

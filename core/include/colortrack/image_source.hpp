@@ -6,6 +6,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "colortrack/color.hpp"
 #include "colortrack/scratch_image.hpp"
 
 namespace colortrack {
@@ -18,7 +19,7 @@ cv::Rect sampledCover(const cv::Rect &rect, int step);
 // What the three bytes sampled from a frame mean.
 enum class PixelEncoding {
   Rgb,     // channels R, G, B
-  Yuv601,  // channels Y, U, V, BT.601 limited range (OpenCV's YUV conversions, as FrameView reads YUV)
+  Yuv,     // channels Y, U, V as the frame's YuvColorimetry says
 };
 
 // One colour channel of a frame as bytes in memory: the sample of frame pixel (x, y) is
@@ -36,7 +37,8 @@ struct ChannelSampler {
 struct SampledFrame {
   std::array<ChannelSampler, 3> channels;
   PixelEncoding encoding = PixelEncoding::Rgb;
-  cv::Size size;  // frame size in pixels
+  YuvColorimetry colorimetry;  // with PixelEncoding::Yuv
+  cv::Size size;               // frame size in pixels
 };
 
 // A BGR image (CV_8UC3) as a SampledFrame (a view: `bgr` must outlive it).
