@@ -8,6 +8,8 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "sre.hpp"
+
 namespace fs = std::filesystem;
 
 namespace colortrack::eval {
@@ -56,9 +58,7 @@ Sequence loadSequence(const fs::path &dir, double gtOrigin) {
   if (image.empty()) throw std::runtime_error("cannot decode " + first.string());
   sequence.frameSize = image.size();
 
-  const cv::Rect2d &box = *sequence.groundTruth[0];
-  const cv::Rect rounded(cvRound(box.x), cvRound(box.y), cvRound(box.width), cvRound(box.height));
-  sequence.initBox = rounded & cv::Rect(cv::Point(0, 0), sequence.frameSize);
+  sequence.initBox = startRect(*sequence.groundTruth[0], sequence.frameSize);
   if (sequence.initBox.empty())
     throw std::runtime_error(gtPath.string() + ": frame 1's box is outside the frame");
   return sequence;
