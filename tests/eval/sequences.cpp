@@ -26,6 +26,27 @@ std::string readFile(const fs::path &path) {
 
 }  // namespace
 
+const std::vector<std::string> &tuneSplit() {
+  static const std::vector<std::string> names = {"Coke",     "Crossing", "bag",       "wakeboard4",
+                                                 "person11", "David",    "DragonBaby"};
+  return names;
+}
+
+// The four sequences added last (basketball, Biker_uav, S1301, wakeboard5) only check, never tune.
+const std::vector<std::string> &confirmSplit() {
+  static const std::vector<std::string> names = {"Tiger1",       "Couple",  "boat1",     "car16_1",
+                                                 "MotorRolling", "Animal1", "Surfing06", "basketball",
+                                                 "Biker_uav",    "S1301",   "wakeboard5"};
+  return names;
+}
+
+const char *halfOf(const std::string &sequenceName) {
+  auto in = [&sequenceName](const std::vector<std::string> &list) {
+    return std::find(list.begin(), list.end(), sequenceName) != list.end();
+  };
+  return in(tuneSplit()) ? "tune" : in(confirmSplit()) ? "confirm" : "-";
+}
+
 fs::path framePath(const Sequence &sequence, int index) {
   char name[256];
   std::snprintf(name, sizeof name, sequence.pattern.printfPattern().c_str(),
