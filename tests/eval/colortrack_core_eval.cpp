@@ -2,7 +2,7 @@
 // GStreamer. Meant for quick tuning loops: it runs the core tracker directly on the decoded JPEGs, several
 // sequences at once.
 //
-//   colortrack-core-eval [--set key=value ...] [--split tune|confirm|all]
+//   colortrack-core-eval [--set key=value ...] [--split tune|confirm|all] [--sre]
 //                        [--threads N] [--frames-out DIR] SEQ_DIR_OR_PARENT...
 //
 // A SEQ_DIR holds img/<n>.jpg and groundtruth.txt (or OTB's groundtruth_rect.txt); a folder of such folders
@@ -13,11 +13,15 @@
 // --set key=value   a TrackerSettings field: method=indexing|discriminative|fused, match-threshold,
 //                   likelihood-threshold, model-update-rate, search-margin, max-coast-frames, process-noise,
 //                   measurement-noise, adapt-aspect=0|1, verify=none|edge-density|edge-energy|both.
-// --split           which half of the shared sequences to run (kTuneSplit / kConfirmSplit below); sequences
-//                   in neither list run with `all` (the default) only.
-// --threads N       sequences processed in parallel, one Tracker per sequence (default 2). OpenCV runs
+// --split           which half of the shared sequences to run (tuneSplit() / confirmSplit() in
+// sequences.cpp);
+//                   sequences in neither list run with `all` (the default) only.
+// --sre             spatial robustness too: 8 more runs per sequence from perturbed frame-1 boxes (sre.hpp);
+//                   a sequence's SRE score is the mean AUC of those 8 runs.
+// --threads N       runs processed in parallel, one Tracker per run (default 2). OpenCV runs
 //                   single-threaded (cv::setNumThreads(1)), so the per-frame times are those of one core.
-// --frames-out DIR  DIR/<sequence>.csv: frame,x,y,w,h,state,score (the scored box; empty fields for a miss).
+// --frames-out DIR  DIR/<sequence>.csv (SRE runs: DIR/<sequence>.<start>.csv): frame,x,y,w,h,state,score
+//                   (the scored box; empty fields for a miss).
 //
 // The protocol is colortrack-eval's (OTB one-pass evaluation), so its figures compare with that tool's:
 // - ground-truth x and y are shifted by 1 (OTB's 1-based boxes) into 0-based pixels; w and h are kept;
@@ -30,9 +34,13 @@
 // Per-frame times cover Tracker::process() only (not decoding, not the frame-1 initialisation). "lost" counts
 // the frames whose state is TrackState::Lost.
 //
-// Output: one row per sequence, the mean AUC of each half and of all (over the sequences that ran), and last
-// a machine-readable line "MEAN tune=%.4f confirm=%.4f all=%.4f" ("nan" for a half with no sequence).
-// Exit status: 0, 1 when a sequence failed or could not be loaded, 2 for a bad command line.
+// Output: one row per sequence (the OPE run), the robustness summary (robustness.hpp: OPE and SRE per
+// sequence and half, sequences that move between starts, alarm and re-acquisition figures from the states),
+// the mean OPE AUC of each half and of all (over the sequences that ran), and last a machine-readable line
+//   MEAN tune=%.4f confirm=%.4f all=%.4f
+// with, after --sre only, " sre_tune=%.4f sre_confirm=%.4f sre_all=%.4f" appended (the mean SRE scores);
+// "nan" for a half with no sequence. The first three fields keep their place and meaning with or without
+// --sre. Exit status: 0, 1 when a sequence failed or could not be loaded, 2 for a bad command line.
 
 #include <algorithm>
 #include <atomic>
@@ -62,7 +70,9 @@
 #include "colortrack/image_source.hpp"
 #include "colortrack/tracker.hpp"
 #include "metrics.hpp"
+#include "robustness.hpp"
 #include "sequences.hpp"
+#include "sre.hpp"
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
@@ -70,18 +80,11 @@ using Clock = std::chrono::steady_clock;
 namespace colortrack::eval {
 namespace {
 
-// The shared sequences (../shared/sequences) split in two halves of seven, each mixing OTB, VOT, UAV123 and
-// DTB70 material: tune parameters on the first, then check on the second that the gain is not overfitting.
-const std::vector<std::string> kTuneSplit = {"Coke",     "Crossing", "bag",       "wakeboard4",
-                                             "person11", "David",    "DragonBaby"};
-const std::vector<std::string> kConfirmSplit = {"Tiger1",       "Couple",  "boat1",    "car16_1",
-                                                "MotorRolling", "Animal1", "Surfing06"};
-
 // Subtracted from ground-truth x and y: OTB boxes are 1-based (MATLAB), as in colortrack-eval's default.
 constexpr double kGtOrigin = 1.0;
 
 constexpr const char *kUsage =
-    "usage: colortrack-core-eval [--set key=value ...] [--split tune|confirm|all]\n"
+    "usage: colortrack-core-eval [--set key=value ...] [--split tune|confirm|all] [--sre]\n"
     "                            [--threads N] [--frames-out DIR] SEQ_DIR_OR_PARENT...\n"
     "\n"
     "  SEQ_DIR_OR_PARENT   OTB layout (img/*.jpg + groundtruth.txt), or a folder of such folders\n"
@@ -90,7 +93,8 @@ constexpr const char *kUsage =
     "                      process-noise, measurement-noise, adapt-aspect=0|1,\n"
     "                      verify=none|edge-density|edge-energy|both (repeatable)\n"
     "  --split S           tune, confirm or all (default all)\n"
-    "  --threads N         sequences run in parallel (default 2)\n"
+    "  --sre               also 8 runs per sequence from perturbed start boxes (spatial robustness)\n"
+    "  --threads N         runs in parallel (default 2)\n"
     "  --frames-out DIR    per-frame boxes and states in DIR/<sequence>.csv\n";
 
 // A command-line error: usage text, exit status 2.
@@ -104,18 +108,25 @@ enum class Split { Tune, Confirm, All };
 struct Options {
   TrackerSettings settings;
   Split split = Split::All;
+  bool sre = false;
   int threads = 2;
   std::string framesOut;
   std::vector<std::string> inputs;
 };
 
-// What one sequence produced.
+// One run: a sequence from one start box.
+struct Job {
+  std::size_t sequence = 0;
+  std::size_t start = 0;  // 0: OPE
+  StartBox box;
+};
+
+// What one run produced.
 struct Result {
-  bool ok = false;
+  StartOutcome outcome;
   std::string error;
   std::string warning;
   int frames = 0;
-  SequenceScore score;
   double medianMs = 0, meanMs = 0, maxMs = 0;
   int lostFrames = 0;
 };
@@ -229,6 +240,8 @@ Options parseOptions(int argc, char **argv) {
         options.split = Split::All;
       else
         throw UsageError("--split: '" + value + "' is not tune, confirm or all");
+    } else if (arg == "--sre") {
+      options.sre = true;
     } else if (arg == "--threads") {
       options.threads = parseInteger(arg, next());
       if (options.threads < 1) throw UsageError("--threads must be at least 1");
@@ -244,17 +257,12 @@ Options parseOptions(int argc, char **argv) {
   return options;
 }
 
-// "tune", "confirm" or "-": which half of the shared sequences a sequence belongs to.
-const char *halfOf(const std::string &name) {
-  return contains(kTuneSplit, name) ? "tune" : contains(kConfirmSplit, name) ? "confirm" : "-";
-}
-
 bool selected(const Sequence &sequence, Split split) {
   switch (split) {
     case Split::Tune:
-      return contains(kTuneSplit, sequence.name);
+      return contains(tuneSplit(), sequence.name);
     case Split::Confirm:
-      return contains(kConfirmSplit, sequence.name);
+      return contains(confirmSplit(), sequence.name);
     case Split::All:
       return true;
   }
@@ -288,7 +296,7 @@ double median(std::vector<double> values) {
 }
 
 void writeFrames(const fs::path &path, const std::vector<std::optional<cv::Rect2d>> &boxes,
-                 const std::vector<std::string> &states) {
+                 const std::vector<std::string> &states, const std::vector<double> &scores) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error("cannot write " + path.string());
   out << "frame,x,y,w,h,state,score\n";
@@ -298,53 +306,60 @@ void writeFrames(const fs::path &path, const std::vector<std::optional<cv::Rect2
       out << format(",%.0f,%.0f,%.0f,%.0f", boxes[i]->x, boxes[i]->y, boxes[i]->width, boxes[i]->height);
     else
       out << ",,,,";
-    out << "," << states[i] << "\n";
+    out << "," << states[i] << format(",%.3f", scores[i]) << "\n";
   }
 }
 
-Result runSequence(const Sequence &sequence, const Options &options) {
+void setTimes(Result &result, const std::vector<double> &processMs) {
+  result.medianMs = median(processMs);
+  // The mean is what decides throughput: re-detection frames cost several times a tracking frame.
+  result.meanMs =
+      processMs.empty() ? 0 : std::accumulate(processMs.begin(), processMs.end(), 0.0) / processMs.size();
+  result.maxMs = processMs.empty() ? 0 : *std::max_element(processMs.begin(), processMs.end());
+}
+
+Result runSequence(const Sequence &sequence, const StartBox &start, const Options &options) {
   Result result;
   try {
     const int frames = sequence.pattern.count;
     std::vector<std::optional<cv::Rect2d>> boxes;  // scored box per frame
     std::vector<std::string> states;
-    std::vector<double> processMs;
-    boxes.reserve(frames);
-    states.reserve(frames);
-    processMs.reserve(frames);
+    std::vector<double> scores, processMs;
 
     Tracker tracker(options.settings);
     for (int i = 0; i < frames; ++i) {
       const cv::Mat image = readFrame(sequence, i);
       const MatImageSource source(image);
       if (i == 0) {
-        tracker.setTemplateFromBox(source, sequence.initBox);
-        boxes.emplace_back(cv::Rect2d(sequence.initBox));  // frame 1's result is the init box (OTB)
-        states.emplace_back("init,0");
+        tracker.setTemplateFromBox(source, start.box);
+        boxes.emplace_back(cv::Rect2d(start.box));  // frame 1's result is the start box (OTB)
+        states.emplace_back("init");
+        scores.push_back(0);
         continue;
       }
-      const Clock::time_point start = Clock::now();
+      const Clock::time_point begin = Clock::now();
       const TrackOutput out = tracker.process(source);
-      processMs.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+      processMs.push_back(std::chrono::duration<double, std::milli>(Clock::now() - begin).count());
 
       const cv::Rect box = out.hasBox ? roundedClippedBox(out.box, image.size()) : cv::Rect();
       boxes.push_back(box.empty() ? std::nullopt : std::optional<cv::Rect2d>(cv::Rect2d(box)));
-      states.emplace_back(format("%s,%.3f", toString(out.state), out.score));
+      states.emplace_back(toString(out.state));
+      scores.push_back(out.score);
       if (out.state == TrackState::Lost) ++result.lostFrames;
     }
 
     result.frames = frames;
-    result.score = scoreSequence(sequence.groundTruth, boxes);
-    result.medianMs = median(processMs);
-    // The mean is what decides throughput: re-detection frames cost several times a tracking frame.
-    result.meanMs =
-        processMs.empty() ? 0 : std::accumulate(processMs.begin(), processMs.end(), 0.0) / processMs.size();
-    result.maxMs = processMs.empty() ? 0 : *std::max_element(processMs.begin(), processMs.end());
+    result.outcome.score = scoreSequence(sequence.groundTruth, boxes);
+    result.outcome.alarm = alarmFigures(sequence.groundTruth, boxes, states, sequence.frameSize);
+    result.outcome.hasStates = true;
+    setTimes(result, processMs);
     if (frames != static_cast<int>(sequence.groundTruth.size()))
       result.warning = format("%d frames, %zu ground-truth lines", frames, sequence.groundTruth.size());
-    if (!options.framesOut.empty())
-      writeFrames(fs::path(options.framesOut) / (sequence.name + ".csv"), boxes, states);
-    result.ok = true;
+    if (!options.framesOut.empty()) {
+      const std::string name = sequence.name + (start.name == "ope" ? "" : "." + start.name) + ".csv";
+      writeFrames(fs::path(options.framesOut) / name, boxes, states, scores);
+    }
+    result.outcome.ok = true;
   } catch (const TrackerError &e) {
     result.error = std::string("TrackerError: ") + e.what();
   } catch (const std::exception &e) {
@@ -353,20 +368,23 @@ Result runSequence(const Sequence &sequence, const Options &options) {
   return result;
 }
 
-// Runs every sequence on `threads` workers, each taking the next sequence not yet started.
-std::vector<Result> runAll(const std::vector<Sequence> &sequences, const Options &options) {
-  std::vector<Result> results(sequences.size());
+// Runs every job on `threads` workers, each taking the next job not yet started.
+std::vector<Result> runAll(const std::vector<Sequence> &sequences, const std::vector<Job> &jobs,
+                           const Options &options) {
+  std::vector<Result> results(jobs.size());
   std::atomic<std::size_t> nextIndex{0};
   std::mutex printMutex;
   auto worker = [&]() {
-    for (std::size_t i = nextIndex++; i < sequences.size(); i = nextIndex++) {
-      results[i] = runSequence(sequences[i], options);
+    for (std::size_t i = nextIndex++; i < jobs.size(); i = nextIndex++) {
+      const Sequence &sequence = sequences[jobs[i].sequence];
+      results[i] = runSequence(sequence, jobs[i].box, options);
       const std::lock_guard<std::mutex> lock(printMutex);
-      std::fprintf(stderr, "  %-14s %s\n", sequences[i].name.c_str(),
-                   results[i].ok ? format("AUC %.3f", results[i].score.auc).c_str() : "FAILED");
+      std::fprintf(stderr, "  %-14s %-10s %s\n", sequence.name.c_str(), jobs[i].box.name.c_str(),
+                   results[i].outcome.ok ? format("AUC %.3f", results[i].outcome.score.auc).c_str()
+                                         : ("FAILED: " + results[i].error).c_str());
     }
   };
-  const int count = static_cast<int>(std::min<std::size_t>(options.threads, sequences.size()));
+  const int count = static_cast<int>(std::min<std::size_t>(options.threads, jobs.size()));
   std::vector<std::thread> threads;
   for (int t = 0; t < count; ++t) threads.emplace_back(worker);
   for (std::thread &thread : threads) thread.join();
@@ -375,15 +393,55 @@ std::vector<Result> runAll(const std::vector<Sequence> &sequences, const Options
 
 // ---------------------------------------------------------------------------------------------------------
 
-// Mean AUC over the sequences that ran and belong to `half` (nullptr: all); NaN when there are none.
-double meanAuc(const std::vector<Sequence> &sequences, const std::vector<Result> &results, const char *half,
-               int *count) {
-  std::vector<SequenceScore> scores;
-  for (std::size_t i = 0; i < sequences.size(); ++i)
-    if (results[i].ok && (!half || std::string(halfOf(sequences[i].name)) == half))
-      scores.push_back(results[i].score);
-  *count = static_cast<int>(scores.size());
-  return scores.empty() ? std::numeric_limits<double>::quiet_NaN() : averageScores(scores).auc;
+// Every sequence from its OPE start and, with --sre, from the perturbed ones.
+std::vector<Job> makeJobs(const std::vector<Sequence> &sequences, bool sre) {
+  std::vector<Job> jobs;
+  for (std::size_t s = 0; s < sequences.size(); ++s) {
+    const std::vector<StartBox> starts =
+        startBoxes(*sequences[s].groundTruth[0], sequences[s].frameSize, sre);
+    for (std::size_t i = 0; i < starts.size(); ++i) jobs.push_back({s, i, starts[i]});
+  }
+  return jobs;
+}
+
+// The results as the robustness summary's table: one tracker (the core one), no formats.
+RobustnessTable makeTable(const std::vector<Sequence> &sequences, const std::vector<Job> &jobs,
+                          const std::vector<Result> &results) {
+  RobustnessTable table;
+  for (const Sequence &sequence : sequences) table.sequences.push_back(sequence.name);
+  for (const Job &job : jobs)
+    if (job.sequence == 0) table.startNames.push_back(job.box.name);
+  table.trackers = {"colortrack (core)"};
+  table.formats = {""};
+  table.runOnce = {false};
+  Cell empty;
+  empty.starts.resize(table.startNames.size());
+  table.cells.assign(sequences.size(), std::vector<std::vector<Cell>>(1, std::vector<Cell>(1, empty)));
+  for (std::size_t i = 0; i < jobs.size(); ++i)
+    table.cells[jobs[i].sequence][0][0].starts[jobs[i].start] = results[i].outcome;
+  return table;
+}
+
+// The OPE run of each sequence: accuracy, times, lost frames.
+bool printOpeRows(const std::vector<Sequence> &sequences, const std::vector<Job> &jobs,
+                  const std::vector<Result> &results) {
+  std::printf("%-14s %-7s %6s %6s %6s %8s %8s %8s %5s\n", "sequence", "half", "frames", "AUC", "P@20",
+              "med ms", "mean ms", "max ms", "lost");
+  bool failed = false;
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    const Result &r = results[i];
+    failed = failed || !r.outcome.ok;
+    if (jobs[i].start != 0) continue;
+    const Sequence &s = sequences[jobs[i].sequence];
+    if (!r.outcome.ok) {
+      std::printf("%-14s %-7s FAILED: %s\n", s.name.c_str(), halfOf(s.name), r.error.c_str());
+      continue;
+    }
+    std::printf("%-14s %-7s %6d %6.3f %6.3f %8.2f %8.2f %8.2f %5d%s\n", s.name.c_str(), halfOf(s.name),
+                r.frames, r.outcome.score.auc, r.outcome.score.precisionAt20, r.medianMs, r.meanMs, r.maxMs,
+                r.lostFrames, r.warning.empty() ? "" : ("  (" + r.warning + ")").c_str());
+  }
+  return failed;
 }
 
 int run(int argc, char **argv) {
@@ -396,37 +454,28 @@ int run(int argc, char **argv) {
   if (sequences.empty()) throw std::runtime_error("no sequence of the chosen split among the inputs");
   if (!options.framesOut.empty()) fs::create_directories(options.framesOut);
 
+  const std::vector<Job> jobs = makeJobs(sequences, options.sre);
   const Clock::time_point start = Clock::now();
-  const std::vector<Result> results = runAll(sequences, options);
+  const std::vector<Result> results = runAll(sequences, jobs, options);
   const double wallSeconds = std::chrono::duration<double>(Clock::now() - start).count();
 
-  std::printf("%-14s %-7s %6s %6s %6s %8s %8s %8s %5s\n", "sequence", "half", "frames", "AUC", "P@20",
-              "med ms", "mean ms", "max ms", "lost");
-  bool failed = false;
-  for (std::size_t i = 0; i < sequences.size(); ++i) {
-    const Sequence &s = sequences[i];
-    const Result &r = results[i];
-    if (!r.ok) {
-      failed = true;
-      std::printf("%-14s %-7s FAILED: %s\n", s.name.c_str(), halfOf(s.name), r.error.c_str());
-      continue;
-    }
-    std::printf("%-14s %-7s %6d %6.3f %6.3f %8.2f %8.2f %8.2f %5d%s\n", s.name.c_str(), halfOf(s.name),
-                r.frames, r.score.auc, r.score.precisionAt20, r.medianMs, r.meanMs, r.maxMs, r.lostFrames,
-                r.warning.empty() ? "" : ("  (" + r.warning + ")").c_str());
-  }
+  const bool failed = printOpeRows(sequences, jobs, results);
+  const RobustnessTable table = makeTable(sequences, jobs, results);
+  std::printf("\n%s", robustnessReport(table).c_str());
 
-  int tuneCount = 0, confirmCount = 0, allCount = 0;
-  const double tune = meanAuc(sequences, results, "tune", &tuneCount);
-  const double confirm = meanAuc(sequences, results, "confirm", &confirmCount);
-  const double all = meanAuc(sequences, results, nullptr, &allCount);
+  const HalfMeans ope = halfMeans(table, 0, 0, false);
   std::printf("\n");
-  std::printf("mean AUC tune     %.3f  (%d sequences)\n", tune, tuneCount);
-  std::printf("mean AUC confirm  %.3f  (%d sequences)\n", confirm, confirmCount);
-  std::printf("mean AUC all      %.3f  (%d sequences)\n", all, allCount);
-  std::printf("wall time %.1f s, %d thread%s\n", wallSeconds, options.threads,
+  std::printf("mean AUC tune     %.3f  (%d sequences)\n", ope.tune, ope.tuneCount);
+  std::printf("mean AUC confirm  %.3f  (%d sequences)\n", ope.confirm, ope.confirmCount);
+  std::printf("mean AUC all      %.3f  (%d sequences)\n", ope.all, ope.allCount);
+  std::printf("wall time %.1f s, %zu runs, %d thread%s\n", wallSeconds, jobs.size(), options.threads,
               options.threads == 1 ? "" : "s");
-  std::printf("MEAN tune=%.4f confirm=%.4f all=%.4f\n", tune, confirm, all);
+  std::string mean = format("MEAN tune=%.4f confirm=%.4f all=%.4f", ope.tune, ope.confirm, ope.all);
+  if (options.sre) {
+    const HalfMeans sre = halfMeans(table, 0, 0, true);
+    mean += format(" sre_tune=%.4f sre_confirm=%.4f sre_all=%.4f", sre.tune, sre.confirm, sre.all);
+  }
+  std::printf("%s\n", mean.c_str());
   return failed ? 1 : 0;
 }
 

@@ -162,6 +162,54 @@ SequenceScore averageScores(const std::vector<SequenceScore> &scores) {
   return mean;
 }
 
+AlarmFigures &AlarmFigures::operator+=(const AlarmFigures &o) {
+  wrongFrames += o.wrongFrames;
+  wrongTracking += o.wrongTracking;
+  runs += o.runs;
+  lossRuns += o.lossRuns;
+  reacquiredRuns += o.reacquiredRuns;
+  afterLossFrames += o.afterLossFrames;
+  afterLossFound += o.afterLossFound;
+  afterLossInView += o.afterLossInView;
+  afterLossInViewFound += o.afterLossInViewFound;
+  return *this;
+}
+
+AlarmFigures alarmFigures(const std::vector<GroundTruthBox> &groundTruth,
+                          const std::vector<std::optional<cv::Rect2d>> &boxes,
+                          const std::vector<std::string> &states, cv::Size frameSize) {
+  AlarmFigures figures;
+  figures.runs = 1;
+  const cv::Rect2d frame(0, 0, frameSize.width, frameSize.height);
+  bool lost = false;
+  for (std::size_t i = 1; i < groundTruth.size(); ++i) {
+    const std::string state = i < states.size() ? states[i] : "";
+    const bool hasBox = i < boxes.size() && boxes[i].has_value();
+    // The frame that declares the loss is not "after" it: its IoU says nothing about coming back.
+    const bool afterLoss = lost;
+    if (!lost && (state == "lost" || state == "searching")) {
+      lost = true;
+      ++figures.lossRuns;
+    }
+    if (!groundTruth[i]) continue;
+    const cv::Rect2d &truth = *groundTruth[i];
+    const double iou = hasBox ? overlap(*boxes[i], truth) : 0.0;
+    if (iou < kWrongIou) {
+      ++figures.wrongFrames;
+      if (hasBox && state == "tracking") ++figures.wrongTracking;
+    }
+    if (!afterLoss) continue;
+    const bool found = iou >= kFoundIou;
+    const bool inView = (truth & frame).area() >= 0.5 * truth.area();
+    ++figures.afterLossFrames;
+    figures.afterLossFound += found;
+    figures.afterLossInView += inView;
+    figures.afterLossInViewFound += inView && found;
+  }
+  figures.reacquiredRuns = figures.afterLossFound > 0 ? 1 : 0;
+  return figures;
+}
+
 std::string FramePattern::printfPattern() const {
   // '%' in a file name would be read as a conversion by multifilesrc.
   auto escape = [](const std::string &text) {

@@ -52,6 +52,37 @@ SequenceScore scoreSequence(const std::vector<GroundTruthBox> &groundTruth,
 // Curves averaged over sequences (each sequence weighs the same, as in the OTB plots).
 SequenceScore averageScores(const std::vector<SequenceScore> &scores);
 
+// Whether a tracker's own report can be trusted, from its per-frame states (spelled as colortrack's
+// toString(TrackState) spells them: "tracking", "coasting", "lost", "searching"; "" when unknown). Frame 1
+// (the start) is left out of every count; so are frames without ground truth.
+struct AlarmFigures {
+  // Honest alarm: frames whose IoU with the ground truth is under kWrongIou, and of those the frames
+  // reported as "tracking" (a frame without a box never counts as tracking). Lower is more honest.
+  int wrongFrames = 0;
+  int wrongTracking = 0;
+  // Runs (sequences) that declared a loss ("lost" or "searching"), and of those the runs that came back to
+  // the target (IoU >= kFoundIou on a frame after the first declared loss). Pooled figures add runs.
+  int runs = 0;
+  int lossRuns = 0;
+  int reacquiredRuns = 0;
+  // Frames after the first declared loss, and of those the ones on the target (IoU >= kFoundIou); again only
+  // over frames where the target is in view (at least half of its ground-truth box inside the frame).
+  int afterLossFrames = 0;
+  int afterLossFound = 0;
+  int afterLossInView = 0;
+  int afterLossInViewFound = 0;
+
+  AlarmFigures &operator+=(const AlarmFigures &other);
+};
+
+constexpr double kWrongIou = 0.1;
+constexpr double kFoundIou = 0.5;
+
+// `boxes` and `states` are per frame (shorter vectors: the missing frames have no box and no state).
+AlarmFigures alarmFigures(const std::vector<GroundTruthBox> &groundTruth,
+                          const std::vector<std::optional<cv::Rect2d>> &boxes,
+                          const std::vector<std::string> &states, cv::Size frameSize);
+
 // How a folder's frames are named: <prefix><index, zero-padded to `digits`><suffix>, indices consecutive.
 struct FramePattern {
   std::string prefix, suffix;

@@ -8,6 +8,8 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "sre.hpp"
+
 namespace fs = std::filesystem;
 
 namespace colortrack::eval {
@@ -23,6 +25,27 @@ std::string readFile(const fs::path &path) {
 }
 
 }  // namespace
+
+const std::vector<std::string> &tuneSplit() {
+  static const std::vector<std::string> names = {"Coke",     "Crossing", "bag",       "wakeboard4",
+                                                 "person11", "David",    "DragonBaby"};
+  return names;
+}
+
+// The four sequences added last (basketball, Biker_uav, S1301, wakeboard5) only check, never tune.
+const std::vector<std::string> &confirmSplit() {
+  static const std::vector<std::string> names = {"Tiger1",       "Couple",  "boat1",     "car16_1",
+                                                 "MotorRolling", "Animal1", "Surfing06", "basketball",
+                                                 "Biker_uav",    "S1301",   "wakeboard5"};
+  return names;
+}
+
+const char *halfOf(const std::string &sequenceName) {
+  auto in = [&sequenceName](const std::vector<std::string> &list) {
+    return std::find(list.begin(), list.end(), sequenceName) != list.end();
+  };
+  return in(tuneSplit()) ? "tune" : in(confirmSplit()) ? "confirm" : "-";
+}
 
 fs::path framePath(const Sequence &sequence, int index) {
   char name[256];
@@ -56,9 +79,7 @@ Sequence loadSequence(const fs::path &dir, double gtOrigin) {
   if (image.empty()) throw std::runtime_error("cannot decode " + first.string());
   sequence.frameSize = image.size();
 
-  const cv::Rect2d &box = *sequence.groundTruth[0];
-  const cv::Rect rounded(cvRound(box.x), cvRound(box.y), cvRound(box.width), cvRound(box.height));
-  sequence.initBox = rounded & cv::Rect(cv::Point(0, 0), sequence.frameSize);
+  sequence.initBox = startRect(*sequence.groundTruth[0], sequence.frameSize);
   if (sequence.initBox.empty())
     throw std::runtime_error(gtPath.string() + ": frame 1's box is outside the frame");
   return sequence;

@@ -30,4 +30,12 @@ std::vector<Sequence> findSequences(const std::vector<std::string> &inputs, doub
 // The path of frame `index` (0 = the first) of a sequence.
 std::filesystem::path framePath(const Sequence &sequence, int index);
 
+// The shared sequences (../shared/sequences) in two halves, each mixing OTB, VOT, UAV123, DTB70 and UAVDT
+// material: parameters are tuned on the first and checked on the second, so a gain that is only
+// overfitting shows. Both evaluation tools use these lists.
+const std::vector<std::string> &tuneSplit();
+const std::vector<std::string> &confirmSplit();
+// "tune", "confirm" or "-" (in neither list).
+const char *halfOf(const std::string &sequenceName);
+
 }  // namespace colortrack::eval

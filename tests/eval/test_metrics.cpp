@@ -112,5 +112,54 @@ TEST(FramePattern, RejectsGapsAndMixedNames) {
   EXPECT_FALSE(detectFramePattern({"0009.jpg", "00010.jpg"}, p, &error));
 }
 
+TEST(Alarms, WrongFramesReportedAsTracking) {
+  const cv::Rect2d truth(100, 100, 10, 10), far(300, 300, 10, 10);
+  // Frame 0 is the start and never counts. Frames 1-2 on target; 3 wrong but "tracking" (a false report);
+  // 4 wrong and "coasting"; 5 without a box; 6 without ground truth.
+  const std::vector<GroundTruthBox> gt = {truth, truth, truth, truth, truth, truth, std::nullopt};
+  const std::vector<std::optional<cv::Rect2d>> boxes = {truth, truth, truth, far, far, std::nullopt, far};
+  const std::vector<std::string> states = {"init",     "tracking",  "tracking", "tracking",
+                                           "coasting", "searching", "tracking"};
+  const AlarmFigures f = alarmFigures(gt, boxes, states, cv::Size(640, 480));
+  EXPECT_EQ(f.wrongFrames, 3);
+  EXPECT_EQ(f.wrongTracking, 1);
+  EXPECT_EQ(f.runs, 1);
+  EXPECT_EQ(f.lossRuns, 1);
+  EXPECT_EQ(f.reacquiredRuns, 0);
+  EXPECT_EQ(f.afterLossFrames, 0);  // frame 6, the only one after the loss, has no ground truth
+}
+
+TEST(Alarms, ReacquisitionAfterTheFirstLossAndInView) {
+  const cv::Size frame(200, 200);
+  const cv::Rect2d truth(50, 50, 20, 20), leaving(190, 50, 20, 20);  // half of `leaving` outside: in view
+  const cv::Rect2d gone(195, 50, 20, 20);                            // a quarter inside: out of view
+  // Frame 1 declares the loss ("lost"); frames 2.. are after it: 2 found, 3 missed in view, 4 found out of
+  // view, 5 a second loss (changes nothing), 6 found.
+  const std::vector<GroundTruthBox> gt = {truth, truth, truth, leaving, gone, truth, truth};
+  const std::vector<std::optional<cv::Rect2d>> boxes = {truth, std::nullopt, truth, std::nullopt,
+                                                        gone,  std::nullopt, truth};
+  const std::vector<std::string> states = {"init",     "lost",      "tracking", "lost",
+                                           "tracking", "searching", "tracking"};
+  const AlarmFigures f = alarmFigures(gt, boxes, states, frame);
+  EXPECT_EQ(f.lossRuns, 1);
+  EXPECT_EQ(f.reacquiredRuns, 1);
+  EXPECT_EQ(f.afterLossFrames, 5);
+  EXPECT_EQ(f.afterLossFound, 3);
+  EXPECT_EQ(f.afterLossInView, 4);
+  EXPECT_EQ(f.afterLossInViewFound, 2);
+
+  // States missing (a tracker that reports none): no loss is ever declared.
+  const AlarmFigures none = alarmFigures(gt, boxes, {}, frame);
+  EXPECT_EQ(none.lossRuns, 0);
+  EXPECT_EQ(none.wrongTracking, 0);
+  EXPECT_EQ(none.wrongFrames, 3);
+
+  AlarmFigures pooled = f;
+  pooled += none;
+  EXPECT_EQ(pooled.runs, 2);
+  EXPECT_EQ(pooled.lossRuns, 1);
+  EXPECT_EQ(pooled.afterLossFrames, 5);
+}
+
 }  // namespace
 }  // namespace colortrack::eval

@@ -1,0 +1,32 @@
+// colortrack-eval's command line.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace colortrack::eval {
+
+extern const char *const kEvalUsage;
+
+struct Options {
+  std::vector<std::string> inputs;
+  std::vector<std::string> trackers;
+  std::vector<std::string> formats = {"BGRx", "I420"};
+  bool sre = false;
+  bool allCvtracker = false;
+  std::string outDir = "eval-out";
+  double gtOrigin = 1.0;
+  int openCvThreads = -1;
+  bool writeFrames = true;
+  bool useBuildPlugin = true;
+  bool overhead = false;
+  int overheadFrames = 300;
+  int overheadRepeats = 3;
+  std::string overheadTracker = "colortrack";
+  std::string commandLine;
+};
+
+// Throws std::invalid_argument naming the problem (empty text for --help).
+Options parseOptions(int argc, char **argv);
+
+}  // namespace colortrack::eval
