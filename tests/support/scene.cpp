@@ -207,7 +207,12 @@ Pose poseAt(const SceneConfig &cfg, const Layout &layout, int index) {
   Pose pose;
   const double phase = phaseOf(cfg, index);
   pose.visible = !(hasLeft(cfg) && index >= cfg.leaveFrom && !hasReturned(cfg, index));
-  if (hasReturned(cfg, index)) {
+  if (cfg.circleSpeed > 0) {
+    const cv::Rect2d &room = layout.centreRange;
+    const double radius = 0.8 * std::min(room.width, room.height) / 2;
+    const double angle = radius > 0 ? cfg.circleSpeed * index / radius : 0;
+    pose.centre = layout.pathCentre + radius * cv::Point2d(std::cos(angle), std::sin(angle));
+  } else if (hasReturned(cfg, index)) {
     const ReturnPath path = chooseReturnPath(cfg, layout);
     pose.centre = path.centre + path.mirror * lissajous(cfg, layout, index + path.timeShift);
   } else {
@@ -311,7 +316,10 @@ Scene::Scene(const SceneConfig &config) : config_(config) {
   config_.objectSize.height = std::max(4, config_.objectSize.height);
 
   cv::RNG backgroundRng(config_.seed * 2654435761u + 1);
-  background_ = makeBackground(config_.frameSize, backgroundRng);
+  const cv::Point &v = config_.backgroundVelocity;
+  const int pass = std::max(1, config_.frames);
+  background_ =
+      makeBackground(config_.frameSize + cv::Size(std::abs(v.x) * pass, std::abs(v.y) * pass), backgroundRng);
   cv::RNG objectRng(config_.seed * 2246822519u + 7);
   makeObject(config_.objectSize, objectRng, objectTexture_, objectMask_);
   const int decoySide = std::max(config_.objectSize.width, config_.objectSize.height);
@@ -322,6 +330,13 @@ SceneFrame Scene::render(int index) const {
   const Layout layout = makeLayout(config_);
   const Pose pose = poseAt(config_, layout, index);
   const cv::Rect frameRect(cv::Point(0, 0), config_.frameSize);
+
+  // The part of the background in view: it moves by backgroundVelocity a frame.
+  const cv::Point &v = config_.backgroundVelocity;
+  const int pass = std::max(1, config_.frames), step = index % pass;
+  const cv::Point viewOrigin((v.x > 0 ? v.x * pass : 0) - v.x * step,
+                             (v.y > 0 ? v.y * pass : 0) - v.y * step);
+  const cv::Mat background = background_(cv::Rect(viewOrigin, config_.frameSize));
 
   SceneFrame frame;
   frame.objectScale = pose.scale;
@@ -353,7 +368,7 @@ SceneFrame Scene::render(int index) const {
 
   std::vector<cv::Mat> composed;
   for (const cv::Rect &patchRect : patches) {
-    cv::Mat patch = background_(patchRect).clone();
+    cv::Mat patch = background(patchRect).clone();
     if (config_.decoy && (patchRect & decoyRect) == decoyRect) {
       const cv::Rect at = cv::Rect(layout.decoyBox) - patchRect.tl();
       decoyTexture_.copyTo(patch(at), decoyMask_);
@@ -364,7 +379,7 @@ SceneFrame Scene::render(int index) const {
     cv::addWeighted(patch, pose.brightness, frame.bgr(patchRect), 1.0, noiseOffset, lit);
     composed.push_back(lit);
   }
-  cv::addWeighted(background_, pose.brightness, frame.bgr, 1.0, noiseOffset, frame.bgr);
+  cv::addWeighted(background, pose.brightness, frame.bgr, 1.0, noiseOffset, frame.bgr);
   for (size_t i = 0; i < patches.size(); ++i) composed[i].copyTo(frame.bgr(patches[i]));
   return frame;
 }

@@ -21,6 +21,12 @@ struct SceneConfig {
   bool decoy = false;  // an untextured disc of the object's mean colour, elsewhere in the frame
   // The object leaves the frame during [leaveFrom, leaveTo) and comes back at another place (-1: never).
   int leaveFrom = -1, leaveTo = -1;
+  // > 0: the object goes round a circle about the path's centre at this many px/frame (speed 0 holds it
+  // there) instead of the figure of eight.
+  double circleSpeed = 0;
+  // A panning camera: the background moves by this many whole px per frame in the image (over one pass;
+  // it jumps back when the pass repeats).
+  cv::Point backgroundVelocity{0, 0};
 };
 
 struct SceneFrame {
@@ -46,7 +52,7 @@ class Scene {
 
  private:
   SceneConfig config_;
-  cv::Mat background_;                  // frame-sized texture
+  cv::Mat background_;                  // texture: the frame, and what a pass of backgroundVelocity uncovers
   cv::Mat objectTexture_, objectMask_;  // objectSize
   cv::Mat decoyTexture_, decoyMask_;    // the object's colours in smooth rings
 };
