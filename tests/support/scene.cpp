@@ -69,9 +69,10 @@ cv::Mat makeBackground(cv::Size size, cv::RNG &rng) {
 
 // Orange/red object: diagonal stripes in two tones plus blobs in two more, all in one hue family, so the
 // colour histogram is distinctive and the texture has many clear internal edges.
+const cv::Scalar darkRed(25, 35, 150), lightOrange(45, 140, 235), deepRed(20, 20, 110),
+    paleOrange(80, 175, 245);
+
 void makeObject(cv::Size size, cv::RNG &rng, cv::Mat &texture, cv::Mat &mask) {
-  const cv::Scalar darkRed(25, 35, 150), lightOrange(45, 140, 235), deepRed(20, 20, 110),
-      paleOrange(80, 175, 245);
   texture.create(size, CV_8UC3);
   const double period = std::max(8.0, std::min(size.width, size.height) / 5.0);
   const double angle = rng.uniform(0.0, kPi);
@@ -266,6 +267,34 @@ Placement placeObject(const cv::Mat &texture, const cv::Mat &mask, const Pose &p
   return out;
 }
 
+bool boardShown(const SceneConfig &cfg, int index) {
+  return cfg.occludeFrom >= 0 && index >= cfg.occludeFrom && index < cfg.occludeTo;
+}
+
+// The board covers the object's boxes over the whole occlusion, with a margin, so it hides the object all
+// the time it is shown.
+cv::Rect boardRect(const SceneConfig &cfg, const Layout &layout, const cv::Mat &texture,
+                   const cv::Mat &mask) {
+  constexpr int kBoardMargin = 8;
+  cv::Rect2d covered;
+  for (int i = cfg.occludeFrom; i < cfg.occludeTo; ++i) {
+    const cv::Rect2d box = placeObject(texture, mask, poseAt(cfg, layout, i), cfg.frameSize).box;
+    covered = covered.empty() ? box : (covered | box);
+  }
+  const cv::Rect r = cv::Rect(covered) + cv::Size(2 * kBoardMargin + 1, 2 * kBoardMargin + 1) -
+                     cv::Point(kBoardMargin, kBoardMargin);
+  return r & cv::Rect(cv::Point(), cfg.frameSize);
+}
+
+// Vertical bands of the object's four colours, each as wide as the object: its colours, none of its texture.
+cv::Mat boardPixels(cv::Size size, int band) {
+  const cv::Scalar colours[] = {darkRed, lightOrange, deepRed, paleOrange};
+  cv::Mat board(size, CV_8UC3);
+  for (int x = 0, i = 0; x < size.width; x += band, ++i)
+    board(cv::Rect(x, 0, std::min(band, size.width - x), size.height)).setTo(colours[i % 4]);
+  return board;
+}
+
 // The decoy: the object's own colours rearranged in concentric rings (sorted by brightness, darkest in the
 // middle). Its colour histogram is the object's, so colour alone matches it as well as the object, but its
 // few ring borders make little edge structure, unlike the object's stripes and blobs.
@@ -344,7 +373,8 @@ SceneFrame Scene::render(int index) const {
 
   Placement placed;
   if (pose.visible) placed = placeObject(objectTexture_, objectMask_, pose, config_.frameSize);
-  frame.objectVisible = !placed.box.empty();
+  if (boardShown(config_, index)) frame.boardBox = boardRect(config_, layout, objectTexture_, objectMask_);
+  frame.objectVisible = !placed.box.empty() && frame.boardBox.empty();
   if (frame.objectVisible) frame.box = placed.box;
 
   // Only the output frame is allocated at full size (touching fresh frame-sized buffers dominates the cost
@@ -379,8 +409,13 @@ SceneFrame Scene::render(int index) const {
     cv::addWeighted(patch, pose.brightness, frame.bgr(patchRect), 1.0, noiseOffset, lit);
     composed.push_back(lit);
   }
+  cv::Mat board;
+  if (!frame.boardBox.empty())
+    cv::addWeighted(boardPixels(frame.boardBox.size(), config_.objectSize.width), pose.brightness,
+                    frame.bgr(frame.boardBox), 1.0, noiseOffset, board);
   cv::addWeighted(background, pose.brightness, frame.bgr, 1.0, noiseOffset, frame.bgr);
   for (size_t i = 0; i < patches.size(); ++i) composed[i].copyTo(frame.bgr(patches[i]));
+  if (!board.empty()) board.copyTo(frame.bgr(frame.boardBox));
   return frame;
 }
 

@@ -27,6 +27,9 @@ struct SceneConfig {
   // A panning camera: the background moves by this many whole px per frame in the image (over one pass;
   // it jumps back when the pass repeats).
   cv::Point backgroundVelocity{0, 0};
+  // A flat board in the object's colours (wide bands, no texture) hides the object during
+  // [occludeFrom, occludeTo), covering every place it passes in that time (-1: never).
+  int occludeFrom = -1, occludeTo = -1;
 };
 
 struct SceneFrame {
@@ -35,6 +38,7 @@ struct SceneFrame {
   cv::Rect2d box;            // ground truth: axis-aligned bounding box of the object (frame coords)
   double objectScale = 1.0;  // current scale relative to the template
   cv::Rect2d decoyBox;       // empty when there is no decoy
+  cv::Rect boardBox;         // the occluding board while it is shown, else empty
 };
 
 class Scene {
