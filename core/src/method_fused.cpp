@@ -11,6 +11,7 @@
 #include "colortrack/color_search.hpp"
 #include "colortrack/fused_detector.hpp"
 #include "colortrack/method_discriminative.hpp"
+#include "colortrack/redetection.hpp"
 
 namespace colortrack {
 
@@ -31,14 +32,9 @@ constexpr double kConfidenceRate = 0.1;
 constexpr double kConfidentPsr = 12;
 constexpr int kConfidenceSkip = 2;
 constexpr int kConfidenceWarmUp = 5;
-// Re-detection, once coasting or lost: every kRedetectPeriod frames the kRedetectCandidates strongest places
-// of the colour likelihood over the whole frame and the last position are searched with both cues; the best
-// is taken when its PSR reaches kRedetectConfidence and kRedetectRatio of the usual, and its colour cue
-// kLostColourRatio of the usual.
-constexpr double kRedetectConfidence = 6.0;
-constexpr double kRedetectRatio = 0.6;
-constexpr int kRedetectPeriod = 3;
-constexpr int kRedetectCandidates = 4;
+// Re-detection (Redetector), once coasting or lost: every kRedetectPeriod frames (every frame now that the
+// candidates are judged in a few ms at 1080p: bench-tracker's full-search case).
+constexpr int kRedetectPeriod = 1;
 
 class FusedMethod : public DetectionMethod {
  public:
@@ -81,8 +77,8 @@ class FusedMethod : public DetectionMethod {
   double usualConfidence_ = 0;  // running mean of the confidence of learnt frames
   int confidenceSamples_ = 0;   // how many frames the mean has seen
   int framesLearnt_ = 0;        // since the filters started
-  int redetectAttempts_ = 0;    // since the last detection (picks the size to try)
   double usualColour_ = 0;      // running mean of the colour cue at the peak of learnt frames
+  Redetector redetector_;
 };
 
 void FusedMethod::process(const ImageSource &frame, double dt, TrackOutput &out) {
@@ -120,7 +116,6 @@ void FusedMethod::follow(const ImageSource &frame, double dt, TrackOutput &out) 
     return;
   }
   e.size = fitSize(e.size, frame.size());
-  redetectAttempts_ = 0;
   Detection d;
   d.box = centredBox(e.centre.x, e.centre.y, e.size);
   d.score = e.confidence;
@@ -157,7 +152,6 @@ void FusedMethod::acquire(const ImageSource &frame, TrackOutput &out) {
   track.lastVerified = d.verified;
   centre_ = found->centre;
   size_ = found->size;
-  redetectAttempts_ = 0;
   out.score = std::min(1.0, relativeConfidence(found->confidence));
 }
 
@@ -177,7 +171,6 @@ void FusedMethod::stopFilters() {
   confidenceSamples_ = 0;
   framesLearnt_ = 0;
   usualColour_ = 0;
-  redetectAttempts_ = 0;
 }
 
 bool FusedMethod::accepted(const FusedDetector::Estimate &e) const {
@@ -226,31 +219,14 @@ bool FusedMethod::verified(const ImageSource &frame, const cv::Rect2d &box) {
                                context_.settings);
 }
 
-// The best re-detection over the whole frame (colour candidates and the last position, each searched with
-// both cues), if it is confident enough.
+// The best re-detection over the whole frame, if it is confident enough (Redetector).
 std::optional<FusedDetector::Estimate> FusedMethod::redetect(const ImageSource &frame) {
-  const BinMapper &mapper = context_.model.mapper();
-  const ColorLikelihood &likelihood = context_.model.likelihood();
-  // The target may come back at another size: each attempt tries the next size of a short list (the last
-  // one first), as the colour search does.
-  const double factor = kSearchScales[redetectAttempts_++ % kSearchScaleCount];
-  const cv::Size2d size = fitSize(size_ * factor, frame.size());
-  std::vector<cv::Point2d> candidates =
-      fused_.colourCandidates(frame, size, mapper, likelihood, kRedetectCandidates);
-  candidates.push_back(centre_);
-  std::optional<FusedDetector::Estimate> best;
-  for (const cv::Point2d &c : candidates) {
-    const FusedDetector::Estimate e = fused_.locate(frame, c, size, mapper, likelihood, false);
-    if (!best || e.confidence > best->confidence) best = e;
-  }
-  // The filter's window tapers towards its edges: judge the best candidate again with the window centred
-  // where it was found.
-  if (best) best = fused_.locate(frame, best->centre, size, mapper, likelihood, false);
-  if (!best || best->confidence < kRedetectConfidence ||
-      relativeConfidence(best->confidence) < kRedetectRatio ||
-      relativeColour(best->colourPeak) < kLostColourRatio)
-    return std::nullopt;
-  return best;
+  UsualDetection usual;
+  usual.known = confidenceSamples_ >= kConfidenceWarmUp;
+  usual.confidence = std::min(usualConfidence_, kConfidentPsr);
+  usual.colour = usualColour_;
+  return redetector_.search(frame, fused_, context_.model.mapper(), context_.model.likelihood(), centre_,
+                            size_, minSize_, usual);
 }
 
 }  // namespace

@@ -1,0 +1,60 @@
+#include "colortrack/redetection.hpp"
+
+#include <algorithm>
+#include <vector>
+
+namespace colortrack {
+
+namespace {
+
+// The target may come back nearer or further: colour candidates are sought at these sizes relative to the
+// last one, kCandidatesPerSize at each, and the scale filter refines the size of the best.
+constexpr double kSizes[] = {1.0, 1.0 / 1.4, 1.4};
+constexpr int kCandidatesPerSize = 3;
+constexpr double kConfidence = 6.0;
+constexpr double kConfidenceRatio = 0.6;
+constexpr double kColourRatio = 0.65;
+
+cv::Size2d clampSize(cv::Size2d s, cv::Size2d minSize, cv::Size frameSize) {
+  return cv::Size2d(
+      std::clamp(s.width, std::min(minSize.width, double(frameSize.width)), double(frameSize.width)),
+      std::clamp(s.height, std::min(minSize.height, double(frameSize.height)), double(frameSize.height)));
+}
+
+}  // namespace
+
+std::optional<FusedDetector::Estimate> Redetector::search(const ImageSource &frame, FusedDetector &detector,
+                                                          const BinMapper &colors,
+                                                          const ColorLikelihood &likelihood, cv::Point2d last,
+                                                          cv::Size2d size, cv::Size2d minSize,
+                                                          const UsualDetection &usual) {
+  std::optional<FusedDetector::Estimate> best;
+  auto consider = [&](cv::Point2d centre, cv::Size2d s) {
+    const FusedDetector::Estimate e = detector.locate(frame, centre, s, colors, likelihood, false);
+    if (colourLike(e, usual) && (!best || e.confidence > best->confidence)) best = e;
+  };
+  for (const double factor : kSizes) {
+    const cv::Size2d s = clampSize(size * factor, minSize, frame.size());
+    for (const cv::Point2d &c : detector.colourCandidates(frame, s, colors, likelihood, kCandidatesPerSize))
+      consider(c, s);
+  }
+  consider(last, size);
+  if (!best) return std::nullopt;
+  // The filter's window tapers towards its edges: the best is measured again centred where it was found,
+  // with the scale filter, then once more at the size found.
+  FusedDetector::Estimate e = detector.locate(frame, best->centre, best->size, colors, likelihood, true);
+  e = detector.locate(frame, e.centre, clampSize(e.size, minSize, frame.size()), colors, likelihood, false);
+  if (!confident(e, usual)) return std::nullopt;
+  return e;
+}
+
+bool Redetector::colourLike(const FusedDetector::Estimate &e, const UsualDetection &usual) {
+  return !usual.known || e.colourPeak >= kColourRatio * usual.colour;
+}
+
+bool Redetector::confident(const FusedDetector::Estimate &e, const UsualDetection &usual) {
+  if (!usual.known) return e.confidence >= kConfidence;
+  return e.confidence >= std::max(kConfidence, kConfidenceRatio * usual.confidence) && colourLike(e, usual);
+}
+
+}  // namespace colortrack
