@@ -32,9 +32,6 @@ constexpr double kConfidenceRate = 0.1;
 constexpr double kConfidentPsr = 12;
 constexpr int kConfidenceSkip = 2;
 constexpr int kConfidenceWarmUp = 5;
-// Re-detection (Redetector), once coasting or lost: every kRedetectPeriod frames (every frame now that the
-// candidates are judged in a few ms at 1080p: bench-tracker's full-search case).
-constexpr int kRedetectPeriod = 1;
 
 class FusedMethod : public DetectionMethod {
  public:
@@ -106,7 +103,7 @@ void FusedMethod::follow(const ImageSource &frame, double dt, TrackOutput &out) 
   FusedDetector::Estimate e =
       fused_.locate(frame, centre, size_, context_.model.mapper(), context_.model.likelihood());
   out.searchRegion = roundRect(centredBox(centre.x, centre.y, fused_.windowFor(size_))) & frameRect;
-  if (!accepted(e) && track.state == TrackState::Coasting && track.coastFrames % kRedetectPeriod == 0) {
+  if (!accepted(e) && track.state == TrackState::Coasting) {
     if (const auto found = redetect(frame)) e = *found;
     out.searchRegion = frameRect;
   }
@@ -139,11 +136,11 @@ void FusedMethod::follow(const ImageSource &frame, double dt, TrackOutput &out) 
   noteConfidence(e);
 }
 
-// Searching: re-detection over the whole frame every kRedetectPeriod frames.
+// Searching: re-detection over the whole frame, every frame (Redetector: a few ms at 1080p).
 void FusedMethod::acquire(const ImageSource &frame, TrackOutput &out) {
   KalmanTrack &track = context_.track;
   out.searchRegion = cv::Rect(cv::Point(), frame.size());
-  if (track.searchFrames++ % kRedetectPeriod != 0) return;
+  ++track.searchFrames;
   auto found = redetect(frame);
   if (!found) return;
   found->size = fitSize(found->size, frame.size());
