@@ -28,6 +28,7 @@ constexpr double kScaleLambda = 1e-2;
 constexpr double kScaleModelArea = 512;  // each scale sample is resampled to at most this area (256: worse)
 // Re-detection candidates are found on a frame reduced so the target's smaller side is about this many px.
 constexpr double kCandidateSide = 16;
+constexpr double kCandidateFramePixels = 320 * 180;
 
 // The smallest grid side of at least `cells` (and 4) whose DFT is fast: a product of 2, 3 and 5. A prime side
 // such as 23 made the filter's transforms several times slower. Rounding up, never down, keeps at least the
@@ -191,15 +192,22 @@ void FusedDetector::learn(const ImageSource &frame, const Estimate &e) {
   scaleMeasured_ = false;
 }
 
-std::vector<cv::Point2d> FusedDetector::colourCandidates(const ImageSource &frame, cv::Size2d size,
-                                                         const BinMapper &colors,
-                                                         const ColorLikelihood &likelihood, int count) {
-  std::vector<cv::Point2d> out;
-  if (likelihood.empty()) return out;
+std::vector<FusedDetector::Candidate> FusedDetector::colourCandidates(const ImageSource &frame,
+                                                                      const std::vector<cv::Size2d> &sizes,
+                                                                      const BinMapper &colors,
+                                                                      const ColorLikelihood &likelihood,
+                                                                      int countPerSize) {
+  std::vector<Candidate> out;
+  if (likelihood.empty() || sizes.empty()) return out;
   const cv::Size frameSize = frame.size();
-  const int f = std::max(1, static_cast<int>(std::min(size.width, size.height) / kCandidateSide));
   const cv::Rect frameRect(cv::Point(), frameSize);
-  // The whole frame at a step that changes with the size tried: views of buffers kept for this.
+  // One likelihood map serves every size: reduced so the smallest target's smaller side is about
+  // kCandidateSide px, and never larger than kCandidateFramePixels (a small target in a large frame would
+  // otherwise map the whole frame at full resolution, which made lost frames several times dearer).
+  double smallestSide = std::min(sizes[0].width, sizes[0].height);
+  for (const cv::Size2d &s : sizes) smallestSide = std::min(smallestSide, std::min(s.width, s.height));
+  const int f = std::max({1, static_cast<int>(smallestSide / kCandidateSide),
+                          static_cast<int>(std::ceil(std::sqrt(frameRect.area() / kCandidateFramePixels)))});
   const cv::Size reducedSize = sampledSize(frameRect, f);
   cv::Mat reduced = candidateScratch_[0].view(reducedSize, CV_8UC3);
   cv::Mat bins = candidateScratch_[1].view(reducedSize, CV_8UC3);
@@ -208,19 +216,21 @@ std::vector<cv::Point2d> FusedDetector::colourCandidates(const ImageSource &fram
   frame.sampledBgr(frameRect, f, reduced);
   colors.map(reduced, bins);
   likelihood.map(BinImage{bins, cv::Point()}, probability);
-  const cv::Size window(std::max(1, cvRound(size.width / f)), std::max(1, cvRound(size.height / f)));
-  cv::boxFilter(probability, mean, CV_32F, window, cv::Point(-1, -1), true, cv::BORDER_CONSTANT);
-  for (int i = 0; i < count; ++i) {
-    double best;
-    cv::Point at;
-    cv::minMaxLoc(mean, nullptr, &best, nullptr, &at);
-    if (best <= 0) break;
-    out.emplace_back((at.x + 0.5) * f, (at.y + 0.5) * f);
-    // Suppress the neighbourhood so the next candidate is another place.
-    cv::rectangle(
-        mean,
-        cv::Rect(at.x - window.width, at.y - window.height, 2 * window.width + 1, 2 * window.height + 1),
-        cv::Scalar(0), cv::FILLED);
+  for (const cv::Size2d &size : sizes) {
+    const cv::Size window(std::max(1, cvRound(size.width / f)), std::max(1, cvRound(size.height / f)));
+    cv::boxFilter(probability, mean, CV_32F, window, cv::Point(-1, -1), true, cv::BORDER_CONSTANT);
+    for (int i = 0; i < countPerSize; ++i) {
+      double best;
+      cv::Point at;
+      cv::minMaxLoc(mean, nullptr, &best, nullptr, &at);
+      if (best <= 0) break;
+      out.push_back({cv::Point2d((at.x + 0.5) * f, (at.y + 0.5) * f), size, best});
+      // Suppress the neighbourhood so the next candidate is another place.
+      cv::rectangle(
+          mean,
+          cv::Rect(at.x - window.width, at.y - window.height, 2 * window.width + 1, 2 * window.height + 1),
+          cv::Scalar(0), cv::FILLED);
+    }
   }
   return out;
 }

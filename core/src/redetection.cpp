@@ -14,6 +14,9 @@ constexpr int kCandidatesPerSize = 3;
 constexpr double kConfidence = 6.0;
 constexpr double kConfidenceRatio = 0.6;
 constexpr double kColourRatio = 0.65;
+// A candidate's colour is measured on a coarse copy of the frame, off the target's centre by up to a cell:
+// it may read a little lower than the filter's colour cue at the same place.
+constexpr double kCandidateColourSlack = 0.8;
 
 cv::Size2d clampSize(cv::Size2d s, cv::Size2d minSize, cv::Size frameSize) {
   return cv::Size2d(
@@ -33,11 +36,14 @@ std::optional<FusedDetector::Estimate> Redetector::search(const ImageSource &fra
     const FusedDetector::Estimate e = detector.locate(frame, centre, s, colors, likelihood, false);
     if (colourLike(e, usual) && (!best || e.confidence > best->confidence)) best = e;
   };
-  for (const double factor : kSizes) {
-    const cv::Size2d s = clampSize(size * factor, minSize, frame.size());
-    for (const cv::Point2d &c : detector.colourCandidates(frame, s, colors, likelihood, kCandidatesPerSize))
-      consider(c, s);
-  }
+  std::vector<cv::Size2d> sizes;
+  for (const double factor : kSizes) sizes.push_back(clampSize(size * factor, minSize, frame.size()));
+  // Only places whose colour could pass the bar are worth the filter: while the target is out of view that
+  // leaves few or none, and a lost frame costs little more than the colour map.
+  for (const FusedDetector::Candidate &c :
+       detector.colourCandidates(frame, sizes, colors, likelihood, kCandidatesPerSize))
+    if (!usual.known || c.colour >= kCandidateColourSlack * kColourRatio * usual.colour)
+      consider(c.centre, c.size);
   consider(last, size);
   if (!best) return std::nullopt;
   // The filter's window tapers towards its edges: the best is measured again centred where it was found,

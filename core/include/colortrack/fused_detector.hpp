@@ -43,12 +43,18 @@ class FusedDetector {
   // learn from the window and scale samples it measured; otherwise the window is read again from `frame`.
   void learn(const ImageSource &frame, const Estimate &e);
 
-  // Candidate target centres over the whole frame for re-detection: the `count` strongest, well-separated
-  // maxima of the colour likelihood averaged over a target-sized window, on a frame reduced so the target's
-  // smaller side is about 16 pixels.
-  std::vector<cv::Point2d> colourCandidates(const ImageSource &frame, cv::Size2d size,
-                                            const BinMapper &colors, const ColorLikelihood &likelihood,
-                                            int count);
+  // A place over the whole frame where the target could be: its centre, the size tried there and the mean
+  // colour likelihood of a target-sized window at it (comparable with Estimate::colourPeak).
+  struct Candidate {
+    cv::Point2d centre;
+    cv::Size2d size;
+    double colour = 0;
+  };
+  // Candidates for re-detection: for each of `sizes`, the `countPerSize` strongest, well-separated maxima of
+  // the colour likelihood averaged over a window of that size, on one reduced copy of the frame.
+  std::vector<Candidate> colourCandidates(const ImageSource &frame, const std::vector<cv::Size2d> &sizes,
+                                          const BinMapper &colors, const ColorLikelihood &likelihood,
+                                          int countPerSize);
 
  private:
   // The search window around `centre` for a target of `size`: readWindow() resamples it into patch_ (colour)
