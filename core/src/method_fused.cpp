@@ -32,10 +32,10 @@ constexpr double kConfidenceRate = 0.1;
 constexpr double kConfidentPsr = 12;
 constexpr int kConfidenceSkip = 2;
 constexpr int kConfidenceWarmUp = 5;
-// Re-detection (Redetector: 5-17 ms at 1080p) runs every kRedetectPeriod frames while coasting or lost: every
-// frame made a lost track's frames 4-6x dearer (car16_1, wakeboard4, Surfing06 fell under 10x CSRT's rate);
-// every third missed the 15-frame re-acquisition of test_reacquisition.cpp. SRE means are the same for 1, 2
-// and 3 (core harness: tune 0.574-0.576, confirm 0.444-0.446).
+// Re-detection (Redetector) runs every kRedetectPeriod frames while coasting or lost. With one size per search
+// and the colour pre-check, every frame still made lost frames 1.5x dearer and missed test_reacquisition.cpp
+// (a wrong place taken first); every third missed it too. SRE means are the same for 1 and 2 (core harness:
+// tune 0.571-0.573, confirm 0.442-0.446).
 constexpr int kRedetectPeriod = 2;
 
 class FusedMethod : public DetectionMethod {

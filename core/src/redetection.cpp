@@ -1,6 +1,7 @@
 #include "colortrack/redetection.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <vector>
 
 namespace colortrack {
@@ -36,8 +37,11 @@ std::optional<FusedDetector::Estimate> Redetector::search(const ImageSource &fra
     const FusedDetector::Estimate e = detector.locate(frame, centre, s, colors, likelihood, false);
     if (colourLike(e, usual) && (!best || e.confidence > best->confidence)) best = e;
   };
-  std::vector<cv::Size2d> sizes;
-  for (const double factor : kSizes) sizes.push_back(clampSize(size * factor, minSize, frame.size()));
+  // One size per search, in turn: judging every size's candidates on every search doubled the cost of a lost
+  // frame (wakeboard4) for no gain in the SRE means.
+  const double factor = kSizes[nextSize_];
+  nextSize_ = (nextSize_ + 1) % std::size(kSizes);
+  const std::vector<cv::Size2d> sizes{clampSize(size * factor, minSize, frame.size())};
   // Only places whose colour could pass the bar are worth the filter: while the target is out of view that
   // leaves few or none, and a lost frame costs little more than the colour map.
   for (const FusedDetector::Candidate &c :

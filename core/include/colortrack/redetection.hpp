@@ -33,6 +33,8 @@ class Redetector {
  private:
   static bool colourLike(const FusedDetector::Estimate &e, const UsualDetection &usual);
   static bool confident(const FusedDetector::Estimate &e, const UsualDetection &usual);
+
+  int nextSize_ = 0;  // which of the relative sizes the next search tries
 };
 
 }  // namespace colortrack
