@@ -197,8 +197,8 @@ const Def kProperties[] = {
      [](GParamFlags f) {
        return g_param_spec_string(
            "template-location", "Template location",
-           "Image file (PNG, JPEG) of the object to track; a PNG alpha channel selects its pixels. "
-           "Loaded at start and again when changed",
+           "Image file (PNG, JPEG; a regular file, never a FIFO or device) of the object to track; a "
+           "PNG alpha channel selects its pixels. Loaded at start and again when changed",
            nullptr, f);
      },
      getTextOrNull<&Settings::templateLocation>, setText<&Settings::templateLocation>},

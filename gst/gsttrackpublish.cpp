@@ -34,6 +34,7 @@
 #include "gsttrackpublish.h"
 
 #include <gst/video/video.h>
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -44,6 +45,7 @@
 #include <string>
 
 #include "mqtt-publisher.h"
+#include "output-file.h"
 #include "track-document.h"
 #include "trackpublish-settings.h"
 
@@ -163,11 +165,23 @@ bool openFile(GstTrackPublish *self, State &state, const std::string &location) 
     return true;
   }
   state.location = location;
-  state.file = std::fopen(location.c_str(), "a");
+  // Opened without waiting: a FIFO nobody reads is refused at once instead of holding the state change in
+  // open(). The writes then block as filesink's do (a reader that stops reading holds the stream).
+  std::string why;
+  mode_t kind = 0;
+  const int fd = colortrack_gst::openOutputFile(location, O_CREAT | O_APPEND, kind, why);
+  if (fd >= 0) {
+    fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+    state.file = fdopen(fd, "a");
+    if (!state.file) {
+      why = g_strerror(errno);
+      close(fd);
+    }
+  }
   if (!state.file) {
     GST_ELEMENT_ERROR(
         self, RESOURCE, OPEN_WRITE,
-        ("Could not open '%s' (property 'location') for writing: %s", location.c_str(), g_strerror(errno)),
+        ("Could not open '%s' (property 'location') for writing: %s", location.c_str(), why.c_str()),
         (nullptr));
     return false;
   }

@@ -1,5 +1,7 @@
 #include "robot-port.h"
 
+#include "output-file.h"
+
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
@@ -18,6 +20,8 @@ namespace robotctl {
 
 namespace {
 
+using colortrack_gst::fileKindName;
+
 using Clock = std::chrono::steady_clock;
 
 bool fail(std::string &why) {
@@ -34,25 +38,6 @@ void consumeSigpipe() {
   sigtimedwait(&set, nullptr, &zero);
 }
 
-std::string kindName(mode_t kind) {
-  switch (kind) {
-    case S_IFREG:
-      return "regular file";
-    case S_IFCHR:
-      return "character device";
-    case S_IFIFO:
-      return "FIFO";
-    case S_IFSOCK:
-      return "socket";
-    case S_IFBLK:
-      return "block device";
-    case S_IFDIR:
-      return "directory";
-    default:
-      return "file";
-  }
-}
-
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------------------
@@ -66,7 +51,7 @@ bool FilePort::open(std::string &why) {
   }
   struct stat st;
   const bool exists = stat(path_.c_str(), &st) == 0;
-  int flags = O_WRONLY | O_NOCTTY | O_NONBLOCK | O_CLOEXEC;
+  int flags = 0;
   if (!openedBefore_) {
     // Only the first open creates, and only a regular file (the user named a file to write to); it starts
     // empty.
@@ -75,37 +60,26 @@ bool FilePort::open(std::string &why) {
     // A reopen waits for the kind of file it lost. An unplugged adapter's path (a udev symlink) or a FIFO
     // its reader removed must never become a regular file that swallows the robot's commands.
     if (!exists) {
-      why = "it is gone; waiting for the " + kindName(kind_) + " to come back";
+      why = "it is gone; waiting for the " + fileKindName(kind_) + " to come back";
       return false;
     }
     if ((st.st_mode & S_IFMT) != kind_) {
-      why = "it is now " + kindName(st.st_mode & S_IFMT) + ", not the " + kindName(kind_) +
+      why = "it is now " + fileKindName(st.st_mode & S_IFMT) + ", not the " + fileKindName(kind_) +
             " it was; waiting for that to come back";
       return false;
     }
     if (S_ISREG(st.st_mode)) flags |= O_APPEND;  // a regular file reopened is appended to
   }
-  fd_ = ::open(path_.c_str(), flags, 0644);
-  if (fd_ < 0) {
-    if (errno == ENXIO) {
-      why = "no process has the FIFO open for reading";
-      return false;
-    }
-    return fail(why);
-  }
-  struct stat opened;
-  if (fstat(fd_, &opened) != 0) {
-    fail(why);
-    close();
-    return false;
-  }
+  mode_t opened = 0;
+  fd_ = colortrack_gst::openOutputFile(path_, flags, opened, why);
+  if (fd_ < 0) return false;
   // Checked again on the descriptor: the path may have changed between stat() and open().
-  if (openedBefore_ && (opened.st_mode & S_IFMT) != kind_) {
-    why = "it is now " + kindName(opened.st_mode & S_IFMT) + ", not the " + kindName(kind_) + " it was";
+  if (openedBefore_ && opened != kind_) {
+    why = "it is now " + fileKindName(opened) + ", not the " + fileKindName(kind_) + " it was";
     close();
     return false;
   }
-  kind_ = opened.st_mode & S_IFMT;
+  kind_ = opened;
   openedBefore_ = true;
   // A terminal (a pty) would turn "\n" into "\r\n" and echo: send the bytes as they are.
   struct termios tio;

@@ -36,8 +36,9 @@ const Def kProperties[] = {
     {kAtStart, false,
      [](GParamFlags f) {
        return g_param_spec_string("location", "Location",
-                                  "File to append one JSON document per line to, or \"-\" for stdout; may be "
-                                  "combined with address",
+                                  "File to append one JSON document per line to (a regular file, created if "
+                                  "missing, a character device or a FIFO that a reader has open), or \"-\" "
+                                  "for stdout; may be combined with address",
                                   nullptr, f);
      },
      getTextOrNull<&Settings::location>, setText<&Settings::location>},

@@ -9,6 +9,7 @@
 
 #include "colortrack/detection_method.hpp"
 #include "colortrack/kalman_track.hpp"
+#include "colortrack/regular_file.hpp"
 #include "colortrack/template_model.hpp"
 
 namespace colortrack {
@@ -138,16 +139,23 @@ void startWorkerThreads() {
   cv::parallel_for_(cv::Range(0, std::max(1, cv::getNumThreads())), [](const cv::Range &) {});
 }
 
+// A template is a small picture of the object; a file larger than this is not one.
+constexpr std::size_t kMaxTemplateFileBytes = 64u << 20;
+
 void loadTemplate(const std::string &path, cv::Mat &bgr, cv::Mat &mask) {
+  // Read here rather than by cv::imread, which would wait in open() for ever on a FIFO without a writer.
+  std::vector<unsigned char> bytes;
+  std::string why;
+  if (!readRegularFile(path, kMaxTemplateFileBytes, bytes, why))
+    throw TrackerError("cannot read the template image \"" + path + "\": " + why);
   cv::Mat image;
   try {
-    image = cv::imread(path, cv::IMREAD_UNCHANGED);
+    if (!bytes.empty()) image = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
   } catch (const cv::Exception &e) {
     throw TrackerError("cannot read the template image \"" + path + "\": " + e.what());
   }
   if (image.empty())
-    throw TrackerError("cannot read the template image \"" + path +
-                       "\" (missing, unreadable or not PNG/JPEG)");
+    throw TrackerError("cannot read the template image \"" + path + "\" (not a PNG or JPEG image)");
   if (image.depth() == CV_16U) image.convertTo(image, CV_8U, 1.0 / 257);
   mask.release();
   switch (image.channels()) {

@@ -1,6 +1,8 @@
 // colortrack's handling of bad input: every case ends in a clear error (or, for a bad value set while
 // playing, a warning and the old value) on the bus naming the property or file; never a crash or a hang.
 // C++ headers first: gstcheck.h defines macros (fail, ...) that clash with names in the standard library.
+#include <sys/stat.h>
+
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -347,6 +349,33 @@ GST_START_TEST(test_caps_change_mid_stream) {
 }
 GST_END_TEST;
 
+// A template-location that is a FIFO with no writer is refused at once, at start and while playing: reading
+// it would wait in open() for a writer that never comes (and then set_state(NULL) could never return).
+GST_START_TEST(test_template_fifo_never_blocks) {
+  const Scene scene(smallScene());
+  TempFile fifo("object.png");
+  fail_unless(mkfifo(fifo.path().c_str(), 0600) == 0);
+  gint64 started = g_get_monotonic_time();
+  const Outcome o = run("colortrack name=ct template-location=" + fifo.path(), scene);
+  assertErrorNames(o, "template-location", fifo.path());
+  fail_unless(contains(o.errorText, "FIFO"), "the error does not say why: %s", o.errorText.c_str());
+  fail_unless(g_get_monotonic_time() - started < G_USEC_PER_SEC, "the refusal took over a second");
+
+  Pipeline p("colortrack name=ct init-box=" + boxString(scene.initBox()));
+  fail_unless(p.play() != GST_STATE_CHANGE_FAILURE);
+  for (int i = 0; i < 3; ++i) p.push(scene.render(i).bgr, i);
+  started = g_get_monotonic_time();
+  g_object_set(p.tracker(), "template-location", fifo.path().c_str(), nullptr);
+  for (int i = 3; i < 8; ++i) p.push(scene.render(i).bgr, i);
+  const Outcome playing = p.finish();
+  fail_unless(playing.eos && !playing.error, "%s", playing.errorText.c_str());
+  fail_unless(playing.warned("template-location") && playing.warned(fifo.path()),
+              "no warning naming the FIFO");
+  fail_unless_equals_int(p.outputs().size(), 8);
+  fail_unless(g_get_monotonic_time() - started < G_USEC_PER_SEC, "the stream waited over a second");
+}
+GST_END_TEST;
+
 static Suite *colortrack_errors_suite(void) {
   preloadPlugins({"colortrack", "app", "videoconvertscale"});
   Suite *s = suite_create("colortrack_errors");
@@ -362,6 +391,7 @@ static Suite *colortrack_errors_suite(void) {
   tcase_add_test(tc, test_bad_value_while_playing_keeps_old);
   tcase_add_test(tc, test_no_template_passes_through);
   tcase_add_test(tc, test_caps_change_mid_stream);
+  tcase_add_test(tc, test_template_fifo_never_blocks);
   return s;
 }
 

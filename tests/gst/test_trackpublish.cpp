@@ -3,7 +3,9 @@
 // read back by a subscriber (Paho). Covers delivery in order at QoS 1, eight sources at once, a broker
 // restart mid-stream with a live source, and bad addresses, topics and a full queue. C++ headers first:
 // gstcheck.h defines macros (fail, ...) that clash with names in the standard library.
+#include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -22,6 +24,7 @@
 
 #include <MQTTAsync.h>
 #include <gio/gio.h>
+#include <glib/gstdio.h>
 #include <nlohmann/json.hpp>
 
 #include "gst_test_util.hpp"
@@ -409,6 +412,47 @@ GST_START_TEST(test_file_has_one_document_per_frame) {
 }
 GST_END_TEST;
 
+// location= a FIFO: refused at once while nobody reads it (the open would otherwise wait for a reader with
+// the state change held), written to once somebody does; a directory is refused naming what it is.
+GST_START_TEST(test_fifo_location_never_blocks) {
+  gchar *dir = g_dir_make_tmp("trackpublish-XXXXXX", nullptr);
+  fail_unless(dir != nullptr);
+  const std::string fifo = std::string(dir) + "/tracks.fifo";
+  fail_unless(mkfifo(fifo.c_str(), 0600) == 0);
+  {
+    Publisher p("location=" + fifo);
+    const auto start = Clock::now();
+    fail_unless_equals_int(p.play(), GST_STATE_CHANGE_FAILURE);
+    fail_unless(Clock::now() - start < std::chrono::seconds(1), "the refusal took over a second");
+    const std::vector<std::string> errors = p.messages(GST_MESSAGE_ERROR);
+    fail_unless(anyContains(errors, "property 'location'") && anyContains(errors, "FIFO"),
+                "no error naming location and the FIFO");
+  }
+  {
+    const int reader = open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+    fail_unless(reader >= 0);
+    Publisher p("location=" + fifo + " source=fifo-cam");
+    fail_unless(p.play() != GST_STATE_CHANGE_FAILURE);
+    for (int i = 0; i < 5; ++i) p.push(i);
+    p.endAndWait();
+    std::string text(65536, '\0');
+    const ssize_t n = read(reader, text.data(), text.size());
+    fail_unless(n > 0);
+    text.resize(static_cast<std::size_t>(n));
+    fail_unless_equals_int(std::count(text.begin(), text.end(), '\n'), 5);
+    close(reader);
+  }
+  {
+    Publisher p(std::string("location=") + dir);
+    fail_unless_equals_int(p.play(), GST_STATE_CHANGE_FAILURE);
+    fail_unless(anyContains(p.messages(GST_MESSAGE_ERROR), "property 'location'"));
+  }
+  unlink(fifo.c_str());
+  g_rmdir(dir);
+  g_free(dir);
+}
+GST_END_TEST;
+
 GST_START_TEST(test_mqtt_delivers_every_frame_in_order) {
   const int port = freePort();
   Broker broker(port);
@@ -641,6 +685,7 @@ static Suite *trackpublish_suite(void) {
   tcase_add_test(tc, test_mqtt_over_tls);
   tcase_add_test(tc, test_bad_addresses_and_topics);
   tcase_add_test(tc, test_full_queue_drops_the_oldest_and_says_how_many);
+  tcase_add_test(tc, test_fifo_location_never_blocks);
   return s;
 }
 

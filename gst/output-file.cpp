@@ -1,0 +1,56 @@
+#include "output-file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+
+#include <glib.h>
+
+namespace colortrack_gst {
+
+std::string fileKindName(mode_t kind) {
+  switch (kind) {
+    case S_IFREG:
+      return "regular file";
+    case S_IFCHR:
+      return "character device";
+    case S_IFIFO:
+      return "FIFO";
+    case S_IFSOCK:
+      return "socket";
+    case S_IFBLK:
+      return "block device";
+    case S_IFDIR:
+      return "directory";
+    default:
+      return "file";
+  }
+}
+
+int openOutputFile(const std::string &path, int extraFlags, mode_t &kind, std::string &why) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_NOCTTY | O_NONBLOCK | O_CLOEXEC | extraFlags, 0644);
+  if (fd < 0) {
+    // POSIX: a non-blocking open of a FIFO for writing fails with ENXIO while nobody reads it (a socket
+    // file gives the same).
+    why = errno == ENXIO ? "no process has it open for reading (a FIFO without a reader, or a socket)"
+                         : g_strerror(errno);
+    return -1;
+  }
+  struct stat st;
+  if (fstat(fd, &st) != 0) {
+    why = g_strerror(errno);
+    ::close(fd);
+    return -1;
+  }
+  kind = st.st_mode & S_IFMT;
+  if (kind != S_IFREG && kind != S_IFCHR && kind != S_IFIFO) {
+    why = "it is a " + fileKindName(kind) + ", not a regular file, character device or FIFO";
+    ::close(fd);
+    return -1;
+  }
+  return fd;
+}
+
+}  // namespace colortrack_gst

@@ -1,0 +1,20 @@
+// Output files (robotctl's and trackpublish's location): opened for writing without ever blocking the thread
+// that opens them.
+#pragma once
+
+#include <sys/types.h>
+
+#include <string>
+
+namespace colortrack_gst {
+
+// "regular file", "FIFO", "character device", ... for the S_IFMT bits of a mode.
+std::string fileKindName(mode_t kind);
+
+// Opens `path` for writing with O_NONBLOCK (so a FIFO without a reader fails at once instead of waiting in
+// open() for one), close-on-exec and no controlling terminal, plus `extraFlags` (O_CREAT, O_APPEND, ...).
+// Only a regular file, a character device (a serial port, a pty) or a FIFO is accepted. Returns the
+// descriptor, still non-blocking, and its kind in `kind`; or -1 with the reason in `why`.
+int openOutputFile(const std::string &path, int extraFlags, mode_t &kind, std::string &why);
+
+}  // namespace colortrack_gst
