@@ -189,6 +189,43 @@ bool openFile(GstTrackPublish *self, State &state, const std::string &location) 
   return true;
 }
 
+// What MQTT will carry, checked before connecting: the topic after {source} is put in, the client id, and
+// TLS files only where TLS is used (with tcp:// they would be ignored, and the link not encrypted).
+bool checkMqttSettings(GstTrackPublish *self, const trackpublish::Settings &s,
+                       const trackpublish::MqttConfig &config, const std::string &topic,
+                       const std::string &source) {
+  const std::string badTopic = trackpublish::checkTopic(topic);
+  if (!badTopic.empty()) {
+    // A topic too long to show is named by its length in `badTopic`.
+    const std::string shown = topic.size() > 200 ? topic.substr(0, 200) + "..." : topic;
+    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
+                      ("Invalid topic '%s' (property 'topic', with source '%s'): %s.", shown.c_str(),
+                       source.c_str(), badTopic.c_str()),
+                      (nullptr));
+    return false;
+  }
+  const std::string badClientId = trackpublish::checkClientId(config.clientId);
+  if (!badClientId.empty()) {
+    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("Invalid property 'client-id': %s.", badClientId.c_str()),
+                      (nullptr));
+    return false;
+  }
+  const bool tls = trackpublish::usesTls(s.address);
+  for (const auto &[property, file] :
+       {std::pair<const char *, const std::string &>{"tls-ca-file", s.tlsCaFile},
+        {"tls-cert-file", s.tlsCertFile},
+        {"tls-key-file", s.tlsKeyFile}}) {
+    if (tls || file.empty()) continue;
+    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
+                      ("TLS file '%s' (property '%s') is set but address '%s' does not use TLS: use "
+                       "ssl://HOST:PORT, or unset '%s'.",
+                       file.c_str(), property, trackpublish::redactedAddress(s.address).c_str(), property),
+                      (nullptr));
+    return false;
+  }
+  return true;
+}
+
 bool openMqtt(GstTrackPublish *self, State &state, const trackpublish::Settings &s,
               const std::string &source) {
   trackpublish::MqttConfig config;
@@ -203,20 +240,14 @@ bool openMqtt(GstTrackPublish *self, State &state, const trackpublish::Settings 
   config.qos = s.qos;
   config.maxQueued = s.maxQueued;
   state.topic = replaceAll(s.topic, "{source}", source);
-  const std::string badTopic = trackpublish::checkTopic(state.topic);
-  if (!badTopic.empty()) {
-    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                      ("Invalid topic '%s' (property 'topic', with source '%s'): %s.", state.topic.c_str(),
-                       source.c_str(), badTopic.c_str()),
-                      (nullptr));
-    return false;
-  }
+  if (!checkMqttSettings(self, s, config, state.topic, source)) return false;
   state.listener = std::make_unique<ElementMqttListener>(GST_ELEMENT(self), s.maxQueued);
   state.mqtt = std::make_unique<trackpublish::MqttPublisher>(config, *state.listener);
   std::string why;
   if (!state.mqtt->start(why)) {
     GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                      ("Invalid MQTT address '%s' (property 'address'): %s.", s.address.c_str(), why.c_str()),
+                      ("Invalid MQTT address '%s' (property 'address'): %s.",
+                       trackpublish::redactedAddress(s.address).c_str(), why.c_str()),
                       (nullptr));
     return false;
   }
@@ -224,7 +255,7 @@ bool openMqtt(GstTrackPublish *self, State &state, const trackpublish::Settings 
   if (s.failOnConnect && !state.mqtt->waitFirstAttempt(milliseconds(6000), why)) {
     GST_ELEMENT_ERROR(self, RESOURCE, OPEN_WRITE,
                       ("Cannot reach MQTT broker %s (property 'address', fail-on-connect=true): %s.",
-                       s.address.c_str(), why.c_str()),
+                       trackpublish::redactedAddress(s.address).c_str(), why.c_str()),
                       (nullptr));
     return false;
   }

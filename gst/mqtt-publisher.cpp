@@ -1,6 +1,7 @@
 #include "mqtt-publisher.h"
 
 #include <MQTTAsync.h>
+#include <glib.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -45,12 +46,43 @@ std::string checkAddress(const std::string &address) {
   return "";
 }
 
+// MQTT's "UTF-8 encoded string": at most 65,535 bytes, well-formed UTF-8, no U+0000 (MQTT 3.1.1, 1.5.3).
+std::string checkMqttString(const std::string &text, const char *what) {
+  if (text.size() > 65535)
+    return std::string(what) + " is " + std::to_string(text.size()) + " bytes; MQTT allows at most 65535";
+  if (text.find('\0') != std::string::npos) return std::string(what) + " must not contain NUL";
+  if (!g_utf8_validate(text.data(), static_cast<gssize>(text.size()), nullptr))
+    return std::string(what) + " is not valid UTF-8";
+  return "";
+}
+
 std::string checkTopic(const std::string &topic) {
   if (topic.empty()) return "a topic must not be empty";
+  const std::string bad = checkMqttString(topic, "the topic");
+  if (!bad.empty()) return bad;
   if (topic.find_first_of("+#") != std::string::npos)
     return "a topic to publish to must not contain the wildcards + or #";
-  if (topic.find('\0') != std::string::npos) return "a topic must not contain NUL";
+  // Brokers keep topics starting with $ ($SYS/...) for themselves and refuse publishes to them silently.
+  if (topic[0] == '$') return "topics starting with $ belong to the broker ($SYS/...)";
   return "";
+}
+
+bool usesTls(const std::string &address) {
+  return address.rfind("ssl://", 0) == 0 || address.rfind("mqtts://", 0) == 0;
+}
+
+std::string checkClientId(const std::string &clientId) {
+  return checkMqttString(clientId, "the client id");
+}
+
+std::string redactedAddress(const std::string &address) {
+  const std::size_t scheme = address.find("://");
+  const std::size_t hostStart = scheme == std::string::npos ? 0 : scheme + 3;
+  const std::size_t at = address.find('@', hostStart);
+  if (at == std::string::npos) return address;
+  const std::size_t colon = address.find(':', hostStart);
+  const std::size_t userEnd = colon != std::string::npos && colon < at ? colon : at;
+  return address.substr(0, userEnd) + (userEnd < at ? ":***" : "") + address.substr(at);
 }
 
 struct MqttPublisher::SendContext {
@@ -213,7 +245,7 @@ void MqttPublisher::connect(std::unique_lock<std::mutex> &lock) {
   if (!config_.username.empty()) options.username = config_.username.c_str();
   if (!config_.password.empty()) options.password = config_.password.c_str();
   MQTTAsync_SSLOptions ssl = MQTTAsync_SSLOptions_initializer;
-  const bool tls = config_.address.rfind("ssl://", 0) == 0 || config_.address.rfind("mqtts://", 0) == 0;
+  const bool tls = usesTls(config_.address);
   if (tls) {
     if (!config_.caFile.empty()) ssl.trustStore = config_.caFile.c_str();
     if (!config_.certFile.empty()) ssl.keyStore = config_.certFile.c_str();
@@ -323,9 +355,9 @@ void MqttPublisher::connectDone(bool ok, const std::string &why) {
   }
   wake_.notify_all();
   if (ok)
-    listener_.connected(config_.address, again);
+    listener_.connected(redactedAddress(config_.address), again);
   else
-    listener_.connectFailed(config_.address, why, first, retryIn);
+    listener_.connectFailed(redactedAddress(config_.address), why, first, retryIn);
 }
 
 void MqttPublisher::lost(const std::string &why) {
@@ -339,7 +371,7 @@ void MqttPublisher::lost(const std::string &why) {
     backoff_ = kFirstBackoff;
   }
   wake_.notify_all();
-  listener_.connectionLost(config_.address, why, queued);
+  listener_.connectionLost(redactedAddress(config_.address), why, queued);
 }
 
 }  // namespace trackpublish

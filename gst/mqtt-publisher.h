@@ -44,8 +44,15 @@ class MqttListener {
 
 // An address Paho accepts, or why not (empty when fine).
 std::string checkAddress(const std::string &address);
-// A topic a publisher may use (no wildcards, not empty, no NUL), or why not (empty when fine).
+// A topic a publisher may use (UTF-8 of at most 65,535 bytes, not empty, no NUL, no wildcards, not the
+// broker's own $...), or why not (empty when fine).
 std::string checkTopic(const std::string &topic);
+// A client id MQTT can carry (UTF-8 of at most 65,535 bytes, no NUL), or why not (empty when fine).
+std::string checkClientId(const std::string &clientId);
+// Whether the address's scheme is a TLS one (ssl://, mqtts://).
+bool usesTls(const std::string &address);
+// The address as it may be shown: a password in it (tcp://user:password@host:port) becomes ***.
+std::string redactedAddress(const std::string &address);
 
 class MqttPublisher {
  public:

@@ -27,6 +27,10 @@ std::string checkTopicValue(const PropertyStore &, const GValue *v, std::string 
   return checkTopic(textOf(v));
 }
 
+std::string checkClientIdValue(const PropertyStore &, const GValue *v, std::string *) {
+  return checkClientId(textOf(v));
+}
+
 const char *refuseEmptyRoiType(const GValue *v) {
   return textOf(v).empty() ? "it names the type of the regions to publish (e.g. colortrack, object)"
                            : nullptr;
@@ -54,7 +58,8 @@ const Def kProperties[] = {
     {kAtStart, false,
      [](GParamFlags f) {
        return g_param_spec_string("topic", "Topic",
-                                  "MQTT topic; {source} is replaced by the source name; no wildcards",
+                                  "MQTT topic; {source} is replaced by the source name; no wildcards, not "
+                                  "starting with $ (the broker's), at most 65535 bytes of UTF-8",
                                   Settings{}.topic.c_str(), f);
      },
      getText<&Settings::topic>, setText<&Settings::topic>, nullptr, checkTopicValue, true},
@@ -76,11 +81,12 @@ const Def kProperties[] = {
      getValue<&Settings::qos>, setValue<&Settings::qos>},
     {kAtStart, false,
      [](GParamFlags f) {
-       return g_param_spec_string(
-           "client-id", "Client id",
-           "MQTT client id, unique per broker; NULL = colortrack-<source>-<process id>", nullptr, f);
+       return g_param_spec_string("client-id", "Client id",
+                                  "MQTT client id, unique per broker, at most 65535 bytes of UTF-8; NULL = "
+                                  "colortrack-<source>-<process id>",
+                                  nullptr, f);
      },
-     getTextOrNull<&Settings::clientId>, setText<&Settings::clientId>},
+     getTextOrNull<&Settings::clientId>, setText<&Settings::clientId>, nullptr, checkClientIdValue, true},
     {kAtStart, false,
      [](GParamFlags f) {
        return g_param_spec_string("username", "User name", "MQTT user name; NULL = none", nullptr, f);
@@ -95,8 +101,8 @@ const Def kProperties[] = {
      [](GParamFlags f) {
        return g_param_spec_string(
            "tls-ca-file", "TLS CA file",
-           "PEM file of the certificate authorities to trust (ssl:// only); NULL = the "
-           "system's",
+           "PEM file of the certificate authorities to trust (ssl:// only: refused with "
+           "tcp://); NULL = the system's",
            nullptr, f);
      },
      getTextOrNull<&Settings::tlsCaFile>, setText<&Settings::tlsCaFile>},

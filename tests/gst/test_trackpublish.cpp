@@ -629,6 +629,13 @@ GST_START_TEST(test_bad_addresses_and_topics) {
            {"address=tcp://127.0.0.1:99999", "property 'address'"},
            {"address=tcp://127.0.0.1:1883 topic=cams/+/tracks", "property 'topic'"},
            {"address=tcp://127.0.0.1:1883 source=a/# topic=x/{source}", "property 'topic'"},
+           {"address=tcp://127.0.0.1:1883 topic=$SYS/x", "property 'topic'"},
+           {"address=tcp://127.0.0.1:1883 topic=" + std::string(70000, 't'), "property 'topic'"},
+           {"address=tcp://127.0.0.1:1883 topic=x/{source} source=" + std::string(65535, 's'),
+            "property 'topic'"},
+           {"address=tcp://127.0.0.1:1883 client-id=" + std::string(70000, 'c'), "property 'client-id'"},
+           {"address=tcp://127.0.0.1:1883 tls-ca-file=/etc/hostname", "property 'tls-ca-file'"},
+           {"address=tcp://127.0.0.1:1883 tls-key-file=/etc/hostname", "property 'tls-key-file'"},
            {"", "No output"}}) {
     Publisher p(properties);
     fail_unless_equals_int(p.play(), GST_STATE_CHANGE_FAILURE);
@@ -660,6 +667,21 @@ GST_START_TEST(test_bad_addresses_and_topics) {
 }
 GST_END_TEST;
 
+// A password in the address never reaches a message: it reads as ***.
+GST_START_TEST(test_password_in_address_is_never_shown) {
+  const std::string address = "tcp://robot:s3cret@127.0.0.1:" + std::to_string(freePort());
+  Publisher p("address=" + address + " drain-timeout=0");
+  if (p.play() != GST_STATE_CHANGE_FAILURE) {
+    p.push(0);
+    Subscriber::waitFor([&] { return !p.messages(GST_MESSAGE_WARNING).empty(); }, 7);
+  }
+  std::vector<std::string> all = p.messages(GST_MESSAGE_WARNING);
+  for (const std::string &e : p.messages(GST_MESSAGE_ERROR)) all.push_back(e);
+  fail_unless(anyContains(all, "tcp://robot:***@127.0.0.1"), "no message names the broker");
+  fail_unless(!anyContains(all, "s3cret"), "a message shows the password");
+}
+GST_END_TEST;
+
 GST_START_TEST(test_full_queue_drops_the_oldest_and_says_how_many) {
   Publisher p("address=tcp://127.0.0.1:" + std::to_string(freePort()) + " max-queued=10 drain-timeout=0");
   fail_unless(p.play() != GST_STATE_CHANGE_FAILURE);
@@ -686,6 +708,7 @@ static Suite *trackpublish_suite(void) {
   tcase_add_test(tc, test_bad_addresses_and_topics);
   tcase_add_test(tc, test_full_queue_drops_the_oldest_and_says_how_many);
   tcase_add_test(tc, test_fifo_location_never_blocks);
+  tcase_add_test(tc, test_password_in_address_is_never_shown);
   return s;
 }
 
