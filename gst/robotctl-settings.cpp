@@ -1,5 +1,7 @@
 #include "robotctl-settings.h"
 
+#include "udp-port.h"
+
 #include <cmath>
 #include <type_traits>
 
@@ -19,6 +21,10 @@ using colortrack::ControllerSettings;
 using colortrack::FailsafeSettings;
 
 constexpr bool kVersioned = true;
+
+std::string checkLocationValue(const PropertyStore &, const GValue *v, std::string *) {
+  return checkLocation(textOf(v));
+}
 
 // GStreamer enum <-> core enum: switches with no default, so -Wswitch names a value added to either side.
 // The value after each switch is only reached by an out-of-range number (GParamSpecEnum refuses those).
@@ -179,10 +185,11 @@ const Def kProperties[] = {
        return g_param_spec_string("location", "Location",
                                   "File, FIFO or pseudo-terminal to write the commands to, '-' for "
                                   "stdout (dry runs, tests), or udp://HOST:PORT to send each as a datagram; "
+                                  "any other SCHEME:... is refused (write ./name for a file with a colon); "
                                   "exclusive with 'device'; read at start",
                                   nullptr, f);
      },
-     getTextOrNull<&Settings::location>, setText<&Settings::location>},
+     getTextOrNull<&Settings::location>, setText<&Settings::location>, nullptr, checkLocationValue, true},
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_enum("protocol", "Protocol", "How commands are encoded; read at start",

@@ -806,6 +806,35 @@ GST_START_TEST(test_bad_settings_give_clear_errors) {
 }
 GST_END_TEST;
 
+// A location that starts like a URL but is not a valid udp:// one is an error, never a file of that name in
+// the working directory (where the commands would quietly go); "./NAME" names such a file on purpose.
+GST_START_TEST(test_url_typos_are_never_files) {
+  gchar *dir = g_dir_make_tmp("robotctl-XXXXXX", nullptr);
+  fail_unless(dir != nullptr);
+  gchar *before = g_get_current_dir();
+  fail_unless(g_chdir(dir) == 0);
+  const std::string src = "videotestsrc num-buffers=1 ! ";
+  for (const char *typo :
+       {"udp:127.0.0.1:14550", "udp:/127.0.0.1:14550", "tcp://127.0.0.1:5760", "serial:/dev/ttyUSB0"}) {
+    const std::string text = startError(src + "robotctl location=" + typo);
+    fail_unless(text.find("'location'") != std::string::npos && text.find(typo) != std::string::npos, "%s",
+                text.c_str());
+    fail_unless(!g_file_test(typo, G_FILE_TEST_EXISTS), "'%s' was created", typo);
+  }
+  GstElement *pipeline = gst_parse_launch((src + "robotctl location=./udp:x").c_str(), nullptr);
+  fail_unless(pipeline != nullptr);
+  fail_unless(gst_element_set_state(pipeline, GST_STATE_PAUSED) != GST_STATE_CHANGE_FAILURE);
+  gst_element_set_state(pipeline, GST_STATE_NULL);
+  gst_object_unref(pipeline);
+  fail_unless(g_file_test("udp:x", G_FILE_TEST_IS_REGULAR), "./udp:x was not written");
+  g_unlink("udp:x");
+  fail_unless(g_chdir(before) == 0);
+  g_rmdir(dir);
+  g_free(dir);
+  g_free(before);
+}
+GST_END_TEST;
+
 // The MAVLink commands in `bytes` (a pty carries them like a serial link), heartbeats left out.
 std::vector<colortrack::mavlink::Frame> mavlinkCommands(const Bytes &bytes) {
   std::vector<colortrack::mavlink::Frame> frames;
@@ -933,6 +962,7 @@ Suite *robotctl_suite(void) {
   tcase_add_test(tc, test_follows_cvtracker);
   tcase_add_test(tc, test_message_fields);
   tcase_add_test(tc, test_bad_settings_give_clear_errors);
+  tcase_add_test(tc, test_url_typos_are_never_files);
   tcase_add_test(tc, test_bad_field_of_view_while_running);
   tcase_add_test(tc, test_mavlink_stop_form_on_every_failsafe);
   tcase_add_test(tc, test_text_protocol_over_udp);
