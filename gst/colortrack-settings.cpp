@@ -278,11 +278,11 @@ const Def kProperties[] = {
      true},
     {Apply::Live, kTracker,
      [](GParamFlags f) {
-       return g_param_spec_string(
-           "channel-weights", "Channel weights",
-           "Weight of each channel in the match, \"w1,w2,w3\", each 0-1 and not all 0 (V is weighted "
-           "down for robustness to lighting)",
-           colortrack::formatWeights(TrackerSettings{}.weights).c_str(), f);
+       return g_param_spec_string("channel-weights", "Channel weights",
+                                  "Weight of each channel in the match, \"w1,w2,w3\", each 0-1, adding up to "
+                                  "at least 0.001 (V is weighted "
+                                  "down for robustness to lighting)",
+                                  colortrack::formatWeights(TrackerSettings{}.weights).c_str(), f);
      },
      getText<&Settings::weights>,
      [](Settings &s, const GValue *v) {

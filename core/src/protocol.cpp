@@ -29,11 +29,14 @@ std::optional<ZoneChars> parseZoneChars(const std::string &text, std::string *er
     if (error) *error = why;
     return std::nullopt;
   };
+  // Each command goes out as one byte: anything but printable ASCII (a UTF-8 letter is several bytes) is
+  // refused before the count, which is then a count of characters.
+  for (unsigned char c : text)
+    if (c >= 0x80 || !std::isgraph(c))
+      return fail("the characters must be printable ASCII and not blank (each is sent as one byte)");
   if (text.size() != 5)
     return fail("expected five characters (forward, backward, left, right, stop), got " +
                 std::to_string(text.size()));
-  for (unsigned char c : text)
-    if (!std::isgraph(c)) return fail("the characters must be printable ASCII and not blank");
   if (std::set<char>(text.begin(), text.end()).size() != 5) return fail("the five characters must differ");
   ZoneChars chars;
   chars.forward = text[0];

@@ -78,19 +78,22 @@ std::optional<BinLayout> parseBins(const std::string &text, std::string *error) 
   return layout;
 }
 
+constexpr double kMinWeightSum = 1e-3;
+
 std::optional<ChannelWeights> parseWeights(const std::string &text, std::string *error) {
   const auto values = parseList<double, 3>(text);
   if (!values) return fail(error, "expected three numbers 0..1 separated by commas, got " + quoted(text));
   for (double w : *values)
     if (!(w >= 0.0 && w <= 1.0))  // also rejects NaN
       return fail(error, "channel weights must be in [0, 1], got " + quoted(text));
-  if ((*values)[0] == 0 && (*values)[1] == 0 && (*values)[2] == 0)
+  // A weight too small to count (1e-320) is as good as zero: the weights must add up to something.
+  if ((*values)[0] + (*values)[1] + (*values)[2] < kMinWeightSum)
     return fail(error,
-                "at least one channel weight must be above 0 (all zero would make every window a "
+                "the channel weights must add up to at least 0.001 (all zero would make every window a "
                 "perfect match), got " +
                     quoted(text));
   ChannelWeights weights;
-  weights.w = *values;
+  for (int c = 0; c < 3; ++c) weights.w[c] = (*values)[c] + 0.0;  // -0 reads back as 0
   return weights;
 }
 

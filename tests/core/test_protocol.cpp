@@ -48,6 +48,10 @@ TEST(Protocol, ZoneCharsRejected) {
   EXPECT_NE(why.find("differ"), std::string::npos);
   EXPECT_FALSE(parseZoneChars("F LRS", &why));
   EXPECT_TRUE(parseZoneChars("12345"));
+  // Five letters of ten UTF-8 bytes: refused as not one byte each, not as "got 10".
+  EXPECT_FALSE(parseZoneChars("\u0109\u011d\u0125\u0135\u015d", &why));
+  EXPECT_NE(why.find("ASCII"), std::string::npos) << why;
+  EXPECT_EQ(why.find("10"), std::string::npos) << why;
 }
 
 TEST(Protocol, TextLines) {

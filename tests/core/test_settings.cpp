@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <clocale>
+#include <cmath>
 #include <string>
 
 #include "colortrack/settings.hpp"
@@ -51,6 +52,14 @@ TEST(ParseWeights, RejectsMalformedWithAReason) {
   std::string error;
   parseWeights("1,2,0", &error);
   EXPECT_NE(error.find("[0, 1]"), std::string::npos) << error;
+  // As good as zero: refused like all zero.
+  for (const char *zero : {"0,0,0", "-0,0,1e-320", "0.0001,0.0001,0.0001"}) {
+    EXPECT_FALSE(parseWeights(zero, &error)) << zero;
+    EXPECT_NE(error.find("add up"), std::string::npos) << error;
+  }
+  const auto negativeZero = parseWeights("-0,0,1");
+  ASSERT_TRUE(negativeZero);
+  EXPECT_FALSE(std::signbit(negativeZero->w[0]));
 }
 
 TEST(ParseBox, AcceptsFourIntegers) {
