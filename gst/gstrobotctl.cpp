@@ -175,6 +175,8 @@ colortrack::MavlinkSettings toMavlinkSettings(const robotctl::Settings &s) {
   m.targetSystem = static_cast<std::uint8_t>(s.targetSystem);
   m.targetComponent = static_cast<std::uint8_t>(s.targetComponent);
   m.rateScale = colortrack::mavlinkRateScale(s.hfov);
+  m.maxRate = s.maxRate * G_PI / 180;
+  m.maxSpeed = s.maxSpeed;
   return m;
 }
 

@@ -126,11 +126,22 @@ const char *refuseTargetId(const GValue *v) {
   return g_value_get_uint(v) > 255 ? "a MAVLink target id is 0-255 (0: all)" : nullptr;
 }
 
+// A lens wider than 170 degrees makes tan(hfov/2) explode (179.9999 gave 10^6 rad/s) and one under a degree
+// makes every rate 0: neither is a camera robotctl can steer by.
 const char *refuseFieldOfView(const GValue *v) {
   // NaN never gets here: GLib refuses it against the range, with a warning naming the property.
   const double hfov = g_value_get_double(v);
-  return !(hfov > 0 && hfov < 180) ? "the horizontal field of view is more than 0 and less than 180 degrees"
-                                   : nullptr;
+  return !(hfov >= 1 && hfov <= 170) ? "the horizontal field of view is 1 to 170 degrees" : nullptr;
+}
+
+const char *refuseMaxRate(const GValue *v) {
+  const double rate = g_value_get_double(v);
+  return !(rate > 0 && rate <= 720) ? "the largest rate is more than 0 and at most 720 deg/s" : nullptr;
+}
+
+const char *refuseMaxSpeed(const GValue *v) {
+  const double speed = g_value_get_double(v);
+  return !(speed > 0 && speed <= 50) ? "the largest speed is more than 0 and at most 50 m/s" : nullptr;
 }
 
 const char *refuseEmptyRoiType(const GValue *v) {
@@ -257,12 +268,28 @@ const Def kProperties[] = {
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_double("hfov", "Horizontal field of view",
-                                  "protocol=mavlink: the camera's horizontal field of view in degrees, more "
-                                  "than 0 and less than 180 (the vertical one follows from the frame's "
-                                  "aspect ratio); turns a turn of 1.0 into tan(hfov/2) rad/s; read at start",
+                                  "protocol=mavlink: the camera's horizontal field of view in degrees, 1 to "
+                                  "170 (the vertical one follows from the frame's aspect ratio); turns a "
+                                  "turn of 1.0 into tan(hfov/2) rad/s; read at start",
                                   0.0, 180.0, Settings{}.hfov, f);
      },
      getValue<&Settings::hfov>, setValue<&Settings::hfov>, refuseFieldOfView},
+    {Apply::AtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_double("max-rate", "Largest rate",
+                                  "protocol=mavlink: every pitch and yaw rate sent is clamped to this, deg/s "
+                                  "(more than 0, at most 720); read at start",
+                                  0.0, 720.0, Settings{}.maxRate, f);
+     },
+     getValue<&Settings::maxRate>, setValue<&Settings::maxRate>, refuseMaxRate},
+    {Apply::AtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_double("max-speed", "Largest speed",
+                                  "protocol=mavlink mavlink-mode=follow: every forward velocity sent is "
+                                  "clamped to this, m/s (more than 0, at most 50); read at start",
+                                  0.0, 50.0, Settings{}.maxSpeed, f);
+     },
+     getValue<&Settings::maxSpeed>, setValue<&Settings::maxSpeed>, refuseMaxSpeed},
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_double(

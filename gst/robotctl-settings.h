@@ -23,11 +23,13 @@ struct Settings {
   std::string zoneChars = "FBLRS";  // checked at start
   gint outputScale = 255;
   // MAVLink (read at start): ours and the receiver's ids, what the commands drive, the camera's field of
-  // view.
+  // view, the bounds of every command.
   GstRobotCtlMavlinkMode mavlinkMode = GST_ROBOT_CTL_MAVLINK_MODE_GIMBAL;
   guint systemId = 1, componentId = 191;  // an onboard computer: MAV_COMP_ID_ONBOARD_COMPUTER
   guint targetSystem = 1, targetComponent = 1;
-  gdouble hfov = 60.0;  // degrees
+  gdouble hfov = 60.0;     // degrees
+  gdouble maxRate = 60.0;  // deg/s, every pitch and yaw rate sent
+  gdouble maxSpeed = 2.0;  // m/s, every forward velocity sent
   gdouble rate = 10.0;
   // A change of these (a versioned property) bumps the store's version: the controller takes it.
   colortrack::ControllerSettings controller;

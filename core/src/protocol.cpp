@@ -87,6 +87,15 @@ SentSpeeds sentSpeeds(const DriveOutput &output, int scale) {
   return SentSpeeds{scaledSpeed(output.left, scale), scaledSpeed(output.right, scale)};
 }
 
+namespace {
+
+// `value` within +-`limit`; 0 for anything not finite (a command that cannot be trusted is no motion).
+float bounded(double value, double limit) {
+  return std::isfinite(value) ? static_cast<float>(std::clamp(value, -limit, limit)) : 0.0f;
+}
+
+}  // namespace
+
 double mavlinkRateScale(double hfovDegrees) {
   return std::tan(hfovDegrees * M_PI / 360.0);
 }
@@ -105,7 +114,7 @@ std::vector<std::uint8_t> ProtocolEncoder::encodeMavlink(const DriveOutput &outp
   // Exactly zero when stopped. MAVLink's yaw rates turn clockwise seen from above (to the right) and its
   // pitch rate up; angular > 0 turns left.
   const bool still = isStill(output);
-  const auto rate = [&](double v) { return still ? 0.0f : static_cast<float>(v * m.rateScale); };
+  const auto rate = [&](double v) { return still ? 0.0f : bounded(v * m.rateScale, m.maxRate); };
   std::vector<std::uint8_t> bytes;
   if (m.mode == MavlinkMode::Gimbal) {
     mavlink::GimbalManagerSetPitchyaw message;
@@ -118,7 +127,7 @@ std::vector<std::uint8_t> ProtocolEncoder::encodeMavlink(const DriveOutput &outp
     mavlink::SetPositionTargetLocalNed message;
     message.targetSystem = m.targetSystem;
     message.targetComponent = m.targetComponent;
-    message.vx = still ? 0.0f : static_cast<float>(output.linear * m.speedScale);
+    message.vx = still ? 0.0f : bounded(output.linear * m.speedScale, m.maxSpeed);
     message.yawRate = rate(-output.angular);
     bytes = mavlink::encode(message, sender);
   }

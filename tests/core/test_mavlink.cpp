@@ -172,6 +172,26 @@ TEST(Mavlink, FollowVelocityYawRateAndStop) {
   EXPECT_EQ(stop.payload[52], 9);
 }
 
+TEST(Mavlink, EveryCommandIsBounded) {
+  ProtocolSettings s;
+  s.protocol = Protocol::Mavlink;
+  s.mavlink.rateScale = mavlinkRateScale(170);  // a very wide lens: 11.4 rad/s at 1.0
+  s.mavlink.maxRate = 1.0;
+  s.mavlink.maxSpeed = 2.0;
+  s.mavlink.mode = MavlinkMode::Gimbal;
+  ProtocolEncoder gimbal(s);
+  const mavlink::Frame fast = parsed(gimbal.encode(output(0, 1e6, -1e6)));
+  EXPECT_FLOAT_EQ(mavlink::payloadFloat(fast.payload, 16), -1.0f);  // yaw
+  EXPECT_FLOAT_EQ(mavlink::payloadFloat(fast.payload, 12), -1.0f);  // pitch
+  const mavlink::Frame nan = parsed(gimbal.encode(output(0, std::nan(""), 0.1)));
+  EXPECT_EQ(mavlink::payloadFloat(nan.payload, 16), 0.0f);
+  s.mavlink.mode = MavlinkMode::Follow;
+  ProtocolEncoder follow(s);
+  const mavlink::Frame go = parsed(follow.encode(output(100, -1e6, 0)));
+  EXPECT_FLOAT_EQ(mavlink::payloadFloat(go.payload, 16), 2.0f);  // vx
+  EXPECT_FLOAT_EQ(mavlink::payloadFloat(go.payload, 44), 1.0f);  // yaw rate
+}
+
 TEST(Mavlink, ParseRejectsCorruptAndCutFrames) {
   mavlink::Sender sender;
   Bytes bytes = mavlink::encode(mavlink::Heartbeat(), sender);

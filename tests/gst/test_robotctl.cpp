@@ -803,6 +803,12 @@ GST_START_TEST(test_bad_settings_give_clear_errors) {
               std::string::npos);
   fail_unless(startError(mavlink + "location=/dev/null hfov=0").find("'hfov'") != std::string::npos);
   fail_unless(startError(mavlink + "location=/dev/null hfov=180").find("'hfov'") != std::string::npos);
+  // A lens that makes the rates explode or vanish, and bounds that bound nothing.
+  fail_unless(startError(mavlink + "location=/dev/null hfov=179.9999").find("'hfov'") != std::string::npos);
+  fail_unless(startError(mavlink + "location=/dev/null hfov=1e-300").find("'hfov'") != std::string::npos);
+  fail_unless(startError(mavlink + "location=/dev/null max-rate=0").find("'max-rate'") != std::string::npos);
+  fail_unless(startError(mavlink + "location=/dev/null max-speed=0").find("'max-speed'") !=
+              std::string::npos);
 }
 GST_END_TEST;
 

@@ -33,6 +33,10 @@ struct MavlinkSettings {
   // the frame width per second (mavlinkRateScale), so a turn gain means the same whatever the lens.
   double rateScale = 0.57735;
   double speedScale = 1.0;  // m/s at linear 1.0
+  // Every command is clamped to these: what a hobby gimbal or copter takes without harm, whatever the gains
+  // and the lens make of the controller's output.
+  double maxRate = 60.0 * 3.14159265358979323846 / 180;  // rad/s, pitch and yaw
+  double maxSpeed = 2.0;                                 // m/s, forward
 };
 // tan(hfov / 2) for a horizontal field of view in degrees.
 double mavlinkRateScale(double hfovDegrees);
