@@ -75,6 +75,7 @@
 #include "enum-types.h"
 #include "robot-port.h"
 #include "robotctl-listener.h"
+#include "robotctl-output.h"
 #include "robotctl-settings.h"
 #include "track-params.h"
 #include "udp-port.h"
@@ -99,86 +100,6 @@ using robotctl::Command;
 using robotctl::CommandWriter;
 // The writer knows no GStreamer; its "no timestamp" must read as GST_CLOCK_TIME_NONE in the messages.
 static_assert(robotctl::kNoTimestamp == GST_CLOCK_TIME_NONE);
-
-// The rates a serial port can be set to portably (termios' Bxxx constants).
-constexpr guint kStandardBaudRates[] = {50,      75,      110,     134,     150,     200,    300,     600,
-                                        1200,    1800,    2400,    4800,    9600,    19200,  38400,   57600,
-                                        115200,  230400,  460800,  500000,  576000,  921600, 1000000, 1152000,
-                                        1500000, 2000000, 2500000, 3000000, 3500000, 4000000};
-
-bool isStandardBaudRate(guint rate) {
-  return std::find(std::begin(kStandardBaudRates), std::end(kStandardBaudRates), rate) !=
-         std::end(kStandardBaudRates);
-}
-
-robotctl::Parity toParity(GstRobotCtlParity parity) {
-  switch (parity) {
-    case GST_ROBOT_CTL_PARITY_ODD:
-      return robotctl::Parity::Odd;
-    case GST_ROBOT_CTL_PARITY_EVEN:
-      return robotctl::Parity::Even;
-    case GST_ROBOT_CTL_PARITY_MARK:
-      return robotctl::Parity::Mark;
-    case GST_ROBOT_CTL_PARITY_SPACE:
-      return robotctl::Parity::Space;
-    case GST_ROBOT_CTL_PARITY_NONE:
-      break;
-  }
-  return robotctl::Parity::None;
-}
-
-robotctl::FlowControl toFlowControl(GstRobotCtlFlowControl flow) {
-  switch (flow) {
-    case GST_ROBOT_CTL_FLOW_CONTROL_XONXOFF:
-      return robotctl::FlowControl::XonXoff;
-    case GST_ROBOT_CTL_FLOW_CONTROL_RTSCTS:
-      return robotctl::FlowControl::RtsCts;
-    case GST_ROBOT_CTL_FLOW_CONTROL_DTRDSR:
-      return robotctl::FlowControl::DtrDsr;
-    case GST_ROBOT_CTL_FLOW_CONTROL_NONE:
-      break;
-  }
-  return robotctl::FlowControl::None;
-}
-
-// No default: -Wswitch names a protocol added to the property but not mapped here.
-colortrack::Protocol toProtocol(GstRobotCtlProtocol protocol) {
-  switch (protocol) {
-    case GST_ROBOT_CTL_PROTOCOL_TEXT:
-      return colortrack::Protocol::Text;
-    case GST_ROBOT_CTL_PROTOCOL_BINARY:
-      return colortrack::Protocol::Binary;
-    case GST_ROBOT_CTL_PROTOCOL_MAVLINK:
-      return colortrack::Protocol::Mavlink;
-    case GST_ROBOT_CTL_PROTOCOL_ZONE_CHAR:
-      break;
-  }
-  return colortrack::Protocol::ZoneChar;
-}
-
-colortrack::MavlinkMode toMavlinkMode(GstRobotCtlMavlinkMode mode) {
-  switch (mode) {
-    case GST_ROBOT_CTL_MAVLINK_MODE_FOLLOW:
-      return colortrack::MavlinkMode::Follow;
-    case GST_ROBOT_CTL_MAVLINK_MODE_GIMBAL:
-      break;
-  }
-  return colortrack::MavlinkMode::Gimbal;
-}
-
-colortrack::MavlinkSettings toMavlinkSettings(const robotctl::Settings &s) {
-  colortrack::MavlinkSettings m;
-  m.mode = toMavlinkMode(s.mavlinkMode);
-  // Each checked to be within a byte (robotctl-settings.cpp).
-  m.systemId = static_cast<std::uint8_t>(s.systemId);
-  m.componentId = static_cast<std::uint8_t>(s.componentId);
-  m.targetSystem = static_cast<std::uint8_t>(s.targetSystem);
-  m.targetComponent = static_cast<std::uint8_t>(s.targetComponent);
-  m.rateScale = colortrack::mavlinkRateScale(s.hfov);
-  m.maxRate = s.maxRate * G_PI / 180;
-  m.maxSpeed = s.maxSpeed;
-  return m;
-}
 
 double monotonicSeconds() {
   return static_cast<double>(g_get_monotonic_time()) / G_USEC_PER_SEC;
@@ -306,8 +227,7 @@ std::unique_ptr<robotctl::Port> openPort(GstRobotCtl *self, const robotctl::Sett
   std::unique_ptr<robotctl::Port> port;
   const bool udp = s.device.empty() && robotctl::isUdpLocation(s.location);
   if (!s.device.empty())
-    port = std::make_unique<robotctl::SerialPort>(robotctl::SerialConfig{
-        s.device, s.baudRate, s.dataBits, s.stopBits, toParity(s.parity), toFlowControl(s.flowControl)});
+    port = std::make_unique<robotctl::SerialPort>(robotctl::toSerialConfig(s));
   else if (udp)
     port = std::make_unique<robotctl::UdpPort>(s.location);
   else
@@ -351,7 +271,7 @@ bool checkSettings(GstRobotCtl *self, const robotctl::Settings &s, const std::st
         (nullptr));
     return false;
   }
-  if (!s.device.empty() && !isStandardBaudRate(s.baudRate)) {
+  if (!s.device.empty() && !robotctl::isStandardBaudRate(s.baudRate)) {
     GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
                       ("Unsupported baud rate %u (property 'baud-rate'): use a standard rate such as 9600, "
                        "19200, 38400, 57600 or 115200.",
@@ -394,10 +314,10 @@ static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
   GST_INFO_OBJECT(self, "writing to %s", port->describe().c_str());
 
   robotctl::WriterConfig config;
-  config.protocol.protocol = toProtocol(s.protocol);
+  config.protocol.protocol = robotctl::toProtocol(s.protocol);
   config.protocol.zoneChars = *zoneChars;
   config.protocol.outputScale = s.outputScale;
-  config.protocol.mavlink = toMavlinkSettings(s);
+  config.protocol.mavlink = robotctl::toMavlinkSettings(s);
   config.rate = s.rate;
   config.stallTimeout = s.failsafe.lostTimeout;
 

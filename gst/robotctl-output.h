@@ -1,0 +1,19 @@
+// What robotctl's properties say about its output, in the terms of the core's encoder and the serial port:
+// the mapping from the GStreamer enums and units, in one place.
+#pragma once
+
+#include "colortrack/protocol.hpp"
+#include "robot-port.h"
+#include "robotctl-settings.h"
+
+namespace robotctl {
+
+// A rate a serial port can be set to portably (termios' Bxxx constants).
+bool isStandardBaudRate(guint rate);
+
+SerialConfig toSerialConfig(const Settings &s);
+colortrack::Protocol toProtocol(GstRobotCtlProtocol protocol);
+// The MAVLink ids, mode and bounds (hfov, max-rate in deg/s, max-speed) as the encoder takes them.
+colortrack::MavlinkSettings toMavlinkSettings(const Settings &s);
+
+}  // namespace robotctl
