@@ -34,7 +34,8 @@ struct State {
   guint64 appliedTemplateGeneration = 0;
   guint64 appliedBlobsGeneration = 0;
   guint64 appliedRangeGeneration = 0;
-  std::string templateOrigin;  // "template-location 'x.png'" or "init-box '1,2,3,4'", for error messages
+  std::string templateOrigin;    // "template-location 'x.png'" or "init-box '1,2,3,4'", for error messages
+  std::string templateLocation;  // the template-location last loaded (what a refused one reads back as)
   Trails trails;
   AnalyticsTracks analytics;  // GStreamer >= 1.24: the tracks in the analytics meta (first seen, gone)
   guint64 frameCount = 0;

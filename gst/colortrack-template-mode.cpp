@@ -36,21 +36,51 @@ void targetChanged(State &state, const std::string &origin) {
   state.idle = false;
 }
 
-// A template-location set while streaming: read now; a file that cannot be read keeps the previous template.
-void reloadTemplate(GstColorTrack *self, State &state, const std::string &location) {
+// Why `image` cannot be the template of `frame`-sized video, or empty.
+std::string templateFitProblem(cv::Size image, cv::Size frame) {
+  if (std::string problem = colortrack::templateSizeProblem(image); !problem.empty()) return problem;
+  if (image.width <= frame.width && image.height <= frame.height) return "";
+  return "the template is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+         " pixels, larger than the " + std::to_string(frame.width) + "x" + std::to_string(frame.height) +
+         " frame";
+}
+
+// The property reads back as the template in use when the value set could not be used (unless it was set
+// again meanwhile).
+void restoreTemplateLocation(GstColorTrack *self, const std::string &refused, const std::string &inUse) {
+  GST_OBJECT_LOCK(self);
+  std::string &location = self->priv->store.settings.templateLocation;
+  const bool unchanged = location == refused;
+  if (unchanged) location = inUse;
+  GST_OBJECT_UNLOCK(self);
+  if (unchanged) g_object_notify(G_OBJECT(self), "template-location");
+}
+
+// A template-location set while streaming: read now; a file that cannot be read, or an image that cannot be
+// the template of this video, keeps the previous template and the previous value.
+void reloadTemplate(GstColorTrack *self, State &state, const std::string &location, cv::Size frame) {
   cv::Mat bgr, mask;
   std::string why;
   bool missing = false;
   if (loadTemplateFile(location, bgr, mask, why, missing)) {
-    state.templateTracker->setTemplate(bgr, mask);
-    targetChanged(state, "template-location '" + location + "'");
-    return;
+    why = templateFitProblem(bgr.size(), frame);
+    if (why.empty()) {
+      try {
+        state.templateTracker->setTemplate(bgr, mask);
+        state.templateLocation = location;
+        targetChanged(state, "template-location '" + location + "'");
+        return;
+      } catch (const std::exception &e) {
+        why = e.what();
+      }
+    }
   }
   GST_ELEMENT_WARNING(self, RESOURCE, OPEN_READ,
-                      ("Could not read the template image '%s' (property 'template-location'): %s. "
+                      ("Could not use the template image '%s' (property 'template-location'): %s. "
                        "Keeping the previous template.",
                        location.c_str(), why.c_str()),
                       (missing ? "the file does not exist" : nullptr));
+  restoreTemplateLocation(self, location, state.templateLocation);
 }
 
 // A left click takes the template from the box around it and starts tracking there, exactly as init-box
@@ -82,7 +112,8 @@ bool prepareTemplateFrame(GstColorTrack *self, const Snapshot &snapshot, const R
   }
   if (snapshot.templateGeneration != state.appliedTemplateGeneration) {
     state.appliedTemplateGeneration = snapshot.templateGeneration;
-    if (!snapshot.templateLocation.empty()) reloadTemplate(self, state, snapshot.templateLocation);
+    if (!snapshot.templateLocation.empty())
+      reloadTemplate(self, state, snapshot.templateLocation, view.size());
   }
   resetIfRequested(self, tracker);
   if (requests.initBox) {

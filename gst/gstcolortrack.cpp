@@ -271,6 +271,7 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
       }
       state.templateTracker->setTemplate(bgr, mask);
       state.templateOrigin = "template-location '" + snapshot.templateLocation + "'";
+      state.templateLocation = snapshot.templateLocation;
     }
   } catch (const std::exception &e) {
     GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("Could not set up the tracker: %s", e.what()), (nullptr));

@@ -262,12 +262,15 @@ GST_START_TEST(test_bad_value_while_playing_keeps_old) {
   fail_unless(o.warned("init-box") && o.warned("1,1,1"), "no warning naming init-box");
   fail_unless(o.warned("template-location") && o.warned("/nonexistent-colortrack-dir/other.png"),
               "no warning naming the template file");
-  gchar *bins = nullptr, *weights = nullptr;
-  g_object_get(p.tracker(), "bins", &bins, "channel-weights", &weights, nullptr);
+  gchar *bins = nullptr, *weights = nullptr, *location = nullptr;
+  g_object_get(p.tracker(), "bins", &bins, "channel-weights", &weights, "template-location", &location,
+               nullptr);
   fail_unless_equals_string(bins, "16,16,8");
   fail_unless_equals_string(weights, "1,1,0.3");
+  fail_unless(location == nullptr, "template-location reads back as %s", location);
   g_free(bins);
   g_free(weights);
+  g_free(location);
 
   // Still tracking with the old values.
   const std::vector<GstBuffer *> out = p.outputs();
@@ -376,6 +379,37 @@ GST_START_TEST(test_template_fifo_never_blocks) {
 }
 GST_END_TEST;
 
+// A template image that cannot serve this video (under the minimum side, larger than the frame), set while
+// playing: a warning naming it, the old template kept, and the property reads back as before.
+GST_START_TEST(test_unusable_template_while_playing_keeps_old) {
+  const Scene scene(smallScene());
+  TempFile tiny("tiny.png"), huge("huge.png");
+  fail_unless(cv::imwrite(tiny.path(), cv::Mat(1, 1, CV_8UC3, cv::Scalar(0, 0, 255))));
+  fail_unless(cv::imwrite(huge.path(), cv::Mat(400, 400, CV_8UC3, cv::Scalar(0, 0, 255))));
+  for (const TempFile *file : {&tiny, &huge}) {
+    Pipeline p("colortrack name=ct init-box=" + boxString(scene.initBox()));
+    fail_unless(p.play() != GST_STATE_CHANGE_FAILURE);
+    for (int i = 0; i < 5; ++i) p.push(scene.render(i).bgr, i);
+    g_object_set(p.tracker(), "template-location", file->path().c_str(), nullptr);
+    for (int i = 5; i < 20; ++i) p.push(scene.render(i).bgr, i);
+    const Outcome o = p.finish();
+    fail_unless(o.eos && !o.error, "%s", o.errorText.c_str());
+    fail_unless(o.warned("template-location") && o.warned(file->path()), "no warning naming %s",
+                file->path().c_str());
+    gchar *location = nullptr;
+    g_object_get(p.tracker(), "template-location", &location, nullptr);
+    fail_unless(location == nullptr, "template-location reads back as %s", location);
+    g_free(location);
+    const std::vector<GstBuffer *> out = p.outputs();
+    fail_unless_equals_int(out.size(), 20);
+    auto *roi = gst_buffer_get_video_region_of_interest_meta(out.back());
+    fail_unless(roi != nullptr);
+    fail_unless(iou(cv::Rect2d(roi->x, roi->y, roi->w, roi->h), scene.render(19).box) > 0.5);
+    for (GstBuffer *b : out) gst_buffer_unref(b);
+  }
+}
+GST_END_TEST;
+
 static Suite *colortrack_errors_suite(void) {
   preloadPlugins({"colortrack", "app", "videoconvertscale"});
   Suite *s = suite_create("colortrack_errors");
@@ -392,6 +426,7 @@ static Suite *colortrack_errors_suite(void) {
   tcase_add_test(tc, test_no_template_passes_through);
   tcase_add_test(tc, test_caps_change_mid_stream);
   tcase_add_test(tc, test_template_fifo_never_blocks);
+  tcase_add_test(tc, test_unusable_template_while_playing_keeps_old);
   return s;
 }
 
