@@ -183,12 +183,12 @@ std::string checkMinArea(const PropertyStore &store, const GValue *v, std::strin
 }
 
 const Def kProperties[] = {
-    {Apply::LiveUnflagged, 0,
+    {Apply::BeforeStart, 0,
      [](GParamFlags f) {
        return g_param_spec_enum(
            "mode", "Mode",
            "How the object is defined: 'template' follows one object like a template; 'threshold' "
-           "follows every blob of pixels inside an HSV range, each with its own id",
+           "follows every blob of pixels inside an HSV range, each with its own id; fixed while started",
            GST_TYPE_COLOR_TRACK_MODE, GST_COLOR_TRACK_MODE_TEMPLATE, f);
      },
      [](const Settings &s, GValue *v) { g_value_set_enum(v, s.mode); },

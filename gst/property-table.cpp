@@ -24,6 +24,25 @@ std::string contents(const GValue *value) {
   return result;
 }
 
+// A value as messages show it: numbers short, text quoted, an enum by its nick (its description is a
+// sentence).
+std::string shownValue(const GValue *value) {
+  if (G_VALUE_HOLDS_DOUBLE(value)) {
+    char text[G_ASCII_DTOSTR_BUF_SIZE];
+    std::snprintf(text, sizeof text, "%g", g_value_get_double(value));
+    return text;
+  }
+  if (G_VALUE_HOLDS_STRING(value)) return quoted(value);
+  if (G_VALUE_HOLDS_ENUM(value)) {
+    GEnumClass *enums = G_ENUM_CLASS(g_type_class_ref(G_VALUE_TYPE(value)));
+    const GEnumValue *known = g_enum_get_value(enums, g_value_get_enum(value));
+    const std::string nick = known ? std::string("'") + known->value_nick + "'" : contents(value);
+    g_type_class_unref(enums);
+    return nick;
+  }
+  return contents(value);
+}
+
 }  // namespace
 
 GParamFlags flagsFor(Apply apply) {
@@ -39,28 +58,11 @@ bool sameValue(const GValue *a, const GValue *b) {
 }
 
 std::string refusalText(GParamSpec *pspec, const GValue *value, const char *why) {
-  std::string shown;
-  if (G_VALUE_HOLDS_DOUBLE(value))
-    shown = std::to_string(g_value_get_double(value));
-  else if (G_VALUE_HOLDS_STRING(value))
-    shown = quoted(value);
-  else
-    shown = contents(value);
-  return "Invalid value " + shown + " for property '" + pspec->name + "': " + why;
+  return "Invalid value " + shownValue(value) + " for property '" + pspec->name + "': " + why;
 }
 
 std::string keepingText(const std::string &refusal, const GValue *kept) {
-  std::string shown;
-  if (G_VALUE_HOLDS_DOUBLE(kept)) {
-    char text[G_ASCII_DTOSTR_BUF_SIZE];
-    std::snprintf(text, sizeof text, "%g", g_value_get_double(kept));
-    shown = text;
-  } else if (G_VALUE_HOLDS_STRING(kept)) {
-    shown = quoted(kept);
-  } else {
-    shown = contents(kept);
-  }
-  return refusal + ". Keeping " + shown + ".";
+  return refusal + ". Keeping " + shownValue(kept) + ".";
 }
 
 std::string readAtStartText(GParamSpec *pspec) {

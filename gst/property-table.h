@@ -15,9 +15,9 @@ namespace gstglue {
 enum class Apply {
   Live,     // applied from the next buffer (GST_PARAM_MUTABLE_PLAYING)
   AtStart,  // read at start: a change while started warns that it applies from the next start
-  // Applied from the next buffer but not flagged GST_PARAM_MUTABLE_PLAYING (colortrack's mode, as it always
-  // was declared).
-  LiveUnflagged,
+  // Fixed while started: a change then is refused with a warning that keeps the value (colortrack's mode,
+  // which decides what the element's state holds).
+  BeforeStart,
 };
 
 // An element with nothing to share besides its property values.
@@ -165,6 +165,8 @@ class PropertyTable {
     const char *refused = def.refuse ? def.refuse(value) : nullptr;
     std::string why = refused ? refused : "";
     if (why.empty() && def.check) why = def.check(store, value, &warning);
+    if (why.empty() && def.apply == Apply::BeforeStart && store.running && !sameValue(&before, value))
+      why = "it cannot change while the element is started; set it before";
     if (!why.empty()) {
       const std::string refusal = refusalText(pspec, value, why.c_str());
       if (store.running) {

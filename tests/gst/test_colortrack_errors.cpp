@@ -253,6 +253,8 @@ GST_START_TEST(test_bad_value_while_playing_keeps_old) {
   for (int i = 0; i < 5; ++i) p.push(scene.render(i).bgr, i);
   g_object_set(p.tracker(), "bins", "16,x,8", "channel-weights", "1,1,7", "init-box", "1,1,1",
                "template-location", "/nonexistent-colortrack-dir/other.png", nullptr);
+  // mode decides what the element's state holds: fixed while started.
+  gst_util_set_object_arg(G_OBJECT(p.tracker()), "mode", "threshold");
   for (int i = 5; i < 20; ++i) p.push(scene.render(i).bgr, i);
   const Outcome o = p.finish();
 
@@ -262,12 +264,19 @@ GST_START_TEST(test_bad_value_while_playing_keeps_old) {
   fail_unless(o.warned("init-box") && o.warned("1,1,1"), "no warning naming init-box");
   fail_unless(o.warned("template-location") && o.warned("/nonexistent-colortrack-dir/other.png"),
               "no warning naming the template file");
+  fail_unless(o.warned("mode"), "no warning naming mode");
   gchar *bins = nullptr, *weights = nullptr, *location = nullptr;
   g_object_get(p.tracker(), "bins", &bins, "channel-weights", &weights, "template-location", &location,
                nullptr);
   fail_unless_equals_string(bins, "16,16,8");
   fail_unless_equals_string(weights, "1,1,0.3");
   fail_unless(location == nullptr, "template-location reads back as %s", location);
+  gint mode = -1;
+  g_object_get(p.tracker(), "mode", &mode, nullptr);
+  GParamSpec *modeSpec = g_object_class_find_property(G_OBJECT_GET_CLASS(p.tracker()), "mode");
+  GEnumClass *modes = G_ENUM_CLASS(g_type_class_ref(G_PARAM_SPEC_VALUE_TYPE(modeSpec)));
+  fail_unless_equals_string(g_enum_get_value(modes, mode)->value_nick, "template");
+  g_type_class_unref(modes);
   g_free(bins);
   g_free(weights);
   g_free(location);
