@@ -355,6 +355,8 @@ static gboolean gst_track_publish_sink_event(GstBaseTransform *trans, GstEvent *
   if (GST_EVENT_TYPE(event) == GST_EVENT_EOS && state.mqtt) {
     state.mqtt->waitDelivered(state.drain);
     reportLosses(self, *state.mqtt, "at EOS after drain-timeout", true);
+    // The queue had its drain-timeout: stopping after EOS does not wait for it a second time.
+    state.drain = milliseconds(0);
   }
   return GST_BASE_TRANSFORM_CLASS(parent_class)->sink_event(trans, event);
 }

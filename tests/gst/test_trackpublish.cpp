@@ -682,6 +682,24 @@ GST_START_TEST(test_password_in_address_is_never_shown) {
 }
 GST_END_TEST;
 
+// With the broker unreachable, EOS waits drain-timeout for the queue once; stopping afterwards does not wait
+// for it again.
+GST_START_TEST(test_unreachable_broker_drains_once) {
+  auto p = std::make_unique<Publisher>("address=tcp://127.0.0.1:" + std::to_string(freePort()) +
+                                       " drain-timeout=1000");
+  fail_unless(p->play() != GST_STATE_CHANGE_FAILURE);
+  for (int i = 0; i < 5; ++i) p->push(i);
+  const auto eos = Clock::now();
+  p->endAndWait();
+  fail_unless(Clock::now() - eos >= std::chrono::milliseconds(900), "EOS did not wait for the queue");
+  const auto stop = Clock::now();
+  p.reset();  // to NULL
+  const auto stopping = std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - stop).count();
+  fail_unless(stopping < 500, "stopping took %lld ms: drain-timeout waited a second time",
+              static_cast<long long>(stopping));
+}
+GST_END_TEST;
+
 GST_START_TEST(test_full_queue_drops_the_oldest_and_says_how_many) {
   Publisher p("address=tcp://127.0.0.1:" + std::to_string(freePort()) + " max-queued=10 drain-timeout=0");
   fail_unless(p.play() != GST_STATE_CHANGE_FAILURE);
@@ -709,6 +727,7 @@ static Suite *trackpublish_suite(void) {
   tcase_add_test(tc, test_full_queue_drops_the_oldest_and_says_how_many);
   tcase_add_test(tc, test_fifo_location_never_blocks);
   tcase_add_test(tc, test_password_in_address_is_never_shown);
+  tcase_add_test(tc, test_unreachable_broker_drains_once);
   return s;
 }
 
