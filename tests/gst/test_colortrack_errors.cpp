@@ -141,6 +141,16 @@ void assertErrorNames(const Outcome &o, const std::string &property, const std::
               o.errorText.c_str());
 }
 
+// All `frames` buffers came out, and the last one's box is on the scene's object.
+void assertStillTracking(Pipeline &p, const Scene &scene, int frames) {
+  const std::vector<GstBuffer *> out = p.outputs();
+  fail_unless_equals_int(out.size(), frames);
+  auto *roi = gst_buffer_get_video_region_of_interest_meta(out.back());
+  fail_unless(roi != nullptr);
+  fail_unless(iou(cv::Rect2d(roi->x, roi->y, roi->w, roi->h), scene.render(frames - 1).box) > 0.5);
+  for (GstBuffer *b : out) gst_buffer_unref(b);
+}
+
 }  // namespace
 
 GST_START_TEST(test_missing_template_file) {
@@ -282,12 +292,7 @@ GST_START_TEST(test_bad_value_while_playing_keeps_old) {
   g_free(location);
 
   // Still tracking with the old values.
-  const std::vector<GstBuffer *> out = p.outputs();
-  fail_unless_equals_int(out.size(), 20);
-  auto *roi = gst_buffer_get_video_region_of_interest_meta(out.back());
-  fail_unless(roi != nullptr);
-  fail_unless(iou(cv::Rect2d(roi->x, roi->y, roi->w, roi->h), scene.render(19).box) > 0.5);
-  for (GstBuffer *b : out) gst_buffer_unref(b);
+  assertStillTracking(p, scene, 20);
 }
 GST_END_TEST;
 
@@ -409,12 +414,7 @@ GST_START_TEST(test_unusable_template_while_playing_keeps_old) {
     g_object_get(p.tracker(), "template-location", &location, nullptr);
     fail_unless(location == nullptr, "template-location reads back as %s", location);
     g_free(location);
-    const std::vector<GstBuffer *> out = p.outputs();
-    fail_unless_equals_int(out.size(), 20);
-    auto *roi = gst_buffer_get_video_region_of_interest_meta(out.back());
-    fail_unless(roi != nullptr);
-    fail_unless(iou(cv::Rect2d(roi->x, roi->y, roi->w, roi->h), scene.render(19).box) > 0.5);
-    for (GstBuffer *b : out) gst_buffer_unref(b);
+    assertStillTracking(p, scene, 20);
   }
 }
 GST_END_TEST;
