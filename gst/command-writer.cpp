@@ -166,12 +166,15 @@ bool CommandWriter::reopen(const Command &command, Clock::time_point deadline) {
     waitingFor_ = why;
     return false;
   }
-  listener_.reconnected(port_->describe());
   waitingFor_.clear();
+  // Reconnected only once a write after the stop goes through too: a UDP socket always "reopens", and only
+  // the send after one the peer refused (ICMP port unreachable) tells that nobody listens yet.
+  unconfirmed_ = true;
   // Whatever the robot did while it was cut off, it hears stop first.
   Command stop;
   stop.reason = "reconnected";
-  if (!write(stop, deadline)) return false;
+  if (!writeFrame(encoder_.encode(stop.output), stop, deadline)) return false;
+  stopWritten_ = true;
   return !colortrack::isStill(command.output);
 }
 
@@ -184,7 +187,7 @@ bool CommandWriter::finishUnsent(Clock::time_point deadline) {
   unsent_.erase(unsent_.begin(), unsent_.begin() + static_cast<std::ptrdiff_t>(written));
   switch (result) {
     case WriteResult::Written:
-      retryDelay_ = kFirstRetry;
+      noteWritten();
       if (unsentCommand_) listener_.sent(*unsentCommand_);
       return true;
     case WriteResult::Busy:
@@ -214,7 +217,7 @@ bool CommandWriter::writeFrame(const std::vector<std::uint8_t> &bytes, const std
   std::string why;
   switch (port_->write(bytes, msUntil(deadline), written, why)) {
     case WriteResult::Written:
-      retryDelay_ = kFirstRetry;
+      noteWritten();
       if (command) listener_.sent(*command);
       return true;
     case WriteResult::Busy:
@@ -231,11 +234,29 @@ bool CommandWriter::writeFrame(const std::vector<std::uint8_t> &bytes, const std
   return false;
 }
 
+// A write went through: after a reopen, the first one after its stop confirms the link.
+void CommandWriter::noteWritten() {
+  if (!unconfirmed_) {
+    retryDelay_ = kFirstRetry;
+    return;
+  }
+  if (!stopWritten_) return;  // the reopen's own stop
+  unconfirmed_ = stopWritten_ = false;
+  retryDelay_ = kFirstRetry;
+  listener_.reconnected(port_->describe());
+}
+
 void CommandWriter::connectionLost(const std::string &why) {
-  listener_.connectionLost(port_->describe(), why);
   port_->close();
   unsent_.clear();  // a new connection starts with a whole frame (stop)
-  retryDelay_ = kFirstRetry;
+  if (unconfirmed_) {
+    // The same outage: a reopen that never got a second write through. Said once; the retries back off.
+    stopWritten_ = false;
+    retryDelay_ = std::min(retryDelay_ * 2, std::chrono::duration_cast<Clock::duration>(kLongestRetry));
+  } else {
+    listener_.connectionLost(port_->describe(), why);
+    retryDelay_ = kFirstRetry;
+  }
   retryAt_ = Clock::now() + retryDelay_;
 }
 

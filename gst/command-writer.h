@@ -91,6 +91,7 @@ class CommandWriter {
   bool writeFrame(const std::vector<std::uint8_t> &bytes, const std::optional<Command> &command,
                   Clock::time_point deadline);
   void connectionLost(const std::string &why);
+  void noteWritten();
 
   std::unique_ptr<Port> port_;
   WriterConfig config_;
@@ -100,7 +101,9 @@ class CommandWriter {
   std::optional<Command> unsentCommand_;  // the command that frame carries (none: a heartbeat)
   Clock::duration retryDelay_;
   Clock::time_point retryAt_;
-  std::string waitingFor_;  // why the last reopen failed ("" while connected)
+  std::string waitingFor_;    // why the last reopen failed ("" while connected)
+  bool unconfirmed_ = false;  // reopened, and no write after the reopen's stop has gone through yet
+  bool stopWritten_ = false;  // that stop has gone through
   std::thread thread_;
 
   std::mutex mutex_;  // guards what follows; never held during I/O

@@ -91,32 +91,25 @@ bool UdpPort::open(std::string &why) {
     if (!error) why = "the host '" + endpoint->host + "' has no address";
     return error ? fail(error, why) : false;
   }
-  // A throwaway connected socket asks the kernel for a route without sending anything: a host nothing leads
-  // to is an error now, not datagrams silently dropped later.
-  GSocket *probe = g_socket_new(g_socket_address_get_family(address), G_SOCKET_TYPE_DATAGRAM,
-                                G_SOCKET_PROTOCOL_UDP, &error);
-  const bool routed = probe && g_socket_connect(probe, address, nullptr, &error);
-  if (probe) g_object_unref(probe);
-  if (!routed) {
-    g_object_unref(address);
+  // A connected socket: the kernel finds the route now (a host nothing leads to is an error here, not
+  // datagrams silently dropped later), and a peer that is not listening (ICMP port unreachable) makes the
+  // next send fail, so the writer sees the link go and sends stop first when it is back.
+  GSocket *socket = g_socket_new(g_socket_address_get_family(address), G_SOCKET_TYPE_DATAGRAM,
+                                 G_SOCKET_PROTOCOL_UDP, &error);
+  const bool connected = socket && g_socket_connect(socket, address, nullptr, &error);
+  g_object_unref(address);
+  if (!connected) {
+    if (socket) g_object_unref(socket);
     return fail(error, why);
   }
-  socket_ = g_socket_new(g_socket_address_get_family(address), G_SOCKET_TYPE_DATAGRAM, G_SOCKET_PROTOCOL_UDP,
-                         &error);
-  if (!socket_) {
-    g_object_unref(address);
-    return fail(error, why);
-  }
-  g_socket_set_blocking(socket_, FALSE);
-  address_ = address;
+  g_socket_set_blocking(socket, FALSE);
+  socket_ = socket;
   return true;
 }
 
 void UdpPort::close() {
   if (socket_) g_object_unref(socket_);
-  if (address_) g_object_unref(address_);
   socket_ = nullptr;
-  address_ = nullptr;
 }
 
 WriteResult UdpPort::write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::size_t &written,
@@ -124,14 +117,14 @@ WriteResult UdpPort::write(const std::vector<std::uint8_t> &bytes, int timeoutMs
   written = 0;
   const gchar *data = reinterpret_cast<const gchar *>(bytes.data());
   GError *error = nullptr;
-  gssize sent = g_socket_send_to(socket_, address_, data, bytes.size(), nullptr, &error);
+  gssize sent = g_socket_send(socket_, data, bytes.size(), nullptr, &error);
   if (sent < 0 && g_error_matches(error, G_IO_ERROR, G_IO_ERROR_WOULD_BLOCK)) {
     // The send buffer is full: wait for room, at most the write's timeout.
     g_clear_error(&error);
     if (!g_socket_condition_timed_wait(socket_, G_IO_OUT, static_cast<gint64>(timeoutMs) * 1000, nullptr,
                                        nullptr))
       return WriteResult::Busy;
-    sent = g_socket_send_to(socket_, address_, data, bytes.size(), nullptr, &error);
+    sent = g_socket_send(socket_, data, bytes.size(), nullptr, &error);
     if (sent < 0 && g_error_matches(error, G_IO_ERROR, G_IO_ERROR_WOULD_BLOCK)) {
       g_clear_error(&error);
       return WriteResult::Busy;

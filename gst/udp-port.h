@@ -10,7 +10,6 @@
 #include "robot-port.h"
 
 typedef struct _GSocket GSocket;
-typedef struct _GSocketAddress GSocketAddress;
 
 namespace robotctl {
 
@@ -56,8 +55,7 @@ class UdpPort : public Port {
 
  private:
   std::string location_;
-  GSocket *socket_ = nullptr;
-  GSocketAddress *address_ = nullptr;
+  GSocket *socket_ = nullptr;  // connected to the destination
 };
 
 }  // namespace robotctl

@@ -18,12 +18,13 @@ namespace colortrack::gst_test_util {
 
 class UdpReceiver {
  public:
-  // Bound to an ephemeral port of 127.0.0.1; non-blocking.
-  UdpReceiver() {
+  // Bound to `port` of 127.0.0.1 (0: an ephemeral one); non-blocking.
+  explicit UdpReceiver(int port = 0) {
     fd_ = socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
     sockaddr_in address{};
     address.sin_family = AF_INET;
     address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    address.sin_port = htons(static_cast<std::uint16_t>(port));
     socklen_t length = sizeof address;
     if (fd_ >= 0 && bind(fd_, reinterpret_cast<sockaddr *>(&address), sizeof address) == 0 &&
         getsockname(fd_, reinterpret_cast<sockaddr *>(&address), &length) == 0)
