@@ -36,8 +36,8 @@
  * port. The robot is sent stop on EOS, on a flush, when going from PLAYING to PAUSED and from PAUSED to
  * READY, a last one when the port is closed (READY to NULL), when no confirmed target was seen for
  * #GstRobotCtl:lost-timeout ms, when upstream delivers no buffer for that long, and when the element is
- * disposed. A port that fails while running (a USB adapter unplugged) posts a warning and is reopened with
- * back-off; the first command after reconnecting is stop. A reopen never creates a file: it waits, with a
+ * disposed. A port that fails while running (a USB adapter unplugged, a UDP peer that stopped listening)
+ * posts a warning and is reopened with back-off; the first command after reconnecting is stop. A reopen never creates a file: it waits, with a
  * warning, for the same kind of file (device, FIFO or regular file) to be back at #GstRobotCtl:location.
  *
  * With #GstRobotCtl:post-messages, every command sent is also posted as an element message "robotctl" with
