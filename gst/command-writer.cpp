@@ -173,7 +173,7 @@ bool CommandWriter::reopen(const Command &command, Clock::time_point deadline) {
   // Whatever the robot did while it was cut off, it hears stop first.
   Command stop;
   stop.reason = "reconnected";
-  if (!writeFrame(encoder_.encode(stop.output), stop, deadline)) return false;
+  if (!write(stop, deadline)) return false;
   stopWritten_ = true;
   return !colortrack::isStill(command.output);
 }

@@ -196,11 +196,13 @@ bool checkMqttSettings(GstTrackPublish *self, const trackpublish::Settings &s,
                        const std::string &source) {
   const std::string badTopic = trackpublish::checkTopic(topic);
   if (!badTopic.empty()) {
-    // A topic too long to show is named by its length in `badTopic`.
-    const std::string shown = topic.size() > 200 ? topic.substr(0, 200) + "..." : topic;
+    // Text too long to show is cut; `badTopic` gives the topic's length.
+    const auto shown = [](const std::string &text) {
+      return text.size() > 200 ? text.substr(0, 200) + "..." : text;
+    };
     GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                      ("Invalid topic '%s' (property 'topic', with source '%s'): %s.", shown.c_str(),
-                       source.c_str(), badTopic.c_str()),
+                      ("Invalid topic '%s' (property 'topic', with source '%s'): %s.", shown(topic).c_str(),
+                       shown(source).c_str(), badTopic.c_str()),
                       (nullptr));
     return false;
   }
