@@ -3,6 +3,7 @@
 #include <signal.h>
 
 #include <algorithm>
+#include <cstdio>
 
 namespace robotctl {
 
@@ -42,7 +43,12 @@ CommandWriter::CommandWriter(std::unique_ptr<Port> port, const WriterConfig &con
       encoder_(config.protocol),
       retryDelay_(kFirstRetry),
       stallTimeout_(config.stallTimeout),
-      bufferWatchdog_(config.stallTimeout) {}
+      bufferWatchdog_(config.stallTimeout) {
+  if (encoder_.hasHeartbeat() && config.linkTimeout > 0)
+    heartbeats_.emplace(
+        config.protocol.mavlink.targetSystem,
+        std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(config.linkTimeout)));
+}
 
 void CommandWriter::start() {
   thread_ = std::thread([this] { run(); });
@@ -150,7 +156,49 @@ void CommandWriter::send(const Command &command, int timeoutMs) {
   if (!port_->isOpen() && !reopen(command, deadline)) return;
   // The rest of a cut frame goes first: the robot would misread a newer frame glued to a fragment.
   if (!finishUnsent(deadline)) return;
+  if (heartbeats_ && !followLink(command, deadline)) return;
   write(command, deadline);
+}
+
+// The link as the vehicle's heartbeats tell it: while they are missing only stop goes out, and when they
+// are back stop goes first, as after a reopened port. True when `command` may follow.
+bool CommandWriter::followLink(const Command &command, Clock::time_point deadline) {
+  if (!receiveAll()) return false;
+  const HeartbeatWatch::Link link = heartbeats_->state(Clock::now());
+  if (link == HeartbeatWatch::Link::Lost && !linkDown_) {
+    linkDown_ = true;
+    char why[96];
+    std::snprintf(why, sizeof why, "no HEARTBEAT from system %u for %.1f s (link-timeout)",
+                  unsigned{heartbeats_->system()},
+                  std::chrono::duration<double>(heartbeats_->timeout()).count());
+    listener_.linkLost(port_->describe(), why);
+  }
+  if (!linkDown_) return true;
+  const bool back = link == HeartbeatWatch::Link::Alive;
+  Command stop;
+  stop.reason = back ? "reconnected" : "link lost";
+  if (!write(stop, deadline) || !back) return false;
+  linkDown_ = false;
+  listener_.reconnected(port_->describe());
+  return !colortrack::isStill(command.output);
+}
+
+// Takes what the port received (at most a bounded number of datagrams a tick: a flood of telemetry must
+// not hold the commands up). False when the port failed.
+bool CommandWriter::receiveAll() {
+  constexpr int kMostReadsPerTick = 256;
+  std::uint8_t buffer[2048];  // a MAVLink frame is at most 280 bytes
+  for (int i = 0; i < kMostReadsPerTick; ++i) {
+    std::size_t received = 0;
+    std::string why;
+    if (!port_->receive(buffer, sizeof buffer, received, why)) {
+      connectionLost(why);
+      return false;
+    }
+    if (received == 0) break;
+    heartbeats_->feed(buffer, received, Clock::now());
+  }
+  return true;
 }
 
 // Reopens a lost port once its back-off has passed and sends stop; true when `command` should follow.
@@ -243,7 +291,9 @@ void CommandWriter::noteWritten() {
   if (!stopWritten_) return;  // the reopen's own stop
   unconfirmed_ = stopWritten_ = false;
   retryDelay_ = kFirstRetry;
-  listener_.reconnected(port_->describe());
+  // While the vehicle's heartbeats are missing the port being back is not the link being back: that is
+  // said when they return (followLink).
+  if (!linkDown_) listener_.reconnected(port_->describe());
 }
 
 void CommandWriter::connectionLost(const std::string &why) {
@@ -254,9 +304,11 @@ void CommandWriter::connectionLost(const std::string &why) {
     stopWritten_ = false;
     retryDelay_ = std::min(retryDelay_ * 2, std::chrono::duration_cast<Clock::duration>(kLongestRetry));
   } else {
-    listener_.connectionLost(port_->describe(), why);
+    if (!linkDown_) listener_.connectionLost(port_->describe(), why);
     retryDelay_ = kFirstRetry;
   }
+  // A vehicle that was answering must answer again before anything but stop is sent.
+  if (heartbeats_ && heartbeats_->state(Clock::now()) != HeartbeatWatch::Link::Unknown) linkDown_ = true;
   retryAt_ = Clock::now() + retryDelay_;
 }
 

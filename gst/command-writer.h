@@ -16,6 +16,7 @@
 
 #include "colortrack/controller.hpp"
 #include "colortrack/protocol.hpp"
+#include "heartbeat-watch.h"
 #include "robot-port.h"
 
 namespace robotctl {
@@ -33,6 +34,10 @@ struct WriterConfig {
   colortrack::ProtocolSettings protocol;
   double rate = 10.0;         // commands per second
   double stallTimeout = 0.5;  // seconds without a buffer while playing
+  // MAVLink only: seconds without a HEARTBEAT from the target system before the link counts as lost (only
+  // stop goes out until one comes again, and then stop first). 0: off. The watch starts with the first
+  // heartbeat heard, so a vehicle that never answers changes nothing.
+  double linkTimeout = 0;
 };
 
 // What the writer thread reports, called on that thread with no lock held. Each method does nothing unless
@@ -49,10 +54,12 @@ class WriterListener {
   virtual void busy(const std::string & /*port*/, bool /*tail*/, std::size_t /*left*/) {}
   // A write failed: the port is closed and reopened with back-off.
   virtual void connectionLost(const std::string & /*port*/, const std::string & /*why*/) {}
+  // The vehicle's heartbeats stopped, the port still open: only stop is sent until they are back.
+  virtual void linkLost(const std::string & /*port*/, const std::string & /*why*/) {}
   // A reopen failed; `newReason` is false while the reason stays that of the previous failure.
   virtual void reopenFailed(const std::string & /*port*/, const std::string & /*why*/, bool /*newReason*/,
                             std::chrono::milliseconds /*retryIn*/) {}
-  // The port is open again; a stop goes out first.
+  // The port is open again, or the vehicle's heartbeats are back; a stop went out first.
   virtual void reconnected(const std::string & /*port*/) {}
 };
 
@@ -85,6 +92,8 @@ class CommandWriter {
   void send(const Command &command, int timeoutMs);
   bool reopen(const Command &command, Clock::time_point deadline);
   bool finishUnsent(Clock::time_point deadline);
+  bool followLink(const Command &command, Clock::time_point deadline);
+  bool receiveAll();
   bool write(const Command &command, Clock::time_point deadline);
   void sendHeartbeat(int timeoutMs);
   // `command`: what `bytes` carry, reported sent once they are all out; none for a heartbeat.
@@ -104,6 +113,8 @@ class CommandWriter {
   std::string waitingFor_;    // why the last reopen failed ("" while connected)
   bool unconfirmed_ = false;  // reopened, and no write after the reopen's stop has gone through yet
   bool stopWritten_ = false;  // that stop has gone through
+  std::optional<HeartbeatWatch> heartbeats_;  // MAVLink with a link-timeout
+  bool linkDown_ = false;  // the vehicle's heartbeats stopped (or the port went while they came)
   std::thread thread_;
 
   std::mutex mutex_;  // guards what follows; never held during I/O

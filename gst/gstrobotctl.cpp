@@ -37,13 +37,15 @@
  * READY, a last one when the port is closed (READY to NULL), when no confirmed target was seen for
  * #GstRobotCtl:lost-timeout ms, when upstream delivers no buffer for that long, and when the element is
  * disposed. A port that fails while running (a USB adapter unplugged, a UDP peer that stopped listening)
- * posts a warning and is reopened with back-off; the first command after reconnecting is stop. A reopen never creates a file: it waits, with a
- * warning, for the same kind of file (device, FIFO or regular file) to be back at #GstRobotCtl:location.
+ * posts a warning and is reopened with back-off; the first command after reconnecting is stop. A reopen never
+ * creates a file: it waits, with a warning, for the same kind of file (device, FIFO or regular file) to be
+ * back at #GstRobotCtl:location. With MAVLink over UDP, a vehicle whose HEARTBEAT has not come back for
+ * #GstRobotCtl:link-timeout ms is sent only stop, with a warning, until it answers again.
  *
  * With #GstRobotCtl:post-messages, every command sent is also posted as an element message "robotctl" with
  * command (string), left and right (int, as sent), linear and angular (double), target-visible (boolean),
  * timestamp (the buffer the decision came from, or GST_CLOCK_TIME_NONE) and reason ("target", "no-target",
- * "stalled", "eos", "flush", "paused", "ready", "start", "reconnected", "shutdown").
+ * "stalled", "eos", "flush", "paused", "ready", "start", "reconnected", "link lost", "shutdown").
  *
  * ## Example launch lines
  * |[
@@ -320,6 +322,7 @@ static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
   config.protocol.mavlink = robotctl::toMavlinkSettings(s);
   config.rate = s.rate;
   config.stallTimeout = s.failsafe.lostTimeout;
+  config.linkTimeout = s.linkTimeoutMs / 1000.0;
 
   State &state = stateOf(self);
   state = State{};

@@ -26,6 +26,15 @@ class Port {
   virtual WriteResult write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::size_t &written,
                             std::string &why) = 0;
   virtual std::string describe() const = 0;
+  // What the other end sent, without waiting (MAVLink's heartbeats, for the link state): at most `capacity`
+  // bytes into `buffer`, `received` 0 when nothing is there. False: the link failed (over a connected UDP
+  // socket a peer's "port unreachable" may show here before a write sees it). Ports that read nothing back
+  // keep this default.
+  virtual bool receive(std::uint8_t * /*buffer*/, std::size_t /*capacity*/, std::size_t &received,
+                       std::string & /*why*/) {
+    received = 0;
+    return true;
+  }
 };
 
 // A file, FIFO, pseudo-terminal or stdout ("-"), written without blocking. Only the first open creates (a

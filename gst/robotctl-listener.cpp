@@ -28,6 +28,13 @@ void ElementListener::connectionLost(const std::string &port, const std::string 
                       ("Lost the connection to %s: %s. Retrying.", port.c_str(), why.c_str()), (nullptr));
 }
 
+void ElementListener::linkLost(const std::string &port, const std::string &why) {
+  GST_ELEMENT_WARNING(
+      element_, RESOURCE, WRITE,
+      ("Lost the link to %s: %s. Sending only stop until it answers again.", port.c_str(), why.c_str()),
+      (nullptr));
+}
+
 void ElementListener::reopenFailed(const std::string &port, const std::string &why, bool newReason,
                                    std::chrono::milliseconds retryIn) {
   if (newReason)

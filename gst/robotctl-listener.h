@@ -21,6 +21,7 @@ class ElementListener : public WriterListener {
   void stalled(double timeout) override;
   void busy(const std::string &port, bool tail, std::size_t left) override;
   void connectionLost(const std::string &port, const std::string &why) override;
+  void linkLost(const std::string &port, const std::string &why) override;
   void reopenFailed(const std::string &port, const std::string &why, bool newReason,
                     std::chrono::milliseconds retryIn) override;
   void reconnected(const std::string &port) override;

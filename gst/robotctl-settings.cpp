@@ -292,6 +292,17 @@ const Def kProperties[] = {
      getValue<&Settings::maxSpeed>, setValue<&Settings::maxSpeed>, refuseMaxSpeed},
     {Apply::AtStart, false,
      [](GParamFlags f) {
+       return g_param_spec_uint(
+           "link-timeout", "Link timeout",
+           "protocol=mavlink over udp://: ms without a HEARTBEAT from target-system "
+           "before the link counts as lost (a warning; only stop is sent until one comes "
+           "again, then stop first); starts with the first heartbeat heard; 0: off; "
+           "read at start",
+           0, 60000, Settings{}.linkTimeoutMs, f);
+     },
+     getValue<&Settings::linkTimeoutMs>, setValue<&Settings::linkTimeoutMs>},
+    {Apply::AtStart, false,
+     [](GParamFlags f) {
        return g_param_spec_double(
            "rate", "Rate", "Commands per second; the current command is repeated at this rate; read at start",
            0.5, 1000.0, Settings{}.rate, f);

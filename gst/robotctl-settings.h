@@ -27,9 +27,10 @@ struct Settings {
   GstRobotCtlMavlinkMode mavlinkMode = GST_ROBOT_CTL_MAVLINK_MODE_GIMBAL;
   guint systemId = 1, componentId = 191;  // an onboard computer: MAV_COMP_ID_ONBOARD_COMPUTER
   guint targetSystem = 1, targetComponent = 1;
-  gdouble hfov = 60.0;     // degrees
-  gdouble maxRate = 60.0;  // deg/s, every pitch and yaw rate sent
-  gdouble maxSpeed = 2.0;  // m/s, every forward velocity sent
+  gdouble hfov = 60.0;         // degrees
+  gdouble maxRate = 60.0;      // deg/s, every pitch and yaw rate sent
+  gdouble maxSpeed = 2.0;      // m/s, every forward velocity sent
+  guint linkTimeoutMs = 3000;  // without the vehicle's HEARTBEAT (0: off); MAVLink's usual 3 s
   gdouble rate = 10.0;
   // A change of these (a versioned property) bumps the store's version: the controller takes it.
   colortrack::ControllerSettings controller;

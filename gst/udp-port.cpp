@@ -139,4 +139,19 @@ WriteResult UdpPort::write(const std::vector<std::uint8_t> &bytes, int timeoutMs
   return WriteResult::Written;
 }
 
+bool UdpPort::receive(std::uint8_t *buffer, std::size_t capacity, std::size_t &received, std::string &why) {
+  received = 0;
+  GError *error = nullptr;
+  const gssize n = g_socket_receive(socket_, reinterpret_cast<gchar *>(buffer), capacity, nullptr, &error);
+  if (n >= 0) {
+    received = static_cast<std::size_t>(n);
+    return true;
+  }
+  if (g_error_matches(error, G_IO_ERROR, G_IO_ERROR_WOULD_BLOCK)) {
+    g_clear_error(&error);
+    return true;
+  }
+  return fail(error, why);
+}
+
 }  // namespace robotctl

@@ -51,6 +51,8 @@ class UdpPort : public Port {
   bool isOpen() const override { return socket_ != nullptr; }
   WriteResult write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::size_t &written,
                     std::string &why) override;
+  // One datagram the destination sent back (only it: the socket is connected to it).
+  bool receive(std::uint8_t *buffer, std::size_t capacity, std::size_t &received, std::string &why) override;
   std::string describe() const override { return "'" + location_ + "'"; }
 
  private:

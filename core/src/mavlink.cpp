@@ -122,25 +122,76 @@ std::vector<std::uint8_t> encode(const SetPositionTargetLocalNed &m, Sender &sen
                sender);
 }
 
-std::optional<Frame> parseFrame(const std::uint8_t *bytes, std::size_t size, std::size_t *used) {
-  if (size < kHeaderLength + kChecksumLength || bytes[0] != kMagic || bytes[2] != 0) return std::nullopt;
+namespace {
+
+// The header fields and lengths of a frame of either version (MAVLink 1: no flags, a one-byte message id).
+struct Layout {
+  std::size_t headerLength, total;
+  std::uint32_t messageId;
+  std::uint8_t sequence, systemId, componentId;
+};
+
+std::optional<Layout> layoutOf(const std::uint8_t *bytes, std::size_t size) {
+  if (size < 2) return std::nullopt;
   const std::size_t length = bytes[1];
-  const std::size_t total = kHeaderLength + length + kChecksumLength;
-  if (size < total) return std::nullopt;
-  Frame f;
-  f.sequence = bytes[4];
-  f.systemId = bytes[5];
-  f.componentId = bytes[6];
-  f.messageId = bytes[7] | (bytes[8] << 8) | (bytes[9] << 16);
-  const std::optional<MessageInfo> message = messageInfo(f.messageId);
+  Layout l{};
+  if (bytes[0] == kMagicV1) {
+    if (size < kHeaderLengthV1) return std::nullopt;
+    l = {kHeaderLengthV1, kHeaderLengthV1 + length + kChecksumLength, bytes[5], bytes[2], bytes[3], bytes[4]};
+  } else if (bytes[0] == kMagic) {
+    // Only the signing flag exists; a signed frame carries 13 more bytes, taken but not verified.
+    if (size < kHeaderLength || (bytes[2] & ~kIncompatSigned) != 0) return std::nullopt;
+    const std::size_t signature = (bytes[2] & kIncompatSigned) ? kSignatureLength : 0;
+    l = {kHeaderLength,
+         kHeaderLength + length + kChecksumLength + signature,
+         static_cast<std::uint32_t>(bytes[7] | (bytes[8] << 8) | (bytes[9] << 16)),
+         bytes[4],
+         bytes[5],
+         bytes[6]};
+  } else {
+    return std::nullopt;
+  }
+  if (size < l.total) return std::nullopt;
+  return l;
+}
+
+}  // namespace
+
+std::optional<Frame> parseFrame(const std::uint8_t *bytes, std::size_t size, std::size_t *used) {
+  const std::optional<Layout> l = layoutOf(bytes, size);
+  if (!l) return std::nullopt;
+  const std::size_t length = bytes[1];
+  const std::optional<MessageInfo> message = messageInfo(l->messageId);
   if (!message || length > message->payloadLength) return std::nullopt;
-  std::uint16_t crc = crcAccumulate(bytes + 1, kHeaderLength - 1 + length);
+  // MAVLink 1 sends the whole payload, zeros and all.
+  if (bytes[0] == kMagicV1 && length != message->payloadLength) return std::nullopt;
+  std::uint16_t crc = crcAccumulate(bytes + 1, l->headerLength - 1 + length);
   crc = crcAccumulate(&message->crcExtra, 1, crc);
-  if ((bytes[total - 2] | (bytes[total - 1] << 8)) != crc) return std::nullopt;
-  f.payload.assign(bytes + kHeaderLength, bytes + kHeaderLength + length);
+  const std::size_t crcAt = l->headerLength + length;
+  if ((bytes[crcAt] | (bytes[crcAt + 1] << 8)) != crc) return std::nullopt;
+  Frame f;
+  f.sequence = l->sequence;
+  f.systemId = l->systemId;
+  f.componentId = l->componentId;
+  f.messageId = l->messageId;
+  f.payload.assign(bytes + l->headerLength, bytes + l->headerLength + length);
   f.payload.resize(message->payloadLength, 0);
-  if (used) *used = total;
+  if (used) *used = l->total;
   return f;
+}
+
+std::vector<Frame> parseFrames(const std::uint8_t *bytes, std::size_t size) {
+  std::vector<Frame> frames;
+  for (std::size_t at = 0; at < size;) {
+    std::size_t used = 0;
+    if (std::optional<Frame> f = parseFrame(bytes + at, size - at, &used)) {
+      frames.push_back(std::move(*f));
+      at += used;
+    } else {
+      ++at;  // not a frame we know here: look for the next start byte
+    }
+  }
+  return frames;
 }
 
 float payloadFloat(const std::vector<std::uint8_t> &payload, std::size_t offset) {

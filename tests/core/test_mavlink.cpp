@@ -112,6 +112,57 @@ TEST(Mavlink, EveryMessageMatchesNodeMavlink) {
   }
 }
 
+// What a vehicle sends back: its heartbeat, in MAVLink 1 (older autopilots and radios) and MAVLink 2,
+// encoded by node-mavlink, read by parseFrames() among other bytes (robotctl's link-timeout).
+TEST(Mavlink, ParsesTheVehiclesHeartbeatInBothVersions) {
+  std::string why;
+  if (!node_mavlink::available(why)) {
+    nodeMissing = true;
+    GTEST_SKIP() << why;
+  }
+  const std::string fields = R"("message":"heartbeat","type":2,"autopilot":3,"baseMode":81,"customMode":4,)"
+                             R"("systemStatus":4,"mavlinkVersion":3)";
+  const std::vector<Bytes> theirs =
+      node_mavlink::encode({"{" + fields + R"(,"sysid":7,"compid":1,"seq":9,"version":1})",
+                            "{" + fields + R"(,"sysid":8,"compid":1,"seq":10})"});
+  ASSERT_EQ(theirs.size(), 2u) << "node-mavlink failed";
+  EXPECT_EQ(theirs[0][0], mavlink::kMagicV1);
+  Bytes stream = {0x00, 0xFE, 0x55};  // noise, and a start byte that begins no frame
+  for (const Bytes &frame : theirs) stream.insert(stream.end(), frame.begin(), frame.end());
+  const std::vector<mavlink::Frame> frames = mavlink::parseFrames(stream.data(), stream.size());
+  ASSERT_EQ(frames.size(), 2u);
+  EXPECT_EQ(frames[0].systemId, 7);
+  EXPECT_EQ(frames[0].sequence, 9);
+  EXPECT_EQ(frames[1].systemId, 8);
+  for (const mavlink::Frame &f : frames) {
+    EXPECT_EQ(f.messageId, mavlink::kHeartbeat.id);
+    EXPECT_EQ(f.payload[0], 4);  // custom_mode, first on the wire
+    EXPECT_EQ(f.payload[4], 2);  // type: a quadrotor
+  }
+  // A corrupted MAVLink 1 frame is not taken.
+  Bytes bad = theirs[0];
+  bad[8] ^= 0x01;
+  EXPECT_TRUE(mavlink::parseFrames(bad.data(), bad.size()).empty());
+}
+
+// A signed MAVLink 2 frame (incompatibility flag 1): 13 bytes of signature after the CRC, taken whole.
+TEST(Mavlink, TakesASignedFrameWhole) {
+  mavlink::Sender sender{9, 1, 0};
+  Bytes bytes = mavlink::encode(mavlink::Heartbeat(), sender);
+  bytes[2] = mavlink::kIncompatSigned;
+  const std::uint16_t crc = mavlink::crcAccumulate(
+      &mavlink::kHeartbeat.crcExtra, 1, mavlink::crcAccumulate(bytes.data() + 1, bytes.size() - 3));
+  bytes[bytes.size() - 2] = crc & 0xFF;
+  bytes[bytes.size() - 1] = crc >> 8;
+  bytes.insert(bytes.end(), mavlink::kSignatureLength, 0xAB);
+  std::size_t used = 0;
+  ASSERT_TRUE(mavlink::parseFrame(bytes.data(), bytes.size(), &used));
+  EXPECT_EQ(used, bytes.size());
+  EXPECT_FALSE(mavlink::parseFrame(bytes.data(), bytes.size() - 1));  // the signature cut
+  bytes[2] = 0x02;                                                    // a flag nobody defined
+  EXPECT_FALSE(mavlink::parseFrame(bytes.data(), bytes.size()));
+}
+
 ProtocolEncoder mavlinkEncoder(MavlinkMode mode) {
   ProtocolSettings s;
   s.protocol = Protocol::Mavlink;

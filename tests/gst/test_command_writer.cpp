@@ -101,6 +101,11 @@ class FakePort : public Port {
     failNext_ = true;
     refusals_ = refusals;
   }
+  // What the other end sends back; receive() hands it out one datagram at a time.
+  void deliver(const Bytes &datagram) {
+    std::lock_guard<std::mutex> lock(wire_.mutex);
+    incoming_.push_back(datagram);
+  }
   std::size_t cutsLeft() {
     std::lock_guard<std::mutex> lock(wire_.mutex);
     return cuts_.size();
@@ -149,10 +154,20 @@ class FakePort : public Port {
     wire_.changed.notify_all();
     return written == bytes.size() ? WriteResult::Written : WriteResult::Busy;
   }
+  bool receive(std::uint8_t *buffer, std::size_t capacity, std::size_t &received, std::string &) override {
+    std::lock_guard<std::mutex> lock(wire_.mutex);
+    received = 0;
+    if (incoming_.empty()) return true;
+    received = std::min(capacity, incoming_.front().size());
+    std::copy_n(incoming_.front().begin(), received, buffer);
+    incoming_.pop_front();
+    return true;
+  }
   std::string describe() const override { return "fake port"; }
 
  private:
   Wire &wire_;
+  std::deque<Bytes> incoming_;
   bool open_ = false;  // writer thread only
   std::string cutTrigger_;
   std::deque<std::size_t> cuts_;
@@ -174,6 +189,9 @@ class Recorder : public WriterListener {
     record([&] { ++wire_.stalled; });
   }
   void connectionLost(const std::string &, const std::string &) override {
+    record([&] { ++wire_.lost; });
+  }
+  void linkLost(const std::string &, const std::string &) override {
     record([&] { ++wire_.lost; });
   }
   void reopenFailed(const std::string &, const std::string &, bool newReason,
@@ -377,6 +395,96 @@ TEST(CommandWriter, MavlinkHeartbeatOnItsOwnClock) {
   // Heartbeat, stop (first tick), stop (stopNow), heartbeat, heartbeat: the commands did not add ticks.
   EXPECT_EQ(sequence, (std::vector<int>{0, 1, 2, 3, 4}));
   EXPECT_EQ(rig.sends(), 2u);
+}
+
+// MAVLink with a link-timeout: a gimbal turning at every tick while the vehicle's heartbeats come.
+struct LinkRig {
+  static WriterConfig config() {
+    WriterConfig c;
+    c.protocol.protocol = colortrack::Protocol::Mavlink;
+    c.rate = 50;
+    c.stallTimeout = 60;
+    c.linkTimeout = 0.3;
+    return c;
+  }
+  static Command turn() {
+    colortrack::DriveOutput out;
+    out.command = colortrack::DriveCommand::Left;
+    out.angular = 0.5;
+    out.targetVisible = true;
+    return commandOf(out);
+  }
+  // A heartbeat of `system` every 50 ms for `seconds`, the turn submitted at each.
+  void beat(std::uint8_t system, double seconds) {
+    const auto until = Clock::now() + std::chrono::duration<double>(seconds);
+    while (Clock::now() < until) {
+      colortrack::mavlink::Sender vehicle{system, 1, 0};
+      if (system != 0)
+        rig.port->deliver(colortrack::mavlink::encode(colortrack::mavlink::Heartbeat(), vehicle));
+      rig.writer->submit(turn());
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  }
+  std::vector<std::string> reasons() {
+    return rig.wire.read([&] { return rig.wire.sentReasons; });
+  }
+  Rig rig{config()};
+};
+
+// The vehicle's heartbeats stop: one warning, only stop while they are missing; when they are back, stop
+// first, one "reconnected", then the turn again. The port itself never failed.
+TEST(CommandWriter, MissingHeartbeatsStopTheVehicleUntilTheyAreBack) {
+  LinkRig link;
+  link.rig.writer->setPlaying(true);
+  link.beat(1, 0.5);
+  ASSERT_EQ(link.reasons().back(), "target");
+  link.beat(0, 0.8);  // silence: lost after 0.3 s
+  ASSERT_EQ(link.rig.wire.read([&] { return link.rig.wire.lost; }), 1);
+  std::vector<std::string> reasons = link.reasons();
+  const std::size_t lastTurn = static_cast<std::size_t>(
+      std::find(reasons.rbegin(), reasons.rend(), "target").base() - reasons.begin());
+  ASSERT_LT(lastTurn + 5, reasons.size());  // ~25 stops since
+  for (std::size_t i = lastTurn; i < reasons.size(); ++i) EXPECT_EQ(reasons[i], "link lost") << i;
+  link.beat(1, 0.3);
+  reasons = link.reasons();
+  const auto back = std::find(reasons.begin() + static_cast<std::ptrdiff_t>(lastTurn), reasons.end(),
+                              std::string("reconnected"));
+  ASSERT_NE(back, reasons.end());
+  EXPECT_EQ(*(back - 1), "link lost");
+  ASSERT_NE(back + 1, reasons.end());
+  EXPECT_EQ(*(back + 1), "target");
+  EXPECT_EQ(link.rig.wire.read([&] { return link.rig.wire.reconnected; }), 1);
+  EXPECT_EQ(link.rig.wire.read([&] { return link.rig.wire.lost; }), 1);
+  EXPECT_EQ(link.rig.port->openAttempts.size(), 1u);
+}
+
+// Heartbeats of another system (a ground station behind mavlink-router) are not the vehicle's, and a
+// vehicle that never answered is no evidence of a lost link: the commands go on.
+TEST(CommandWriter, NoHeartbeatOfTheTargetSystemChangesNothing) {
+  LinkRig link;
+  link.rig.writer->setPlaying(true);
+  link.beat(255, 0.8);
+  EXPECT_EQ(link.rig.wire.read([&] { return link.rig.wire.lost; }), 0);
+  EXPECT_EQ(link.reasons().back(), "target");
+}
+
+// The port fails while the vehicle answers and stays away longer than link-timeout: one warning (not a
+// second one for the heartbeats), and after the reopen only stop until the heartbeats are back, then one
+// "reconnected".
+TEST(CommandWriter, APortLostWhileTheVehicleAnsweredWaitsForItsHeartbeat) {
+  LinkRig link;
+  link.rig.writer->setPlaying(true);
+  link.beat(1, 0.3);
+  link.rig.port->failNextWrite(2);  // reopened about 0.7 s later
+  link.beat(0, 1.2);
+  EXPECT_EQ(link.rig.port->openAttempts.size(), 4u);
+  EXPECT_EQ(link.rig.wire.read([&] { return link.rig.wire.lost; }), 1);
+  EXPECT_EQ(link.rig.wire.read([&] { return link.rig.wire.reconnected; }), 0);
+  EXPECT_EQ(link.reasons().back(), "link lost");
+  link.beat(1, 0.3);
+  EXPECT_EQ(link.rig.wire.read([&] { return link.rig.wire.reconnected; }), 1);
+  EXPECT_EQ(link.rig.wire.read([&] { return link.rig.wire.lost; }), 1);
+  EXPECT_EQ(link.reasons().back(), "target");
 }
 
 }  // namespace

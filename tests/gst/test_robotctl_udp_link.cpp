@@ -1,13 +1,16 @@
 // robotctl over UDP when the peer goes away and comes back (a flight controller or robot restarting): the
 // connected socket sees the ICMP "port unreachable", robotctl warns once (not at every retry), and the first
-// datagram the peer hears when it is back is stop, as over a serial link.
+// datagram the peer hears when it is back is stop, as over a serial link. With MAVLink, a vehicle whose
+// heartbeats stop (its radio link drops, its port stays open) is sent only stop until they are back.
 // C++ headers first: gstcheck.h defines macros (fail, ...) that clash with names in the standard library.
 #include <chrono>
 #include <cstdio>
+#include <optional>
 #include <memory>
 #include <string>
 #include <thread>
 
+#include "colortrack/mavlink.hpp"
 #include "gst_test_util.hpp"
 #include "udp_receiver.hpp"
 
@@ -19,7 +22,7 @@ using colortrack::gst_test_util::UdpReceiver;
 using Clock = std::chrono::steady_clock;
 
 // The first datagram within `seconds`, or "".
-std::string firstDatagram(const UdpReceiver &receiver, double seconds) {
+std::string firstDatagram(UdpReceiver &receiver, double seconds) {
   const auto until = Clock::now() + std::chrono::duration<double>(seconds);
   while (Clock::now() < until) {
     const auto datagrams = receiver.drain();
@@ -46,7 +49,92 @@ int warningsWith(GstBus *bus, const std::string &part, double seconds) {
   return count;
 }
 
+// A flight controller on loopback: answers robotctl with its heartbeat (system 1) while `beating`, and
+// keeps the yaw rates of the gimbal commands it hears, with the time each came.
+struct Vehicle {
+  UdpReceiver socket;
+  bool beating = true;
+  struct Heard {
+    double time;
+    float yawRate;
+  };
+  std::vector<Heard> heard;
+  std::vector<std::string> warnings, infos;
+
+  // Runs for `seconds`: every 50 ms takes what came, answers, and reads `bus`.
+  void run(GstBus *bus, double seconds) {
+    const auto until = Clock::now() + std::chrono::duration<double>(seconds);
+    colortrack::mavlink::Sender self{1, 1, 0};
+    while (Clock::now() < until) {
+      for (const auto &d : socket.drain())
+        for (const auto &f : colortrack::mavlink::parseFrames(d.bytes.data(), d.bytes.size()))
+          if (f.messageId == colortrack::mavlink::kGimbalManagerSetPitchyaw.id)
+            heard.push_back({d.time, colortrack::mavlink::payloadFloat(f.payload, 16)});
+      if (beating) socket.reply(colortrack::mavlink::encode(colortrack::mavlink::Heartbeat(), self));
+      while (GstMessage *m =
+                 gst_bus_pop_filtered(bus, GstMessageType(GST_MESSAGE_WARNING | GST_MESSAGE_INFO))) {
+        GError *error = nullptr;
+        if (GST_MESSAGE_TYPE(m) == GST_MESSAGE_WARNING)
+          gst_message_parse_warning(m, &error, nullptr);
+        else
+          gst_message_parse_info(m, &error, nullptr);
+        std::printf("%s: %s\n", GST_MESSAGE_TYPE_NAME(m), error->message);
+        (GST_MESSAGE_TYPE(m) == GST_MESSAGE_WARNING ? warnings : infos).push_back(error->message);
+        g_error_free(error);
+        gst_message_unref(m);
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  }
+  // The moving commands heard after `from` (s, steady clock).
+  int turnsAfter(double from) const {
+    int count = 0;
+    for (const Heard &h : heard) count += h.time > from && h.yawRate != 0;
+    return count;
+  }
+};
+
 }  // namespace
+
+// The vehicle's heartbeats stop for 1.5 s with its port open: one warning naming the heartbeat, nothing
+// but stop from link-timeout on, then "Reconnected" and the turn again once they are back.
+GST_START_TEST(test_mavlink_vehicle_silent_hears_only_stop) {
+  Vehicle vehicle;
+  fail_unless(vehicle.socket.port() > 0);
+  const std::string launch =
+      "videotestsrc is-live=true ! video/x-raw,width=320,height=240,framerate=30/1 ! "
+      "colortrack init-box=250,20,30,60 draw=0 ! robotctl protocol=mavlink rate=20 lost-timeout=10000 "
+      "link-timeout=400 location=" +
+      vehicle.socket.location();
+  GstElement *pipeline = gst_parse_launch(launch.c_str(), nullptr);
+  fail_unless(pipeline != nullptr);
+  GstBus *bus = gst_element_get_bus(pipeline);
+  fail_unless(gst_element_set_state(pipeline, GST_STATE_PLAYING) != GST_STATE_CHANGE_FAILURE);
+  vehicle.run(bus, 1.5);
+  fail_unless(vehicle.turnsAfter(0) > 0, "the gimbal was never turned");
+
+  vehicle.beating = false;
+  const double silentFrom = UdpReceiver::now();
+  vehicle.run(bus, 1.5);
+  fail_unless_equals_int(static_cast<int>(vehicle.warnings.size()), 1);
+  fail_unless(vehicle.warnings[0].find("no HEARTBEAT from system 1") != std::string::npos);
+  // Its last heartbeat may be 50 ms older than the silence; a turn already on its way may land 100 ms late.
+  fail_unless_equals_int(vehicle.turnsAfter(silentFrom + 0.4 + 0.15), 0);
+
+  vehicle.beating = true;
+  const double backFrom = UdpReceiver::now();
+  vehicle.run(bus, 1.0);
+  fail_unless(vehicle.turnsAfter(backFrom) > 0, "the turn did not come back with the heartbeats");
+  fail_unless_equals_int(static_cast<int>(vehicle.warnings.size()), 1);
+  int reconnected = 0;
+  for (const std::string &info : vehicle.infos) reconnected += info.rfind("Reconnected", 0) == 0;
+  fail_unless_equals_int(reconnected, 1);
+
+  gst_element_set_state(pipeline, GST_STATE_NULL);
+  gst_object_unref(bus);
+  gst_object_unref(pipeline);
+}
+GST_END_TEST;
 
 GST_START_TEST(test_udp_peer_back_hears_stop_first) {
   auto peer = std::make_unique<UdpReceiver>();
@@ -94,6 +182,7 @@ static Suite *robotctl_udp_link_suite(void) {
   tcase_set_timeout(tc, 60);
   suite_add_tcase(s, tc);
   tcase_add_test(tc, test_udp_peer_back_hears_stop_first);
+  tcase_add_test(tc, test_mavlink_vehicle_silent_hears_only_stop);
   return s;
 }
 

@@ -40,13 +40,24 @@ class UdpReceiver {
   std::string location() const { return "udp://127.0.0.1:" + std::to_string(port_); }
 
   // The datagrams waiting now, each stamped with the time it was taken (s, steady clock).
-  std::vector<node_mavlink::Datagram> drain() const {
+  std::vector<node_mavlink::Datagram> drain() {
     std::vector<node_mavlink::Datagram> datagrams;
     std::uint8_t buffer[2048];
     ssize_t n;
-    while ((n = recv(fd_, buffer, sizeof buffer, 0)) > 0)
+    socklen_t length = sizeof sender_;
+    while ((n = recvfrom(fd_, buffer, sizeof buffer, 0, reinterpret_cast<sockaddr *>(&sender_), &length)) >
+           0) {
       datagrams.push_back({now(), std::vector<std::uint8_t>(buffer, buffer + n)});
+      length = sizeof sender_;
+    }
     return datagrams;
+  }
+  // Sends `bytes` back to whoever sent the last datagram drain() took (as a flight controller answers);
+  // false before anything came.
+  bool reply(const std::vector<std::uint8_t> &bytes) const {
+    if (sender_.sin_port == 0) return false;
+    return sendto(fd_, bytes.data(), bytes.size(), 0, reinterpret_cast<const sockaddr *>(&sender_),
+                  sizeof sender_) == static_cast<ssize_t>(bytes.size());
   }
 
   static double now() {
@@ -56,6 +67,7 @@ class UdpReceiver {
  private:
   int fd_ = -1;
   int port_ = 0;
+  sockaddr_in sender_{};
 };
 
 }  // namespace colortrack::gst_test_util

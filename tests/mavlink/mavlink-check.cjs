@@ -2,12 +2,12 @@
 // so robotctl's frames are checked against someone else's reading of the MAVLink definitions.
 //   node mavlink-check.cjs encode < cases    one JSON case a line in, one frame as hex a line out:
 //     {"message": "heartbeat" | "gimbal" | "position", "sysid", "compid", "seq", ...fields (camelCase as
-//      node-mavlink names them; "NaN" for NaN)}
+//      node-mavlink names them; "NaN" for NaN), "version": 1 for a MAVLink 1 frame (default 2)}
 //   node mavlink-check.cjs decode FILE       FILE: records of (float64 LE receive time in s, uint32 LE
 //     length, datagram); one JSON line out per frame: time, crcValid, seq, sysid, compid, msgid, name, fields
 'use strict';
 const fs = require('fs');
-const { MavLinkProtocolV2, minimal, common, MSG_ID_MAGIC_NUMBER, x25crc } = require('node-mavlink');
+const { MavLinkProtocolV1, MavLinkProtocolV2, minimal, common, MSG_ID_MAGIC_NUMBER, x25crc } = require('node-mavlink');
 
 const classes = {
   heartbeat: minimal.Heartbeat,
@@ -23,10 +23,11 @@ function encode(text) {
     const c = JSON.parse(line);
     const message = new classes[c.message]();
     for (const [key, value] of Object.entries(c)) {
-      if (['message', 'sysid', 'compid', 'seq'].includes(key)) continue;
+      if (['message', 'sysid', 'compid', 'seq', 'version'].includes(key)) continue;
       message[key] = value === 'NaN' ? NaN : value;
     }
-    out.push(new MavLinkProtocolV2(c.sysid, c.compid).serialize(message, c.seq).toString('hex'));
+    const Protocol = c.version === 1 ? MavLinkProtocolV1 : MavLinkProtocolV2;
+    out.push(new Protocol(c.sysid, c.compid).serialize(message, c.seq).toString('hex'));
   }
   process.stdout.write(out.join('\n') + '\n');
 }

@@ -19,6 +19,10 @@ namespace colortrack::mavlink {
 constexpr std::uint8_t kMagic = 0xFD;      // MAVLink 2 start byte
 constexpr std::size_t kHeaderLength = 10;  // magic, len, incompat, compat, seq, sysid, compid, msgid (3)
 constexpr std::size_t kChecksumLength = 2;
+constexpr std::uint8_t kMagicV1 = 0xFE;     // MAVLink 1, still sent by older autopilots and radios
+constexpr std::size_t kHeaderLengthV1 = 6;  // magic, len, seq, sysid, compid, msgid
+constexpr std::uint8_t kIncompatSigned = 0x01;
+constexpr std::size_t kSignatureLength = 13;
 
 // Who sends: the ids of the frame's header, and its sequence number (+1 per frame, wrapping).
 struct Sender {
@@ -95,9 +99,12 @@ struct Frame {
   std::uint32_t messageId = 0;
   std::vector<std::uint8_t> payload;
 };
-// The frame at the start of `bytes` (`size` of them): none when it is not a whole MAVLink 2 frame of one of
-// the three messages with a valid CRC. `used`: its length.
+// The frame at the start of `bytes` (`size` of them): none when it is not a whole MAVLink 2 or MAVLink 1
+// frame of one of the three messages with a valid CRC (a signed frame's signature is not checked).
+// `used`: its length.
 std::optional<Frame> parseFrame(const std::uint8_t *bytes, std::size_t size, std::size_t *used = nullptr);
+// Every such frame in `bytes` (a datagram, or what a serial read gave), skipping anything else.
+std::vector<Frame> parseFrames(const std::uint8_t *bytes, std::size_t size);
 // A little-endian float of a payload at `offset` (the tests' decoders).
 float payloadFloat(const std::vector<std::uint8_t> &payload, std::size_t offset);
 
