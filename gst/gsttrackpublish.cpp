@@ -231,7 +231,7 @@ bool checkMqttSettings(GstTrackPublish *self, const trackpublish::Settings &s,
 bool openMqtt(GstTrackPublish *self, State &state, const trackpublish::Settings &s,
               const std::string &source) {
   trackpublish::MqttConfig config;
-  config.address = s.address;
+  config.address = trackpublish::brokerUri(s.address);
   config.clientId = s.clientId.empty() ? "colortrack-" + source + "-" + std::to_string(getpid()) : s.clientId;
   config.username = s.username;
   config.password = s.password;

@@ -29,15 +29,22 @@ std::string textOf(const char *text, int code) {
 
 }  // namespace
 
+std::string brokerUri(const std::string &address) {
+  return address.find("://") == std::string::npos ? "tcp://" + address : address;
+}
+
 std::string checkAddress(const std::string &address) {
-  const std::size_t scheme = address.find("://");
-  if (scheme == std::string::npos) return "it must look like tcp://HOST:PORT or ssl://HOST:PORT";
-  const std::string kind = address.substr(0, scheme);
+  const std::string uri = brokerUri(address);
+  const std::size_t scheme = uri.find("://");
+  const std::string kind = uri.substr(0, scheme);
   if (kind != "tcp" && kind != "ssl" && kind != "mqtt" && kind != "mqtts")
-    return "unknown scheme '" + kind + "://' (use tcp:// or ssl://)";
-  const std::string rest = address.substr(scheme + 3);
+    return "unknown scheme '" + kind + "://' (use tcp:// or ssl://, or HOST:PORT for tcp://)";
+  const std::string rest = uri.substr(scheme + 3);
   const std::size_t colon = rest.rfind(':');
-  if (colon == std::string::npos || colon == 0) return "it needs a host and a port: " + kind + "://HOST:PORT";
+  if (colon == std::string::npos || colon == 0)
+    return "it needs a host and a port: HOST:PORT, tcp://HOST:PORT or ssl://HOST:PORT";
+  // Not a host: what a typo of the scheme leaves ("tcp:/host:1883" read as HOST:PORT).
+  if (rest.find('/') != std::string::npos) return "'" + rest.substr(0, colon) + "' is not a host";
   const std::string port = rest.substr(colon + 1);
   char *end = nullptr;
   const long number = std::strtol(port.c_str(), &end, 10);

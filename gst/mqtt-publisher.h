@@ -42,8 +42,11 @@ class MqttListener {
   virtual void dropped(std::uint64_t total, std::size_t maxQueued) = 0;
 };
 
-// An address Paho accepts, or why not (empty when fine).
+// An address Paho accepts, or why not (empty when fine): SCHEME://HOST:PORT (tcp, ssl, mqtt, mqtts), or
+// HOST:PORT, which means tcp:// as in DL Streamer's gvametapublish.
 std::string checkAddress(const std::string &address);
+// The address as Paho takes it: HOST:PORT becomes tcp://HOST:PORT, anything else is kept.
+std::string brokerUri(const std::string &address);
 // A topic a publisher may use (UTF-8 of at most 65,535 bytes, not empty, no NUL, no wildcards, not the
 // broker's own $...), or why not (empty when fine).
 std::string checkTopic(const std::string &topic);

@@ -53,4 +53,20 @@ int openOutputFile(const std::string &path, int extraFlags, mode_t &kind, std::s
   return fd;
 }
 
+std::string checkOutputPath(const std::string &path) {
+  if (path.empty()) return "it is empty";
+  struct stat st;
+  if (::stat(path.c_str(), &st) == 0) {
+    const mode_t kind = st.st_mode & S_IFMT;
+    if (kind == S_IFREG || kind == S_IFCHR || kind == S_IFIFO) return "";
+    return "it is a " + fileKindName(kind) + ", not a regular file, character device or FIFO";
+  }
+  if (errno != ENOENT) return g_strerror(errno);
+  gchar *folder = g_path_get_dirname(path.c_str());
+  const bool folderExists = g_file_test(folder, G_FILE_TEST_IS_DIR);
+  std::string why = folderExists ? "" : std::string("its folder '") + folder + "' does not exist";
+  g_free(folder);
+  return why;
+}
+
 }  // namespace colortrack_gst

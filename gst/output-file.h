@@ -17,4 +17,10 @@ std::string fileKindName(mode_t kind);
 // descriptor, still non-blocking, and its kind in `kind`; or -1 with the reason in `why`.
 int openOutputFile(const std::string &path, int extraFlags, mode_t &kind, std::string &why);
 
+// Why `path` cannot be an output location, judged without opening or creating anything (so it may be
+// checked when the property is set): it exists and is not a regular file, character device or FIFO, or it
+// does not exist and neither does its folder. Empty when it may be: whether a FIFO has a reader, or a file
+// can be written, is known only when it is opened.
+std::string checkOutputPath(const std::string &path);
+
 }  // namespace colortrack_gst

@@ -1,5 +1,6 @@
 #include "robotctl-settings.h"
 
+#include "output-file.h"
 #include "udp-port.h"
 
 #include <cmath>
@@ -23,7 +24,10 @@ using colortrack::FailsafeSettings;
 constexpr bool kVersioned = true;
 
 std::string checkLocationValue(const PropertyStore &, const GValue *v, std::string *) {
-  return checkLocation(textOf(v));
+  const std::string location = textOf(v);
+  const std::string why = checkLocation(location);
+  if (!why.empty() || location.empty() || location == "-" || isUdpLocation(location)) return why;
+  return colortrack_gst::checkOutputPath(location);
 }
 
 // GStreamer enum <-> core enum: switches with no default, so -Wswitch names a value added to either side.

@@ -1,6 +1,7 @@
 #include "trackpublish-settings.h"
 
 #include "mqtt-publisher.h"
+#include "output-file.h"
 
 namespace trackpublish {
 
@@ -17,6 +18,11 @@ using Def = gstglue::PropertyDef<Settings>;
 
 // Every property is read at start: a change while running warns and applies from the next start.
 constexpr Apply kAtStart = Apply::AtStart;
+
+std::string checkLocationValue(const PropertyStore &, const GValue *v, std::string *) {
+  const std::string location = textOf(v);
+  return location.empty() || location == "-" ? "" : colortrack_gst::checkOutputPath(location);
+}
 
 std::string checkAddressValue(const PropertyStore &, const GValue *v, std::string *) {
   const std::string address = textOf(v);
@@ -45,13 +51,14 @@ const Def kProperties[] = {
                                   "for stdout; may be combined with address",
                                   nullptr, f);
      },
-     getTextOrNull<&Settings::location>, setText<&Settings::location>},
+     getTextOrNull<&Settings::location>, setText<&Settings::location>, nullptr, checkLocationValue, true},
     {kAtStart, false,
      [](GParamFlags f) {
        return g_param_spec_string(
            "address", "Address",
            "MQTT broker to publish to, tcp://HOST:PORT or ssl://HOST:PORT (1883 and 8883 "
-           "are the usual ports); setting it selects MQTT",
+           "are the usual ports; HOST:PORT alone means tcp://, as in gvametapublish); setting it selects "
+           "MQTT",
            nullptr, f);
      },
      getTextOrNull<&Settings::address>, setText<&Settings::address>, nullptr, checkAddressValue, true},

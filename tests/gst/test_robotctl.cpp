@@ -598,6 +598,24 @@ GST_START_TEST(test_start_settings_warn_when_changed) {
   g_error_free(error);
   gst_message_unref(m);
   fail_unless(gst_bus_pop_filtered(ctl.bus, GST_MESSAGE_WARNING) == nullptr, "more than one warning");
+  // A location that could never be opened is refused when set, not at the next start: the old one stays.
+  gchar *before = nullptr;
+  g_object_get(element, "location", &before, nullptr);
+  for (const char *bad : {"/nonexistent/x", "udp://127.0.0.1:0", "/tmp"}) {
+    g_object_set(element, "location", bad, nullptr);
+    gchar *now = nullptr;
+    g_object_get(element, "location", &now, nullptr);
+    fail_unless_equals_string(now, before);
+    g_free(now);
+    m = gst_bus_pop_filtered(ctl.bus, GST_MESSAGE_WARNING);
+    fail_unless(m != nullptr, "no warning for location=%s", bad);
+    gst_message_parse_warning(m, &error, nullptr);
+    std::printf("location=%s while playing: warning \"%s\"\n", bad, error->message);
+    fail_unless(std::string(error->message).find("'location'") != std::string::npos);
+    g_error_free(error);
+    gst_message_unref(m);
+  }
+  g_free(before);
   gst_object_unref(element);
 }
 GST_END_TEST;

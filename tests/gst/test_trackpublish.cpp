@@ -487,8 +487,11 @@ GST_START_TEST(test_mqtt_eight_sources_at_once) {
   {
     std::vector<std::unique_ptr<Publisher>> publishers;
     for (int s = 0; s < kSources; ++s) {
+      // Half of them name the broker HOST:PORT, as gvametapublish users do: the same as tcp://HOST:PORT.
+      const std::string address =
+          s % 2 ? broker.address().substr(std::string("tcp://").size()) : broker.address();
       publishers.push_back(std::make_unique<Publisher>(
-          "address=" + broker.address() + " topic=fleet/{source} source=cam" + std::to_string(s)));
+          "address=" + address + " topic=fleet/{source} source=cam" + std::to_string(s)));
       fail_unless(publishers.back()->play() != GST_STATE_CHANGE_FAILURE);
     }
     for (int i = 0; i < kFrames; ++i)
@@ -627,6 +630,8 @@ GST_START_TEST(test_bad_addresses_and_topics) {
   for (const auto &[properties, part] : std::vector<std::pair<std::string, std::string>>{
            {"address=http://127.0.0.1:1883", "property 'address'"},
            {"address=tcp://127.0.0.1:99999", "property 'address'"},
+           {"address=tcp:/127.0.0.1:1883", "property 'address'"},
+           {"address=127.0.0.1", "property 'address'"},
            {"address=tcp://127.0.0.1:1883 topic=cams/+/tracks", "property 'topic'"},
            {"address=tcp://127.0.0.1:1883 source=a/# topic=x/{source}", "property 'topic'"},
            {"address=tcp://127.0.0.1:1883 topic=$SYS/x", "property 'topic'"},
@@ -636,6 +641,8 @@ GST_START_TEST(test_bad_addresses_and_topics) {
            {"address=tcp://127.0.0.1:1883 client-id=" + std::string(70000, 'c'), "property 'client-id'"},
            {"address=tcp://127.0.0.1:1883 tls-ca-file=/etc/hostname", "property 'tls-ca-file'"},
            {"address=tcp://127.0.0.1:1883 tls-key-file=/etc/hostname", "property 'tls-key-file'"},
+           {"location=/nonexistent/x", "property 'location'"},
+           {"location=/tmp", "property 'location'"},
            {"", "No output"}}) {
     Publisher p(properties);
     fail_unless_equals_int(p.play(), GST_STATE_CHANGE_FAILURE);
