@@ -76,7 +76,10 @@ class ElementMqttListener : public trackpublish::MqttListener {
                          address.c_str(), why.c_str(), maxQueued_),
                         (nullptr));
   }
-  void connectionLost(const std::string &address, const std::string &why, std::size_t queued) override {
+  void connectionLost(const std::string &address, const std::string &why, std::size_t queued,
+                      bool first) override {
+    GST_DEBUG_OBJECT(element_, "lost %s: %s", address.c_str(), why.c_str());
+    if (!first) return;
     GST_ELEMENT_WARNING(element_, RESOURCE, WRITE,
                         ("Lost the connection to MQTT broker %s: %s. Reconnecting; %zu documents queued.",
                          address.c_str(), why.c_str(), queued),

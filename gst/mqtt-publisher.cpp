@@ -20,6 +20,13 @@ constexpr std::size_t kWindow = 32;
 constexpr milliseconds kFirstBackoff{250}, kMaxBackoff{5000};
 constexpr int kConnectTimeoutSeconds = 5;
 constexpr int kKeepAliveSeconds = 20;
+// A document sent and not answered for this long while connected: the peer took the connection but does not
+// speak MQTT back (or is stuck), which Paho's keep-alive may never notice (a peer that sent half a packet
+// holds its reader): the connection is dropped and made again, the document resent.
+constexpr milliseconds kAnswerTimeout{10000};
+// A connection lost sooner than this after it was made counts as failing again: the retries back off and the
+// loss is not announced again.
+constexpr milliseconds kStableConnection{30000};  // longer than kAnswerTimeout: a silent peer is news once
 
 std::string textOf(const char *text, int code) {
   if (text && *text) return text;
@@ -233,6 +240,8 @@ void MqttPublisher::run() {
     if (stopping_ && ((queue_.empty() && inFlight_.empty()) || now >= drainUntil_)) break;
     if (!connected_ && !connecting_ && now >= nextAttempt_) connect(lock);
     if (connected_) send(lock);
+    if (connected_ && !inFlight_.empty() && now - inFlight_.front().sentAt > kAnswerTimeout)
+      abandonUnanswered(lock);
     auto until = now + milliseconds(100);
     if (!connected_ && !connecting_) until = std::min(until, nextAttempt_);
     if (stopping_) until = std::min(until, drainUntil_);
@@ -275,6 +284,7 @@ void MqttPublisher::send(std::unique_lock<std::mutex> &lock) {
   while (connected_ && !queue_.empty() && inFlight_.size() < kWindow) {
     inFlight_.push_back(std::move(queue_.front()));
     queue_.pop_front();
+    inFlight_.back().sentAt = Clock::now();
     // Copies: a callback may change inFlight_ while the lock is released (Paho copies the payload too).
     const Document document = inFlight_.back();
     auto *context = new SendContext{this, document.sequence};
@@ -347,6 +357,7 @@ void MqttPublisher::connectDone(bool ok, const std::string &why) {
     attempted_ = true;
     if (ok) {
       connected_ = true;
+      connectedAt_ = Clock::now();
       again = everConnected_;
       everConnected_ = true;
       failedSinceSuccess_ = false;
@@ -369,16 +380,40 @@ void MqttPublisher::connectDone(bool ok, const std::string &why) {
 
 void MqttPublisher::lost(const std::string &why) {
   std::size_t queued = 0;
+  bool first = false;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     connected_ = false;
     requeueInFlight();
     queued = queue_.size();
-    nextAttempt_ = Clock::now();
-    backoff_ = kFirstBackoff;
+    const auto now = Clock::now();
+    first = !flapping_;
+    flapping_ = now - connectedAt_ < kStableConnection;
+    if (flapping_) {
+      nextAttempt_ = now + backoff_;
+      backoff_ = std::min(backoff_ * 2, kMaxBackoff);
+    } else {
+      nextAttempt_ = now;
+      backoff_ = kFirstBackoff;
+    }
   }
   wake_.notify_all();
-  listener_.connectionLost(redactedAddress(config_.address), why, queued);
+  listener_.connectionLost(redactedAddress(config_.address), why, queued, first);
+}
+
+// The oldest document in flight went unanswered for kAnswerTimeout: drop the connection (its sends are
+// failed or never answered; their documents are already back in the queue) and make a new one.
+void MqttPublisher::abandonUnanswered(std::unique_lock<std::mutex> &lock) {
+  connected_ = false;
+  connecting_ = true;  // no new connection before this one is closed
+  lock.unlock();
+  MQTTAsync_disconnectOptions options = MQTTAsync_disconnectOptions_initializer;
+  options.timeout = 0;
+  MQTTAsync_disconnect(static_cast<MQTTAsync>(client_), &options);
+  lost("it accepted the connection but answered no document for " +
+       std::to_string(kAnswerTimeout.count() / 1000) + " s (is it an MQTT broker?)");
+  lock.lock();
+  connecting_ = false;
 }
 
 }  // namespace trackpublish

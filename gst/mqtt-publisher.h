@@ -1,8 +1,7 @@
 // trackpublish's MQTT side: documents handed over by the streaming thread, delivered in order by a worker
 // thread through Eclipse Paho's asynchronous C client, with a bounded queue that keeps everything while the
 // broker is unreachable (the oldest are dropped, and counted, past `maxQueued`) and drains in order after
-// reconnecting. No GStreamer here, so tests/gst/test_mqtt_publisher.cpp drives it against a real broker
-// alone.
+// reconnecting. No GStreamer here.
 //
 // Why our own queue in front of Paho's: Paho can buffer while disconnected and drop the oldest, but it does
 // not say how many it dropped, and its buffer only exists after a first successful connect.
@@ -37,7 +36,10 @@ class MqttListener {
   // `first`: the first failure since the last success (later ones repeat the same news).
   virtual void connectFailed(const std::string &address, const std::string &why, bool first,
                              std::chrono::milliseconds retryIn) = 0;
-  virtual void connectionLost(const std::string &address, const std::string &why, std::size_t queued) = 0;
+  // `first`: not the repeat of a connection that keeps failing soon after it is made (a peer that answers
+  // CONNECT and then nothing an MQTT client understands): that news is given once.
+  virtual void connectionLost(const std::string &address, const std::string &why, std::size_t queued,
+                              bool first) = 0;
   // `total` documents dropped so far because the queue was full.
   virtual void dropped(std::uint64_t total, std::size_t maxQueued) = 0;
 };
@@ -84,6 +86,7 @@ class MqttPublisher {
   struct Document {
     std::uint64_t sequence;
     std::string topic, payload;
+    std::chrono::steady_clock::time_point sentAt{};  // in flight since
   };
   struct Callback;     // Paho's C callbacks, which call the members below
   struct SendContext;  // one document's send, until Paho answers it
@@ -96,6 +99,7 @@ class MqttPublisher {
   void sendFailed(std::uint64_t sequence);
   void connectDone(bool ok, const std::string &why);
   void lost(const std::string &why);
+  void abandonUnanswered(std::unique_lock<std::mutex> &lock);
 
   const MqttConfig config_;
   MqttListener &listener_;
@@ -110,6 +114,8 @@ class MqttPublisher {
   bool attempted_ = false;  // the first connection attempt has ended
   std::string lastError_;
   bool failedSinceSuccess_ = false;
+  bool flapping_ = false;  // the last connection was lost soon after it was made
+  std::chrono::steady_clock::time_point connectedAt_;
   std::chrono::milliseconds backoff_;
   std::chrono::steady_clock::time_point nextAttempt_, drainUntil_;
   std::set<SendContext *> sends_;  // not yet answered by Paho; freed at stop when Paho discarded them

@@ -3,8 +3,11 @@
 // read back by a subscriber (Paho). Covers delivery in order at QoS 1, eight sources at once, a broker
 // restart mid-stream with a live source, and bad addresses, topics and a full queue. C++ headers first:
 // gstcheck.h defines macros (fail, ...) that clash with names in the standard library.
+#include <arpa/inet.h>
 #include <fcntl.h>
+#include <netinet/in.h>
 #include <signal.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -720,6 +723,99 @@ GST_START_TEST(test_full_queue_drops_the_oldest_and_says_how_many) {
 }
 GST_END_TEST;
 
+// Not a broker: on 127.0.0.1:`port` it answers each CONNECT with a CONNACK and then with `after` (bytes no
+// MQTT client can use), and holds the connection.
+class FalseBroker {
+ public:
+  FalseBroker(int port, std::string after) : after_(std::move(after)) {
+    fd_ = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    const int on = 1;
+    setsockopt(fd_, SOL_SOCKET, SO_REUSEADDR, &on, sizeof on);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    address.sin_port = htons(static_cast<std::uint16_t>(port));
+    fail_unless(bind(fd_, reinterpret_cast<sockaddr *>(&address), sizeof address) == 0 &&
+                listen(fd_, 8) == 0);
+    thread_ = std::thread([this] { serve(); });
+  }
+  ~FalseBroker() {
+    shutdown(fd_, SHUT_RDWR);  // ends accept()
+    thread_.join();
+    for (int c : clients_) close(c);
+    close(fd_);
+  }
+  int connections() const { return connections_.load(); }
+
+ private:
+  void serve() {
+    int client;
+    while ((client = accept(fd_, nullptr, nullptr)) >= 0) {
+      clients_.push_back(client);
+      ++connections_;
+      char connect[512];
+      if (recv(client, connect, sizeof connect, 0) <= 0) continue;
+      const std::string reply = std::string("\x20\x02\x00\x00", 4) + after_;
+      send(client, reply.data(), reply.size(), MSG_NOSIGNAL);
+    }
+  }
+  int fd_ = -1;
+  std::string after_;
+  std::thread thread_;
+  std::vector<int> clients_;  // serve() only, then the destructor
+  std::atomic<int> connections_{0};
+};
+
+// The warnings among `messages` that hold `part`.
+int countContaining(const std::vector<std::string> &messages, const std::string &part) {
+  return static_cast<int>(std::count_if(messages.begin(), messages.end(), [&](const std::string &m) {
+    return m.find(part) != std::string::npos;
+  }));
+}
+
+// A peer that accepts the connection and then sends half a packet: nothing acknowledges a document, Paho's
+// keep-alive never notices, and the element says so within the answer timeout (10 s), not at EOS.
+GST_START_TEST(test_false_broker_that_goes_silent_is_reported) {
+  const int port = freePort();
+  FalseBroker peer(port, std::string("\x30\x7f\x00", 3));  // a PUBLISH of 127 bytes, 1 of them sent
+  Publisher p("address=127.0.0.1:" + std::to_string(port) + " drain-timeout=0");
+  fail_unless(p.play() != GST_STATE_CHANGE_FAILURE);
+  const auto start = Clock::now();
+  int frame = 0;
+  while (countContaining(p.messages(GST_MESSAGE_WARNING), "answered no document") == 0 &&
+         Clock::now() - start < std::chrono::seconds(15)) {
+    p.push(frame++);
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  const double after = std::chrono::duration<double>(Clock::now() - start).count();
+  std::printf("false broker, half a packet: warned after %.1f s, %d frames through\n", after, frame);
+  fail_unless(countContaining(p.messages(GST_MESSAGE_WARNING), "answered no document") == 1,
+              "no warning within 15 s");
+  fail_unless(after > 9.5);
+  p.endAndWait();
+}
+GST_END_TEST;
+
+// A peer that answers with garbage right after the CONNACK: Paho drops every connection at once. One
+// warning, not one per attempt, and the attempts back off.
+GST_START_TEST(test_false_broker_that_talks_garbage_warns_once) {
+  const int port = freePort();
+  FalseBroker peer(port, std::string("\xf0\xff\xff\xff\xff\x7f", 6) + std::string(20, 'U'));
+  Publisher p("address=tcp://127.0.0.1:" + std::to_string(port) + " drain-timeout=0");
+  fail_unless(p.play() != GST_STATE_CHANGE_FAILURE);
+  for (int i = 0; i < 60; ++i) {
+    p.push(i);
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  const std::vector<std::string> warnings = p.messages(GST_MESSAGE_WARNING);
+  for (const std::string &w : warnings) std::printf("warning: %s\n", w.c_str());
+  std::printf("false broker, garbage: %d connections in 6 s\n", peer.connections());
+  fail_unless_equals_int(countContaining(warnings, "Lost the connection"), 1);
+  fail_unless(peer.connections() <= 10, "%d connections in 6 s: no back-off", peer.connections());
+  p.endAndWait();
+}
+GST_END_TEST;
+
 static Suite *trackpublish_suite(void) {
   Suite *s = suite_create("trackpublish");
   TCase *tc = tcase_create("general");
@@ -735,6 +831,8 @@ static Suite *trackpublish_suite(void) {
   tcase_add_test(tc, test_fifo_location_never_blocks);
   tcase_add_test(tc, test_password_in_address_is_never_shown);
   tcase_add_test(tc, test_unreachable_broker_drains_once);
+  tcase_add_test(tc, test_false_broker_that_goes_silent_is_reported);
+  tcase_add_test(tc, test_false_broker_that_talks_garbage_warns_once);
   return s;
 }
 
