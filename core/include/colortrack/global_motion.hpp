@@ -1,0 +1,37 @@
+// The frame's global motion: how the background (the camera's view) moved in the image since the last frame,
+// from the phase correlation of small grey copies of consecutive frames, the target's box left out.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include "colortrack/image_source.hpp"
+#include "colortrack/scratch_image.hpp"
+
+namespace colortrack {
+
+class GlobalMotion {
+ public:
+  struct Shift {
+    cv::Point2d offset;   // frame px: how far a background point moved since the last frame
+    double response = 0;  // phase correlation peak: how much of the frame agrees on `offset`
+    bool valid = false;   // measured (a previous frame of the same size, texture) and trustworthy
+  };
+
+  // Reads a small copy of `frame` and measures its shift from the frame measured last, leaving out
+  // `exclude` (frame px; the target, which moves on its own; empty: nothing). The first frame, a frame of
+  // another size and a frame without texture give an invalid shift.
+  Shift measure(const ImageSource &frame, const cv::Rect2d &exclude = cv::Rect2d());
+  // The next frame starts afresh.
+  void reset() { previous_.release(); }
+
+ private:
+  void smallCopy(const ImageSource &frame);
+  void weights(const cv::Rect2d &exclude);
+
+  ScratchImage read_;
+  cv::Mat small_, grey_, smooth_, current_, previous_, hanning_, mask_, weights_;
+  cv::Size frameSize_;
+  double scale_ = 1;  // frame px per small-copy px
+};
+
+}  // namespace colortrack
