@@ -129,6 +129,7 @@ COLORTRACK_DEFINE_ENUM_TYPE(
      "fused"})
 COLORTRACK_DEFINE_FLAGS_TYPE(
     gst_color_track_draw_get_type, "GstColorTrackDraw",
+    {GST_COLOR_TRACK_DRAW_NONE, "No overlay: frames are only read (no copy behind a tee)", "none"},
     {GST_COLOR_TRACK_DRAW_BOX, "Box (red: colour match, green: verified, orange: coasting)", "box"},
     {GST_COLOR_TRACK_DRAW_TRAIL, "Trail of the box centre (yellow)", "trail"},
     {GST_COLOR_TRACK_DRAW_SEARCH_WINDOW, "Region searched this frame (blue)", "search-window"},
@@ -449,13 +450,11 @@ static GstFlowReturn track_frame(GstColorTrack *self, GstVideoFrame *frame, cons
   return GST_FLOW_OK;
 }
 
-static GstFlowReturn gst_color_track_transform_frame_ip(GstVideoFilter *filter, GstVideoFrame *frame) {
-  GstColorTrack *self = GST_COLOR_TRACK(filter);
+static GstFlowReturn track_mapped_frame(GstColorTrack *self, GstVideoFrame *frame, const Snapshot &snapshot,
+                                        const colortrack_gst::Requests &requests) {
   State &state = stateOf(self);
-  colortrack_gst::Requests requests;
-  const Snapshot snapshot = take_frame_inputs(self, requests);
   const guint64 frameNumber = state.frameCount++;
-  const double dt = frame_step(self, filter, frame->buffer);
+  const double dt = frame_step(self, GST_VIDEO_FILTER(self), frame->buffer);
   try {
     if (!state.templateTracker || !state.thresholdTracker) {
       GST_ELEMENT_ERROR(self, CORE, FAILED, ("colortrack was not started."), (nullptr));
@@ -470,6 +469,31 @@ static GstFlowReturn gst_color_track_transform_frame_ip(GstVideoFilter *filter, 
     GST_ELEMENT_ERROR(self, STREAM, FAILED, ("Error while tracking: %s", e.what()), (nullptr));
   }
   return GST_FLOW_ERROR;
+}
+
+// In place of GstVideoFilter's, which maps every frame for writing: a buffer whose memory is shared (behind
+// a tee) is then copied whole. Only the overlay writes pixels; the metadata needs a writable buffer, which
+// the base class gives without copying the memory. So with draw=none the frame is mapped for reading only.
+static GstFlowReturn gst_color_track_transform_ip(GstBaseTransform *trans, GstBuffer *buffer) {
+  GstColorTrack *self = GST_COLOR_TRACK(trans);
+  GstVideoFilter *filter = GST_VIDEO_FILTER(trans);
+  if (!filter->negotiated) {
+    GST_ELEMENT_ERROR(self, CORE, NEGOTIATION, (nullptr), ("unknown format"));
+    return GST_FLOW_NOT_NEGOTIATED;
+  }
+  colortrack_gst::Requests requests;
+  const Snapshot snapshot = take_frame_inputs(self, requests);
+  // NO_REF: a frame's own reference would make the buffer read-only for the metadata.
+  const int access = (snapshot.draw == GST_COLOR_TRACK_DRAW_NONE ? GST_MAP_READ : GST_MAP_READWRITE) |
+                     GST_VIDEO_FRAME_MAP_FLAG_NO_REF;
+  GstVideoFrame frame;
+  if (!gst_video_frame_map(&frame, &filter->in_info, buffer, static_cast<GstMapFlags>(access))) {
+    GST_ELEMENT_ERROR(self, CORE, FAILED, ("Cannot map the video frame."), ("invalid buffer"));
+    return GST_FLOW_ERROR;
+  }
+  const GstFlowReturn result = track_mapped_frame(self, &frame, snapshot, requests);
+  gst_video_frame_unmap(&frame);
+  return result;
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -513,7 +537,7 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
   trans_class->sink_event = GST_DEBUG_FUNCPTR(gst_color_track_sink_event);
   trans_class->src_event = GST_DEBUG_FUNCPTR(gst_color_track_src_event);
   filter_class->set_info = GST_DEBUG_FUNCPTR(gst_color_track_set_info);
-  filter_class->transform_frame_ip = GST_DEBUG_FUNCPTR(gst_color_track_transform_frame_ip);
+  trans_class->transform_ip = GST_DEBUG_FUNCPTR(gst_color_track_transform_ip);
 
   gst_type_mark_as_plugin_api(GST_TYPE_COLOR_TRACK_MODE, static_cast<GstPluginAPIFlags>(0));
   gst_type_mark_as_plugin_api(GST_TYPE_COLOR_TRACK_COLOR_SPACE, static_cast<GstPluginAPIFlags>(0));

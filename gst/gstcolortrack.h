@@ -72,6 +72,7 @@ typedef enum {
 
 /**
  * GstColorTrackDraw:
+ * @GST_COLOR_TRACK_DRAW_NONE: no overlay: frames are only read, never written (no copy behind a tee)
  * @GST_COLOR_TRACK_DRAW_BOX: the tracked box (red: colour match, green: verified, orange: coasting)
  * @GST_COLOR_TRACK_DRAW_TRAIL: the path of the box centre (yellow)
  * @GST_COLOR_TRACK_DRAW_SEARCH_WINDOW: the region searched in this frame (blue)
@@ -79,6 +80,7 @@ typedef enum {
  * @GST_COLOR_TRACK_DRAW_MASK: mode=threshold: the pixels inside the HSV range, tinted magenta (for tuning)
  */
 typedef enum {
+  GST_COLOR_TRACK_DRAW_NONE = 0,
   GST_COLOR_TRACK_DRAW_BOX = (1 << 0),
   GST_COLOR_TRACK_DRAW_TRAIL = (1 << 1),
   GST_COLOR_TRACK_DRAW_SEARCH_WINDOW = (1 << 2),

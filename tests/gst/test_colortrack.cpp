@@ -484,6 +484,44 @@ GST_START_TEST(test_reset_signal) {
 }
 GST_END_TEST;
 
+// A BGRx frame of `size`, dark, with an orange square at `box`.
+GstBuffer *squareFrame(cv::Size size, cv::Rect box, int index) {
+  cv::Mat bgrx(size, CV_8UC4, cv::Scalar(30, 30, 30, 255));
+  bgrx(box).setTo(cv::Scalar(0, 128, 255, 255));
+  GstBuffer *buffer = gst_buffer_new_memdup(bgrx.data, bgrx.total() * bgrx.elemSize());
+  GST_BUFFER_PTS(buffer) = static_cast<GstClockTime>(index) * GST_SECOND / 30;
+  GST_BUFFER_DURATION(buffer) = GST_SECOND / 30;
+  return buffer;
+}
+
+// draw=none only reads the frame: a buffer still held elsewhere (as behind a tee) comes out with the same
+// memory, not a copy, and with its meta. With the overlay the shared memory is copied before it is drawn on.
+GST_START_TEST(test_no_overlay_no_copy) {
+  const cv::Size size(160, 120);
+  const cv::Rect box(40, 40, 32, 32);
+  for (const std::string draw : {"none", "box"}) {
+    GstHarness *h = gst_harness_new_parse(("colortrack init-box=40,40,32,32 draw=" + draw).c_str());
+    gst_harness_set_src_caps_str(h, "video/x-raw,format=BGRx,width=160,height=120,framerate=30/1");
+    int copies = 0, withMeta = 0;
+    for (int i = 0; i < 5; ++i) {
+      GstBuffer *in = squareFrame(size, box, i);
+      GstMemory *memory = gst_buffer_peek_memory(in, 0);
+      gst_buffer_ref(in);  // the other branch of a tee
+      GstBuffer *out = gst_harness_push_and_pull(h, in);
+      fail_unless(out != nullptr);
+      copies += gst_buffer_peek_memory(out, 0) != memory;
+      withMeta += !colortrackRois(out).empty();
+      gst_buffer_unref(out);
+      gst_buffer_unref(in);
+    }
+    std::printf("draw=%s: %d of 5 frames copied, %d with meta\n", draw.c_str(), copies, withMeta);
+    fail_unless_equals_int(withMeta, 5);
+    fail_unless_equals_int(copies, draw == "none" ? 0 : 5);
+    gst_harness_teardown(h);
+  }
+}
+GST_END_TEST;
+
 static Suite *colortrack_suite(void) {
   preloadPlugins({"colortrack", "videoconvertscale"});
   Suite *s = suite_create("colortrack");
@@ -496,6 +534,7 @@ static Suite *colortrack_suite(void) {
   tcase_add_test(tc, test_meta_and_message_fields);
   tcase_add_test(tc, test_meta_survives_videoscale_and_videoconvert);
   tcase_add_test(tc, test_reset_signal);
+  tcase_add_test(tc, test_no_overlay_no_copy);
   tcase_add_test(tc, test_params_meta_keeps_two_elements_apart);
   return s;
 }
