@@ -85,7 +85,8 @@ constexpr int kLeftButton = 1, kRightButton = 3;
 enum { SIGNAL_RESET, LAST_SIGNAL };
 static guint gst_color_track_signals[LAST_SIGNAL] = {0};
 
-#define VIDEO_CAPS GST_VIDEO_CAPS_MAKE(COLORTRACK_VIDEO_FORMATS)
+// Progressive only: a field-interleaved frame is two moments in time, and the tracker needs one.
+#define VIDEO_CAPS GST_VIDEO_CAPS_MAKE(COLORTRACK_VIDEO_FORMATS) ", interlace-mode = (string) progressive"
 
 static GstStaticPadTemplate sink_template =
     GST_STATIC_PAD_TEMPLATE("sink", GST_PAD_SINK, GST_PAD_ALWAYS, GST_STATIC_CAPS(VIDEO_CAPS));

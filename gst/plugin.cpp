@@ -17,4 +17,4 @@ static gboolean plugin_init(GstPlugin *plugin) {
 
 GST_PLUGIN_DEFINE(GST_VERSION_MAJOR, GST_VERSION_MINOR, colortrack,
                   "Colour object tracking (modified colour indexing, Kalman filtering) and robot control",
-                  plugin_init, VERSION, "LGPL", "colortrack", "Unknown package origin")
+                  plugin_init, VERSION, "LGPL", GST_PACKAGE_NAME, GST_PACKAGE_ORIGIN)

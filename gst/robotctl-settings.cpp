@@ -112,40 +112,10 @@ void setControl(Settings &s, const GValue *v) {
     s.failsafe.*field = g_value_get_double(v);
 }
 
-const char *refuseNegativeGain(const GValue *v) {
-  // A negative gain drives away from the target.
-  return g_value_get_double(v) < 0 ? "a gain must not be negative (it would steer away from the target)"
-                                   : nullptr;
-}
-
-// The ranges of the id properties admit more than a byte only so that robotctl can refuse them with a clear
-// error naming MAVLink's rule.
-const char *refuseSenderId(const GValue *v) {
-  const guint id = g_value_get_uint(v);
-  return id < 1 || id > 255 ? "a MAVLink system or component id of ours is 1-255 (0 is the broadcast address)"
-                            : nullptr;
-}
-
-const char *refuseTargetId(const GValue *v) {
-  return g_value_get_uint(v) > 255 ? "a MAVLink target id is 0-255 (0: all)" : nullptr;
-}
-
-// A lens wider than 170 degrees makes tan(hfov/2) explode (179.9999 gave 10^6 rad/s) and one under a degree
-// makes every rate 0: neither is a camera robotctl can steer by.
-const char *refuseFieldOfView(const GValue *v) {
-  // NaN never gets here: GLib refuses it against the range, with a warning naming the property.
-  const double hfov = g_value_get_double(v);
-  return !(hfov >= 1 && hfov <= 170) ? "the horizontal field of view is 1 to 170 degrees" : nullptr;
-}
-
-const char *refuseMaxRate(const GValue *v) {
-  const double rate = g_value_get_double(v);
-  return !(rate > 0 && rate <= 720) ? "the largest rate is more than 0 and at most 720 deg/s" : nullptr;
-}
-
-const char *refuseMaxSpeed(const GValue *v) {
-  const double speed = g_value_get_double(v);
-  return !(speed > 0 && speed <= 50) ? "the largest speed is more than 0 and at most 50 m/s" : nullptr;
+// Each numeric property's declared range is the range it accepts (gst-inspect tells the truth), and GLib
+// refuses values outside it. NaN passes GLib's range check (every comparison with it is false): refused here.
+const char *refuseNotFinite(const GValue *v) {
+  return std::isfinite(g_value_get_double(v)) ? nullptr : "the value must be a number";
 }
 
 const char *refuseEmptyRoiType(const GValue *v) {
@@ -242,58 +212,58 @@ const Def kProperties[] = {
        return g_param_spec_uint("system-id", "System id",
                                 "protocol=mavlink: our MAVLink system id, 1-255 (usually the vehicle's); "
                                 "read at start",
-                                0, G_MAXUINT, Settings{}.systemId, f);
+                                1, 255, Settings{}.systemId, f);
      },
-     getValue<&Settings::systemId>, setValue<&Settings::systemId>, refuseSenderId},
+     getValue<&Settings::systemId>, setValue<&Settings::systemId>},
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_uint("component-id", "Component id",
                                 "protocol=mavlink: our MAVLink component id, 1-255 (191: onboard "
                                 "computer); read at start",
-                                0, G_MAXUINT, Settings{}.componentId, f);
+                                1, 255, Settings{}.componentId, f);
      },
-     getValue<&Settings::componentId>, setValue<&Settings::componentId>, refuseSenderId},
+     getValue<&Settings::componentId>, setValue<&Settings::componentId>},
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_uint("target-system", "Target system",
                                 "protocol=mavlink: system id the commands are for, 0-255 (0: all); read at "
                                 "start",
-                                0, G_MAXUINT, Settings{}.targetSystem, f);
+                                0, 255, Settings{}.targetSystem, f);
      },
-     getValue<&Settings::targetSystem>, setValue<&Settings::targetSystem>, refuseTargetId},
+     getValue<&Settings::targetSystem>, setValue<&Settings::targetSystem>},
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_uint("target-component", "Target component",
                                 "protocol=mavlink: component id the commands are for, 0-255 (1: the "
                                 "autopilot, which is usually also the gimbal manager; 0: all); read at start",
-                                0, G_MAXUINT, Settings{}.targetComponent, f);
+                                0, 255, Settings{}.targetComponent, f);
      },
-     getValue<&Settings::targetComponent>, setValue<&Settings::targetComponent>, refuseTargetId},
+     getValue<&Settings::targetComponent>, setValue<&Settings::targetComponent>},
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_double("hfov", "Horizontal field of view",
                                   "protocol=mavlink: the camera's horizontal field of view in degrees, 1 to "
                                   "170 (the vertical one follows from the frame's aspect ratio); turns a "
                                   "turn of 1.0 into tan(hfov/2) rad/s; read at start",
-                                  0.0, 180.0, Settings{}.hfov, f);
+                                  1.0, 170.0, Settings{}.hfov, f);
      },
-     getValue<&Settings::hfov>, setValue<&Settings::hfov>, refuseFieldOfView},
+     getValue<&Settings::hfov>, setValue<&Settings::hfov>, refuseNotFinite},
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_double("max-rate", "Largest rate",
                                   "protocol=mavlink: every pitch and yaw rate sent is clamped to this, deg/s "
-                                  "(more than 0, at most 720); read at start",
-                                  0.0, 720.0, Settings{}.maxRate, f);
+                                  "(0.1 to 720); read at start",
+                                  0.1, 720.0, Settings{}.maxRate, f);
      },
-     getValue<&Settings::maxRate>, setValue<&Settings::maxRate>, refuseMaxRate},
+     getValue<&Settings::maxRate>, setValue<&Settings::maxRate>, refuseNotFinite},
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_double("max-speed", "Largest speed",
                                   "protocol=mavlink mavlink-mode=follow: every forward velocity sent is "
-                                  "clamped to this, m/s (more than 0, at most 50); read at start",
-                                  0.0, 50.0, Settings{}.maxSpeed, f);
+                                  "clamped to this, m/s (0.01 to 50); read at start",
+                                  0.01, 50.0, Settings{}.maxSpeed, f);
      },
-     getValue<&Settings::maxSpeed>, setValue<&Settings::maxSpeed>, refuseMaxSpeed},
+     getValue<&Settings::maxSpeed>, setValue<&Settings::maxSpeed>, refuseNotFinite},
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_uint(
@@ -366,71 +336,60 @@ const Def kProperties[] = {
      getControl<&ControllerSettings::hysteresis>, setControl<&ControllerSettings::hysteresis>},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
-       return g_param_spec_double(
-           "turn-gain", "Turn gain",
-           "Proportional controller: angular speed per unit horizontal offset, 0-100. The range "
-           "admits negatives only so that robotctl can refuse them with a clear error (at start; a "
-           "warning while playing, the old gain stays)",
-           -100.0, 100.0, ControllerSettings{}.turnGain, f);
+       return g_param_spec_double("turn-gain", "Turn gain",
+                                  "Proportional controller: angular speed per unit horizontal offset, 0-100",
+                                  0.0, 100.0, ControllerSettings{}.turnGain, f);
      },
-     getControl<&ControllerSettings::turnGain>, setControl<&ControllerSettings::turnGain>,
-     refuseNegativeGain},
+     getControl<&ControllerSettings::turnGain>, setControl<&ControllerSettings::turnGain>, refuseNotFinite},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
-       return g_param_spec_double(
-           "drive-gain", "Drive gain",
-           "Proportional controller: linear speed per unit relative distance "
-           "error, 0-100. The range admits negatives only so that robotctl can refuse "
-           "them with a clear error (at start; a warning while playing, the old gain stays)",
-           -100.0, 100.0, ControllerSettings{}.driveGain, f);
+       return g_param_spec_double("drive-gain", "Drive gain",
+                                  "Proportional controller: linear speed per unit relative distance "
+                                  "error, 0-100",
+                                  0.0, 100.0, ControllerSettings{}.driveGain, f);
      },
-     getControl<&ControllerSettings::driveGain>, setControl<&ControllerSettings::driveGain>,
-     refuseNegativeGain},
+     getControl<&ControllerSettings::driveGain>, setControl<&ControllerSettings::driveGain>, refuseNotFinite},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_double(
            "turn-integral-gain", "Turn integral gain",
            "Proportional controller: angular speed per unit horizontal offset held for a second, 0-100 "
            "(removes "
-           "the lag behind a target moving sideways; frozen while the turn is limited). The range admits "
-           "negatives only so that robotctl can refuse them with a clear error",
-           -100.0, 100.0, ControllerSettings{}.turnIntegralGain, f);
+           "the lag behind a target moving sideways; frozen while the turn is limited)",
+           0.0, 100.0, ControllerSettings{}.turnIntegralGain, f);
      },
      getControl<&ControllerSettings::turnIntegralGain>, setControl<&ControllerSettings::turnIntegralGain>,
-     refuseNegativeGain},
+     refuseNotFinite},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_double(
            "drive-integral-gain", "Drive integral gain",
            "Proportional controller: linear speed per unit relative distance error held for a second, 0-100 "
-           "(removes the lag behind a target moving away or closer; frozen while the speed is limited). The "
-           "range admits negatives only so that robotctl can refuse them with a clear error",
-           -100.0, 100.0, ControllerSettings{}.driveIntegralGain, f);
+           "(removes the lag behind a target moving away or closer; frozen while the speed is limited)",
+           0.0, 100.0, ControllerSettings{}.driveIntegralGain, f);
      },
      getControl<&ControllerSettings::driveIntegralGain>, setControl<&ControllerSettings::driveIntegralGain>,
-     refuseNegativeGain},
+     refuseNotFinite},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_double(
            "turn-rate-gain", "Turn rate gain",
            "Proportional controller: angular speed per unit of horizontal offset change per second, 0-100 "
-           "(reacts to the target's sideways motion; damps the turn). The range admits negatives only so "
-           "that robotctl can refuse them with a clear error",
-           -100.0, 100.0, ControllerSettings{}.turnRateGain, f);
+           "(reacts to the target's sideways motion; damps the turn)",
+           0.0, 100.0, ControllerSettings{}.turnRateGain, f);
      },
      getControl<&ControllerSettings::turnRateGain>, setControl<&ControllerSettings::turnRateGain>,
-     refuseNegativeGain},
+     refuseNotFinite},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_double(
            "drive-rate-gain", "Drive rate gain",
            "Proportional controller: linear speed per unit of relative distance error change per second, "
-           "0-100 (reacts to the target moving away or closer; damps the approach). The range admits "
-           "negatives only so that robotctl can refuse them with a clear error",
-           -100.0, 100.0, ControllerSettings{}.driveRateGain, f);
+           "0-100 (reacts to the target moving away or closer; damps the approach)",
+           0.0, 100.0, ControllerSettings{}.driveRateGain, f);
      },
      getControl<&ControllerSettings::driveRateGain>, setControl<&ControllerSettings::driveRateGain>,
-     refuseNegativeGain},
+     refuseNotFinite},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_double(

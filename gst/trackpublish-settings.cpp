@@ -80,7 +80,7 @@ const Def kProperties[] = {
      getTextOrNull<&Settings::source>, setText<&Settings::source>},
     {kAtStart, false,
      [](GParamFlags f) {
-       return g_param_spec_int("qos", "QoS",
+       return g_param_spec_int("mqtt-qos", "MQTT QoS",
                                "MQTT quality of service: 0 at most once, 1 at least once (a document may "
                                "arrive twice after a reconnect), 2 exactly once",
                                0, 2, Settings{}.qos, f);

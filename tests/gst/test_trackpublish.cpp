@@ -462,7 +462,7 @@ GST_START_TEST(test_mqtt_delivers_every_frame_in_order) {
   Subscriber subscriber(broker.address(), "colortrack/#");
   constexpr int kFrames = 300;
   {
-    Publisher p("address=" + broker.address() + " source=cam1 qos=1 drain-timeout=20000");
+    Publisher p("address=" + broker.address() + " source=cam1 mqtt-qos=1 drain-timeout=20000");
     fail_unless(p.play() != GST_STATE_CHANGE_FAILURE);
     for (int i = 0; i < kFrames; ++i) p.push(i);
     const auto pushed = Clock::now();
@@ -527,7 +527,7 @@ GST_START_TEST(test_mqtt_survives_a_broker_restart) {
   int passedWhileDown = 0;
   double downSeconds = 0;
   {
-    Publisher p("address=" + broker->address() + " source=live qos=1", true);
+    Publisher p("address=" + broker->address() + " source=live mqtt-qos=1", true);
     fail_unless(p.play() != GST_STATE_CHANGE_FAILURE);
     // Connected first (Paho takes ~2 s, more under a sanitizer), so that the broker goes away from a live
     // connection.
