@@ -79,11 +79,15 @@
 
 /* Element message posted by robotctl for every command sent when post-messages=true. */
 #define ROBOTCTL_MESSAGE_NAME "robotctl"
-#define ROBOTCTL_MESSAGE_COMMAND "command"               /* string: forward, backward, left, right, stop */
-#define ROBOTCTL_MESSAGE_LEFT "left"                     /* gint: left wheel speed as sent */
-#define ROBOTCTL_MESSAGE_RIGHT "right"                   /* gint: right wheel speed as sent */
-#define ROBOTCTL_MESSAGE_LINEAR "linear"                 /* double */
-#define ROBOTCTL_MESSAGE_ANGULAR "angular"               /* double */
+#define ROBOTCTL_MESSAGE_COMMAND "command" /* string: forward, backward, left, right, stop */
+#define ROBOTCTL_MESSAGE_LEFT "left"       /* gint: left wheel speed as sent (not MAVLink) */
+#define ROBOTCTL_MESSAGE_RIGHT "right"     /* gint: right wheel speed as sent (not MAVLink) */
+/* MAVLink only, as sent, in MAVLink's units and signs: */
+#define ROBOTCTL_MESSAGE_PITCH_RATE "pitch-rate" /* gdouble: rad/s, > 0 up (mavlink-mode=gimbal) */
+#define ROBOTCTL_MESSAGE_YAW_RATE "yaw-rate"     /* gdouble: rad/s, > 0 clockwise seen from above (right) */
+#define ROBOTCTL_MESSAGE_VX "vx"                 /* gdouble: m/s forward (mavlink-mode=follow) */
+#define ROBOTCTL_MESSAGE_LINEAR "linear"         /* double */
+#define ROBOTCTL_MESSAGE_ANGULAR "angular"       /* double */
 #define ROBOTCTL_MESSAGE_TARGET_VISIBLE "target-visible" /* gboolean */
 #define ROBOTCTL_MESSAGE_TIMESTAMP "timestamp"           /* guint64: PTS of the deciding buffer, or NONE */
 #define ROBOTCTL_MESSAGE_REASON "reason"                 /* string: why this command was sent */

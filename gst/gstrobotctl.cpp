@@ -43,7 +43,8 @@
  * #GstRobotCtl:link-timeout ms is sent only stop, with a warning, until it answers again.
  *
  * With #GstRobotCtl:post-messages, every command sent is also posted as an element message "robotctl" with
- * command (string), left and right (int, as sent), linear and angular (double), target-visible (boolean),
+ * command (string), left and right (int, as sent; with MAVLink instead pitch-rate or vx and yaw-rate, as
+ * sent: rad/s and m/s, yaw > 0 to the right), linear and angular (double), target-visible (boolean),
  * timestamp (the buffer the decision came from, or GST_CLOCK_TIME_NONE) and reason ("target", "no-target",
  * "stalled", "eos", "flush", "paused", "ready", "start", "reconnected", "link lost", "shutdown").
  *
@@ -335,7 +336,7 @@ static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
 
   // The robot hears stop from the start, at the rate, until there is something to follow.
   self->priv->listener = std::make_unique<robotctl::ElementListener>(GST_ELEMENT(self), GST_CAT_DEFAULT,
-                                                                     s.postMessages, s.outputScale);
+                                                                     s.postMessages, config.protocol);
   self->priv->writer = std::make_unique<CommandWriter>(std::move(port), config, *self->priv->listener);
   self->priv->writer->start();
   GST_OBJECT_LOCK(self);

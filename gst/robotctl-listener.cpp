@@ -50,14 +50,25 @@ void ElementListener::reconnected(const std::string &port) {
 
 void ElementListener::post(const Command &command) {
   const colortrack::DriveOutput &out = command.output;
-  const colortrack::SentSpeeds speeds = colortrack::sentSpeeds(out, outputScale_);
   GstStructure *s = gst_structure_new(
       ROBOTCTL_MESSAGE_NAME, ROBOTCTL_MESSAGE_COMMAND, G_TYPE_STRING, colortrack::toString(out.command),
-      ROBOTCTL_MESSAGE_LEFT, G_TYPE_INT, speeds.left, ROBOTCTL_MESSAGE_RIGHT, G_TYPE_INT, speeds.right,
       ROBOTCTL_MESSAGE_LINEAR, G_TYPE_DOUBLE, out.linear, ROBOTCTL_MESSAGE_ANGULAR, G_TYPE_DOUBLE,
       out.angular, ROBOTCTL_MESSAGE_TARGET_VISIBLE, G_TYPE_BOOLEAN, static_cast<gboolean>(out.targetVisible),
       ROBOTCTL_MESSAGE_TIMESTAMP, G_TYPE_UINT64, static_cast<guint64>(command.timestamp),
       ROBOTCTL_MESSAGE_REASON, G_TYPE_STRING, command.reason, nullptr);
+  if (protocol_.protocol == colortrack::Protocol::Mavlink) {
+    // What the MAVLink message carried, so that a log of the bus reads like one of the vehicle's link.
+    const colortrack::MavlinkCommand sent = colortrack::mavlinkCommand(out, protocol_.mavlink);
+    if (protocol_.mavlink.mode == colortrack::MavlinkMode::Gimbal)
+      gst_structure_set(s, ROBOTCTL_MESSAGE_PITCH_RATE, G_TYPE_DOUBLE, double{sent.pitchRate}, nullptr);
+    else
+      gst_structure_set(s, ROBOTCTL_MESSAGE_VX, G_TYPE_DOUBLE, double{sent.forwardSpeed}, nullptr);
+    gst_structure_set(s, ROBOTCTL_MESSAGE_YAW_RATE, G_TYPE_DOUBLE, double{sent.yawRate}, nullptr);
+  } else {
+    const colortrack::SentSpeeds speeds = colortrack::sentSpeeds(out, protocol_.outputScale);
+    gst_structure_set(s, ROBOTCTL_MESSAGE_LEFT, G_TYPE_INT, speeds.left, ROBOTCTL_MESSAGE_RIGHT, G_TYPE_INT,
+                      speeds.right, nullptr);
+  }
   gst_element_post_message(element_, gst_message_new_element(GST_OBJECT(element_), s));
 }
 

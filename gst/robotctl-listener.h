@@ -13,9 +13,11 @@ namespace robotctl {
 class ElementListener : public WriterListener {
  public:
   // Logs in `category`, the element's. With `postMessages`, each command sent is posted as a "robotctl"
-  // element message, its wheel speeds times `outputScale`.
-  ElementListener(GstElement *element, GstDebugCategory *category, bool postMessages, int outputScale)
-      : element_(element), category_(category), postMessages_(postMessages), outputScale_(outputScale) {}
+  // element message: with `mavlink`, the rates and speed of the MAVLink message sent; otherwise the wheel
+  // speeds times the protocol's output scale.
+  ElementListener(GstElement *element, GstDebugCategory *category, bool postMessages,
+                  const colortrack::ProtocolSettings &protocol)
+      : element_(element), category_(category), postMessages_(postMessages), protocol_(protocol) {}
 
   void sent(const Command &command) override;
   void stalled(double timeout) override;
@@ -32,7 +34,7 @@ class ElementListener : public WriterListener {
   GstElement *element_;
   GstDebugCategory *category_;
   const bool postMessages_;
-  const int outputScale_;
+  const colortrack::ProtocolSettings protocol_;
 };
 
 }  // namespace robotctl

@@ -108,27 +108,33 @@ std::vector<std::uint8_t> ProtocolEncoder::heartbeat() {
   return bytes;
 }
 
+MavlinkCommand mavlinkCommand(const DriveOutput &output, const MavlinkSettings &m) {
+  MavlinkCommand c;
+  if (isStill(output)) return c;  // exactly zero
+  c.pitchRate = bounded(output.tilt * m.rateScale, m.maxRate);
+  c.yawRate = bounded(-output.angular * m.rateScale, m.maxRate);
+  c.forwardSpeed = bounded(output.linear * m.speedScale, m.maxSpeed);
+  return c;
+}
+
 std::vector<std::uint8_t> ProtocolEncoder::encodeMavlink(const DriveOutput &output) {
   const MavlinkSettings &m = settings_.mavlink;
   mavlink::Sender sender{m.systemId, m.componentId, sequence_};
-  // Exactly zero when stopped. MAVLink's yaw rates turn clockwise seen from above (to the right) and its
-  // pitch rate up; angular > 0 turns left.
-  const bool still = isStill(output);
-  const auto rate = [&](double v) { return still ? 0.0f : bounded(v * m.rateScale, m.maxRate); };
+  const MavlinkCommand command = mavlinkCommand(output, m);
   std::vector<std::uint8_t> bytes;
   if (m.mode == MavlinkMode::Gimbal) {
     mavlink::GimbalManagerSetPitchyaw message;
     message.targetSystem = m.targetSystem;
     message.targetComponent = m.targetComponent;
-    message.pitchRate = rate(output.tilt);
-    message.yawRate = rate(-output.angular);
+    message.pitchRate = command.pitchRate;
+    message.yawRate = command.yawRate;
     bytes = mavlink::encode(message, sender);
   } else {
     mavlink::SetPositionTargetLocalNed message;
     message.targetSystem = m.targetSystem;
     message.targetComponent = m.targetComponent;
-    message.vx = still ? 0.0f : bounded(output.linear * m.speedScale, m.maxSpeed);
-    message.yawRate = rate(-output.angular);
+    message.vx = command.forwardSpeed;
+    message.yawRate = command.yawRate;
     bytes = mavlink::encode(message, sender);
   }
   sequence_ = sender.sequence;

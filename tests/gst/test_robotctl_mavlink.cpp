@@ -4,6 +4,7 @@
 // 1 Hz +- 10 %, rates and velocities with the right signs while the target is off centre, and the stop form
 // once it is lost and at the end. Skipped (77) without node-mavlink.
 // C++ headers first: gstcheck.h defines macros (fail, ...) that clash with names in the standard library.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -41,11 +42,31 @@ struct Frame {
   json message;
 };
 
+// What a "robotctl" bus message said was sent: pitch-rate (gimbal) or vx (follow), and yaw-rate.
+struct Posted {
+  double first = 0, yawRate = 0;
+};
+
+// A "robotctl" bus message read as Posted; it may not carry wheel speeds (MAVLink sends none).
+void readPosted(GstMessage *m, const char *firstField, std::vector<Posted> &posted) {
+  const GstStructure *s = gst_message_get_structure(m);
+  if (!gst_structure_has_name(s, "robotctl")) return;
+  fail_if(gst_structure_has_field(s, "left") || gst_structure_has_field(s, "right"),
+          "wheel speeds in a MAVLink message: %" GST_PTR_FORMAT, s);
+  Posted p;
+  fail_unless(gst_structure_get_double(s, firstField, &p.first) &&
+                  gst_structure_get_double(s, "yaw-rate", &p.yawRate),
+              "%" GST_PTR_FORMAT, s);
+  posted.push_back(p);
+}
+
 // Runs the pipeline in real time: `visibleFrames` frames with the ball off centre (right of and above the
 // centre: 10 degrees right, 6 up), then `hiddenFrames` without it, then EOS; returns what node-mavlink read
-// from the datagrams, and the time the ball vanished (s after the first frame).
+// from the datagrams, and the time the ball vanished (s after the first frame). With `posted`, also what the
+// bus messages said was sent (post-messages=true; `firstField` pitch-rate or vx).
 std::vector<Frame> capture(const std::string &properties, int visibleFrames, int hiddenFrames,
-                           double &hiddenAt) {
+                           double &hiddenAt, std::vector<Posted> *posted = nullptr,
+                           const char *firstField = nullptr) {
   UdpReceiver receiver;
   fail_unless(receiver.port() > 0);
   GimbalSimConfig config;
@@ -85,8 +106,17 @@ std::vector<Frame> capture(const std::string &properties, int visibleFrames, int
   }
   gst_app_src_end_of_stream(GST_APP_SRC(src));
   GstBus *bus = gst_element_get_bus(pipeline);
-  GstMessage *eos = gst_bus_timed_pop_filtered(
-      bus, 10 * GST_SECOND, static_cast<GstMessageType>(GST_MESSAGE_EOS | GST_MESSAGE_ERROR));
+  GstMessage *eos = nullptr;
+  while (GstMessage *m = gst_bus_timed_pop_filtered(
+             bus, 10 * GST_SECOND,
+             static_cast<GstMessageType>(GST_MESSAGE_EOS | GST_MESSAGE_ERROR | GST_MESSAGE_ELEMENT))) {
+    if (GST_MESSAGE_TYPE(m) != GST_MESSAGE_ELEMENT) {
+      eos = m;
+      break;
+    }
+    if (posted) readPosted(m, firstField, *posted);
+    gst_message_unref(m);
+  }
   fail_unless(eos != nullptr && GST_MESSAGE_TYPE(eos) == GST_MESSAGE_EOS, "no EOS");
   gst_message_unref(eos);
   std::this_thread::sleep_for(std::chrono::milliseconds(50));
@@ -146,12 +176,33 @@ double number(const json &fields, const char *name) {
   return v.is_string() ? std::nan("") : v.get<double>();
 }
 
+// Each bus message says what went out: its pair of values is that of a frame of message `msgid` (as floats,
+// exactly), with MAVLink's signs (the ball right of centre: yaw rate > 0 in both).
+void checkPosted(const std::vector<Frame> &frames, const std::vector<Posted> &posted, int msgid,
+                 const char *firstField) {
+  int turningRight = 0;
+  for (const Posted &p : posted) {
+    const bool sent = std::any_of(frames.begin(), frames.end(), [&](const Frame &f) {
+      return f.message["msgid"] == msgid &&
+             static_cast<float>(number(f.message["fields"], firstField)) == static_cast<float>(p.first) &&
+             static_cast<float>(number(f.message["fields"], "yawRate")) == static_cast<float>(p.yawRate);
+    });
+    fail_unless(sent, "posted %s %g, yaw-rate %g: no such frame was sent", firstField, p.first, p.yawRate);
+    turningRight += p.yawRate > 0;
+  }
+  std::printf("%zu commands posted, %d turning right\n", posted.size(), turningRight);
+  fail_unless(turningRight > 10);
+}
+
 GST_START_TEST(test_gimbal_stream_over_udp) {
   double hiddenAt = 0;
   // 2.4 s with the ball, 1.2 s without: three heartbeats at least, and the lost-target stop.
-  const std::vector<Frame> frames = capture("mavlink-mode=gimbal rate=20", 72, 36, hiddenAt);
+  std::vector<Posted> posted;
+  const std::vector<Frame> frames =
+      capture("mavlink-mode=gimbal rate=20 post-messages=true", 72, 36, hiddenAt, &posted, "pitch-rate");
   checkFraming(frames);
   checkHeartbeats(frames, 3);
+  checkPosted(frames, posted, 287, "pitchRate");
   int turning = 0, stopsAfterLoss = 0;
   double firstStop = -1;
   for (const Frame &f : frames) {
@@ -188,10 +239,13 @@ GST_END_TEST;
 
 GST_START_TEST(test_follow_stream_over_udp) {
   double hiddenAt = 0;
+  std::vector<Posted> posted;
   const std::vector<Frame> frames =
-      capture("mavlink-mode=follow controller=proportional rate=20", 45, 24, hiddenAt);
+      capture("mavlink-mode=follow controller=proportional rate=20 post-messages=true", 45, 24, hiddenAt,
+              &posted, "vx");
   checkFraming(frames);
   checkHeartbeats(frames, 2);
+  checkPosted(frames, posted, 84, "vx");
   int moving = 0;
   double firstStop = -1;
   for (const Frame &f : frames) {

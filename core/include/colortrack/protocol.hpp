@@ -41,6 +41,14 @@ struct MavlinkSettings {
 // tan(hfov / 2) for a horizontal field of view in degrees.
 double mavlinkRateScale(double hfovDegrees);
 
+// What a MAVLink command carries, in MAVLink's units and signs: rates in rad/s, the yaw rate > 0 turning
+// clockwise seen from above (to the right, the opposite of DriveOutput::angular), the pitch rate > 0 up;
+// the forward speed in m/s. Bounded by maxRate and maxSpeed, exactly zero on a stop.
+struct MavlinkCommand {
+  float pitchRate = 0, yawRate = 0, forwardSpeed = 0;
+};
+MavlinkCommand mavlinkCommand(const DriveOutput &output, const MavlinkSettings &settings);
+
 // Characters for stop, forward, backward, left, right, in the order of the `zone-chars` text "FBLRS".
 struct ZoneChars {
   char forward = 'F', backward = 'B', left = 'L', right = 'R', stop = 'S';
