@@ -321,6 +321,12 @@ static gboolean gst_track_publish_start(GstBaseTransform *trans) {
   const std::string source = s.source.empty() ? name : s.source;
   g_free(name);
   state.facts.source = source;
+  gchar *run = g_uuid_string_random();
+  state.facts.run = run;
+  g_free(run);
+  state.facts.tags =
+      s.tags.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json::parse(s.tags, nullptr, false);
+  state.facts.addEmptyResults = s.addEmptyResults;
   state.roiType = g_quark_from_string(s.roiType.c_str());
   state.drain = milliseconds(s.drainTimeoutMs);
   if (!s.location.empty() && !openFile(self, state, s.location)) return FALSE;
@@ -369,9 +375,12 @@ static gboolean gst_track_publish_sink_event(GstBaseTransform *trans, GstEvent *
 static GstFlowReturn gst_track_publish_transform_ip(GstBaseTransform *trans, GstBuffer *buffer) {
   GstTrackPublish *self = GST_TRACK_PUBLISH(trans);
   State &state = self->priv->state;
-  state.facts.timestamp = GST_BUFFER_PTS(buffer);
+  // Stream time, as gvametaconvert gives it: from 0 at the start of the stream whatever the PTS origin.
+  state.facts.timestamp =
+      gst_segment_to_stream_time(&trans->segment, GST_FORMAT_TIME, GST_BUFFER_PTS(buffer));
   const std::string document = trackpublish::trackDocument(buffer, state.roiType, state.facts);
   ++state.facts.frame;
+  if (document.empty()) return GST_FLOW_OK;  // no object, and add-empty-results=false
   if (state.file) {
     // One line per document, flushed so that a reader following the file sees whole frames.
     if (std::fputs(document.c_str(), state.file) < 0 || std::fputc('\n', state.file) == EOF ||

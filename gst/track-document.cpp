@@ -36,6 +36,7 @@ void addTrackFields(Json &object, const GstStructure *params, double &confidence
 Json objectOf(GstBuffer *buffer, GstVideoRegionOfInterestMeta *roi, const FrameFacts &facts) {
   Json object;
   object["id"] = roi->id;
+  object["roi_type"] = g_quark_to_string(roi->roi_type);
   object["x"] = roi->x;
   object["y"] = roi->y;
   object["w"] = roi->w;
@@ -54,6 +55,7 @@ Json objectOf(GstBuffer *buffer, GstVideoRegionOfInterestMeta *roi, const FrameF
   }
   detection["confidence"] = confidence;
   detection["label"] = g_quark_to_string(roi->roi_type);
+  detection["label_id"] = 0;  // one class: what roi-type selects
   object["detection"] = std::move(detection);
   return object;
 }
@@ -61,12 +63,6 @@ Json objectOf(GstBuffer *buffer, GstVideoRegionOfInterestMeta *roi, const FrameF
 }  // namespace
 
 std::string trackDocument(GstBuffer *buffer, GQuark roiType, const FrameFacts &facts) {
-  Json document;
-  document["timestamp"] =
-      GST_CLOCK_TIME_IS_VALID(facts.timestamp) ? Json(static_cast<guint64>(facts.timestamp)) : Json(nullptr);
-  document["source"] = facts.source;
-  document["frame"] = facts.frame;
-  document["resolution"] = {{"width", facts.width}, {"height", facts.height}};
   Json objects = Json::array();
   gpointer state = nullptr;
   while (GstMeta *meta =
@@ -74,9 +70,24 @@ std::string trackDocument(GstBuffer *buffer, GQuark roiType, const FrameFacts &f
     auto *roi = reinterpret_cast<GstVideoRegionOfInterestMeta *>(meta);
     if (roi->roi_type == roiType) objects.push_back(objectOf(buffer, roi, facts));
   }
+  if (objects.empty() && !facts.addEmptyResults) return "";
+  Json document;
+  document["timestamp"] =
+      GST_CLOCK_TIME_IS_VALID(facts.timestamp) ? Json(static_cast<guint64>(facts.timestamp)) : Json(nullptr);
+  document["source"] = facts.source;
+  document["run"] = facts.run;
+  document["frame"] = facts.frame;
+  document["resolution"] = {{"width", facts.width}, {"height", facts.height}};
+  if (!facts.tags.is_null()) document["tags"] = facts.tags;
   document["objects"] = std::move(objects);
   // Invalid UTF-8 in a source name is replaced rather than thrown.
   return document.dump(-1, ' ', false, Json::error_handler_t::replace);
+}
+
+std::string checkTags(const std::string &tags) {
+  const Json parsed = Json::parse(tags, nullptr, false);
+  if (parsed.is_discarded()) return "it is not JSON (expected an object such as {\"site\":\"dock-3\"})";
+  return parsed.is_object() ? "" : "it must be a JSON object such as {\"site\":\"dock-3\"}";
 }
 
 }  // namespace trackpublish

@@ -1,10 +1,13 @@
-// One JSON document per frame from the region-of-interest metas on a buffer, shaped like DL Streamer's
-// gvametaconvert output (timestamp, source, resolution, objects[] with a pixel box and a normalised
-// detection.bounding_box, confidence, label) plus what a tracker adds (id, state, score, verified, vx, vy)
-// and the frame number. Built with nlohmann-json. docs/trackpublish.md shows a document.
+// One JSON document per frame from the region-of-interest metas on a buffer, in DL Streamer's gvametaconvert
+// schema (timestamp in stream time, source, resolution, tags, objects[] with roi_type, a pixel box and a
+// normalised detection.bounding_box, confidence, label, label_id) plus what a tracker adds (id, state,
+// score, verified, vx, vy), the frame number and the run. Built with nlohmann-json. docs/trackpublish.md
+// shows a document.
 #pragma once
 
 #include <gst/gst.h>
+
+#include <nlohmann/json.hpp>
 
 #include <string>
 
@@ -12,12 +15,19 @@ namespace trackpublish {
 
 struct FrameFacts {
   std::string source;
+  std::string run;              // new at every start: documents of two runs never look like repeats
+  nlohmann::ordered_json tags;  // an object, or null: none
+  bool addEmptyResults = false;
   guint64 frame = 0;           // buffers seen since start, from 0
-  GstClockTime timestamp = 0;  // the buffer's PTS (GST_CLOCK_TIME_NONE: none)
+  GstClockTime timestamp = 0;  // the buffer's stream time (GST_CLOCK_TIME_NONE: none)
   gint width = 0, height = 0;  // from the caps; 0 when unknown (no normalised box then)
 };
 
-// The document for `buffer`'s ROI metas of type `roiType`, on one line.
+// The document for `buffer`'s ROI metas of type `roiType`, on one line; empty for a frame without one
+// unless facts.addEmptyResults.
 std::string trackDocument(GstBuffer *buffer, GQuark roiType, const FrameFacts &facts);
+
+// Why `tags` is not a JSON object, or empty when it is.
+std::string checkTags(const std::string &tags);
 
 }  // namespace trackpublish

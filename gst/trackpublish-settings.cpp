@@ -2,6 +2,7 @@
 
 #include "mqtt-publisher.h"
 #include "output-file.h"
+#include "track-document.h"
 
 namespace trackpublish {
 
@@ -37,6 +38,11 @@ std::string checkClientIdValue(const PropertyStore &, const GValue *v, std::stri
   return checkClientId(textOf(v));
 }
 
+std::string checkTagsValue(const PropertyStore &, const GValue *v, std::string *) {
+  const std::string tags = textOf(v);
+  return tags.empty() ? "" : checkTags(tags);
+}
+
 const char *refuseEmptyRoiType(const GValue *v) {
   return textOf(v).empty() ? "it names the type of the regions to publish (e.g. colortrack, object)"
                            : nullptr;
@@ -70,6 +76,22 @@ const Def kProperties[] = {
                                   Settings{}.topic.c_str(), f);
      },
      getText<&Settings::topic>, setText<&Settings::topic>, nullptr, checkTopicValue, true},
+    {kAtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_string("tags", "Tags",
+                                  "A JSON object put in every document as \"tags\" (as gvametapublish's "
+                                  "tags), e.g. {\"site\":\"dock-3\"}; NULL = none",
+                                  nullptr, f);
+     },
+     getTextOrNull<&Settings::tags>, setText<&Settings::tags>, nullptr, checkTagsValue, true},
+    {kAtStart, false,
+     [](GParamFlags f) {
+       return g_param_spec_boolean("add-empty-results", "Add empty results",
+                                   "Also publish a document for a frame with no object (as gvametaconvert's "
+                                   "add-empty-results: by default such frames give none)",
+                                   Settings{}.addEmptyResults, f);
+     },
+     getValue<&Settings::addEmptyResults>, setValue<&Settings::addEmptyResults>},
     {kAtStart, false,
      [](GParamFlags f) {
        return g_param_spec_string("source", "Source",

@@ -22,6 +22,8 @@ struct Settings {
   bool failOnConnect = false;
   guint drainTimeoutMs = 5000;
   std::string roiType = "colortrack";
+  std::string tags;              // a JSON object put in every document as "tags"; empty: none
+  bool addEmptyResults = false;  // a document also for a frame with no object (gvametaconvert's default: no)
 };
 
 using PropertyStore = gstglue::PropertyStore<Settings>;

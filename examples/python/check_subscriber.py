@@ -74,7 +74,7 @@ def publish(port, source):
     element drains its queue to the broker first)."""
     pipeline = (f"videotestsrc pattern=ball num-buffers={FRAMES} ! video/x-raw,width={WIDTH},height={HEIGHT} ! "
                 "videoconvert ! colortrack init-box=140,100,40,40 ! "
-                f"trackpublish address=tcp://127.0.0.1:{port} source={source} ! fakesink")
+                f"trackpublish address=tcp://127.0.0.1:{port} source={source} add-empty-results=true ! fakesink")
     out = subprocess.run(["gst-launch-1.0", "-q", "-e"] + pipeline.split(), capture_output=True, text=True,
                          timeout=60)
     if out.returncode != 0:

@@ -8,9 +8,10 @@
 Subscribes at QoS 1 with a persistent session (a fixed client id, clean session off, `--clean` turns it off):
 documents published while this consumer is away, or while the broker restarts (with `persistence true` in
 mosquitto.conf), are kept by the broker and delivered when it comes back. QoS 1 may deliver a document twice;
-repeats are dropped by (source, frame). A camera pipeline that restarts (systemd's Restart=always) counts
-frames from 0 again: a frame far below the newest one seen from that source (`--restart-gap`, default 1000)
-starts a new run instead of being taken for a repeat.
+repeats are dropped by (source, run, frame). A camera pipeline that restarts (systemd's Restart=always) counts
+frames from 0 again under a new `run` id, so its documents are never taken for repeats. Documents without a
+run (older trackpublish) fall back on a guess: a frame far below the newest one seen from that source
+(`--restart-gap`, default 1000) starts a new run.
 
 Prints each document as it arrived (one JSON line), or with `--brief` a short line
 `cam1 frame 12: 1 object(s) #1 144,104 40x40 tracking 0.98`. Status lines go to stderr.
@@ -30,7 +31,8 @@ import paho.mqtt.client as mqtt
 
 
 class Deduper:
-    """Tells new documents from repeats by (source, frame), a pipeline restart starting a new run."""
+    """Tells new documents from repeats by (source, run) and frame; without a run id a frame far below the newest
+    one starts a new run."""
 
     def __init__(self, restart_gap=1000, window=4096):
         self.restart_gap = restart_gap
@@ -119,7 +121,7 @@ def main():
     def on_message(client, userdata, message):
         try:
             doc = json.loads(message.payload)
-            source, frame = doc["source"], int(doc["frame"])
+            source, frame = (doc["source"], doc.get("run")), int(doc["frame"])
         except (ValueError, KeyError, TypeError):
             print(f"not a trackpublish document on {message.topic}: {message.payload[:80]!r}", file=sys.stderr,
                   flush=True)
