@@ -26,12 +26,14 @@ demo_packages=(
   libopencv-dev libeigen3-dev libserialport-dev libpaho-mqtt-dev nlohmann-json3-dev
 )
 # The tests, benchmarks and examples on top: gst-inspect-1.0, cvtracker (-bad and -opencv) for the
-# evaluation, GoogleTest, gst-rtsp-server for the RTSP test, PyGObject for the Python example, the mosquitto
+# evaluation, GoogleTest, gst-rtsp-server for the RTSP test, PyGObject and GStreamer's Python overrides
+# (python3-gst-1.0: threshold mode's objects list) for the Python example, the mosquitto
 # broker the trackpublish tests start on loopback, paho-mqtt for the Python MQTT consumer example, node and
 # npm for node-mavlink (the MAVLink tests' independent implementation, see below).
 test_packages=(
   gstreamer1.0-tools gstreamer1.0-plugins-bad gstreamer1.0-opencv libgtest-dev libgstrtspserver-1.0-dev
-  python3-gi gir1.2-gstreamer-1.0 gir1.2-gst-plugins-base-1.0 mosquitto openssl python3-paho-mqtt
+  python3-gi python3-gst-1.0 gir1.2-gstreamer-1.0 gir1.2-gst-plugins-base-1.0 mosquitto openssl
+  python3-paho-mqtt
   nodejs
 )
 packages=("${demo_packages[@]}")

@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """Test of colortrack_app.py: runs it on videotestsrc's ball and checks its JSON lines (one per frame, every
-field there with its type) and that the box follows the ball. Exit code 77 (meson: skipped) without PyGObject."""
+field there with its type) and that the box follows the ball; then in threshold mode, that each frame's
+"objects" list (read through python3-gst-1.0's overrides) holds the ball. Exit code 77 (meson: skipped)
+without PyGObject."""
 import json
 import math
 import subprocess
@@ -63,9 +65,29 @@ def main():
         errors.append(f"the box followed the ball in only {tracked} of {FRAMES} frames")
     if with_meta != tracked and tracked:
         errors.append("boxes without a ROI meta")
+    errors += check_threshold_objects()
     for e in errors[:10]:
         print("FAIL:", e)
     return 1 if errors else 0
+
+
+def check_threshold_objects():
+    """Threshold mode: the ball is among the objects of nearly every frame (it is confirmed from frame 2)."""
+    out = subprocess.run([sys.executable, sys.argv[1], "--frames", str(FRAMES), "--mode", "threshold"],
+                         capture_output=True, text=True, timeout=60)
+    sys.stderr.write(out.stderr)
+    if out.returncode != 0:
+        return [f"colortrack_app.py --mode threshold exited with {out.returncode}"]
+    on_ball = 0
+    for number, line in enumerate(out.stdout.splitlines()):
+        objects = json.loads(line).get("objects")
+        if objects is None:
+            return [f"threshold line {number}: no objects list (python3-gst-1.0 missing?): {line}"]
+        cx, cy = ball_centre(number)
+        on_ball += any(math.hypot(o["box"][0] + o["box"][2] / 2 - cx, o["box"][1] + o["box"][3] / 2 - cy) <= 6
+                       for o in objects)
+    print(f"threshold mode: the ball among the objects in {on_ball}/{FRAMES} frames")
+    return [] if on_ball >= 0.9 * FRAMES else [f"threshold mode: the ball listed in only {on_ball} frames"]
 
 
 if __name__ == "__main__":

@@ -13,11 +13,19 @@ receives, joins two things colortrack produced for that frame:
 "box" is the meta's box (what travels with the buffer); null when there is no track. "meta" says whether
 the meta was found; when it is not (no track), state and score come from the message alone.
 
-Usage: colortrack_app.py [--frames N] [--init-box X,Y,W,H] [FILE-OR-URI]
-Without FILE-OR-URI: videotestsrc's green ball on black, 320x240 at 30 fps, init-box on the ball at frame 0.
-Needs Debian's python3-gi, gir1.2-gstreamer-1.0 and gir1.2-gst-plugins-base-1.0, hence /usr/bin/python3 above
-(a pyenv or venv python3 first in PATH usually has no gi); another Python with PyGObject runs it as
-`that-python colortrack_app.py`.
+With --mode threshold (colour-range segmentation, several objects) each line also has "objects": every
+confirmed object of the frame from the message's "objects" list, [{"id", "box", "state", "area"}]. That list
+is a GstValueList, which plain PyGObject cannot read ("unknown type GstValueList"): it needs GStreamer's
+Python overrides, Debian's python3-gst-1.0 (the test command installs it). Without them "objects" is null
+and a note goes to stderr.
+
+Usage: colortrack_app.py [--frames N] [--init-box X,Y,W,H] [--mode threshold [--hsv-lower H,S,V --hsv-upper
+H,S,V]] [FILE-OR-URI]
+Without FILE-OR-URI: videotestsrc's green ball on black, 320x240 at 30 fps, init-box on the ball at frame 0
+(threshold mode: the ball's green range instead).
+Needs Debian's python3-gi, gir1.2-gstreamer-1.0 and gir1.2-gst-plugins-base-1.0 (and python3-gst-1.0 for
+threshold mode's objects), hence /usr/bin/python3 above (a pyenv or venv python3 first in PATH usually has no
+gi); another Python with PyGObject runs it as `that-python colortrack_app.py`.
 """
 import argparse
 import json
@@ -30,6 +38,7 @@ gi.require_version("GstVideo", "1.0")
 from gi.repository import GLib, Gst, GstVideo  # noqa: E402
 
 BALL_INIT_BOX = "140,100,40,40"  # videotestsrc's ball (radius 20) sits at the frame centre at frame 0
+BALL_HSV = ("90,0.4,0.3", "150,1,1")  # the built-in ball's green (0xff20c020), for threshold mode
 PULL_TIMEOUT = Gst.SECOND // 10
 
 
@@ -43,10 +52,30 @@ def build_pipeline(args):
     pipeline = Gst.parse_launch(
         f"{source} ! videoconvert ! video/x-raw,format=BGR ! colortrack name=tracker post-messages=true ! "
         "appsink name=sink sync=false max-buffers=4")
+    tracker = pipeline.get_by_name("tracker")
+    if args.mode == "threshold":
+        tracker.set_property("mode", "threshold")
+        lower, upper = (args.hsv_lower, args.hsv_upper) if args.hsv_lower else BALL_HSV
+        tracker.set_property("hsv-lower", lower)
+        tracker.set_property("hsv-upper", upper)
+        return pipeline
     init_box = args.init_box or (None if args.input else BALL_INIT_BOX)
     if init_box:
-        pipeline.get_by_name("tracker").set_property("init-box", init_box)
+        tracker.set_property("init-box", init_box)
     return pipeline
+
+
+def objects_of(message):
+    """Threshold mode's "objects" list of the message as dicts; None when PyGObject cannot read the list."""
+    try:
+        listed = message.get_value("objects")
+    except TypeError:  # no python3-gst-1.0: "unknown type GstValueList"
+        return None
+    if listed is None:
+        return []
+    items = listed.array if hasattr(listed, "array") else list(listed)
+    return [{"id": o.get_value("id"), "state": o.get_value("state"), "area": o.get_value("area"),
+             "box": [round(o.get_value(k)) for k in ("x", "y", "width", "height")]} for o in items]
 
 
 def track_record(pts, message, buffer):
@@ -57,6 +86,8 @@ def track_record(pts, message, buffer):
         record.update(frame=message.get_value("frame"), id=message.get_value("id"),
                       state=message.get_value("state"), score=message.get_value("score"),
                       verified=message.get_value("verified"))
+        if message.has_field("objects"):
+            record["objects"] = objects_of(message)
     if record["id"] > 0:
         roi = GstVideo.buffer_get_video_region_of_interest_meta_id(buffer, record["id"])
         if roi is not None and GLib.quark_to_string(roi.roi_type) == "colortrack":
@@ -72,6 +103,10 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--frames", type=int, default=150, help="frames of the test pattern (or to read)")
     parser.add_argument("--init-box", help='"x,y,w,h" of the object in the first frame')
+    parser.add_argument("--mode", choices=("template", "threshold"), default="template",
+                        help="colortrack's mode (threshold: every object in a colour range)")
+    parser.add_argument("--hsv-lower", help='threshold mode: "h,s,v" lower end of the range')
+    parser.add_argument("--hsv-upper", help='threshold mode: "h,s,v" upper end of the range')
     parser.add_argument("input", nargs="?", help="video file or URI (default: videotestsrc's ball)")
     args = parser.parse_args()
 
@@ -116,7 +151,11 @@ def run(args, sink, bus):
                 break
             continue
         buffer = sample.get_buffer()
-        print(json.dumps(track_record(buffer.pts, messages.pop(buffer.pts, None), buffer)), flush=True)
+        record = track_record(buffer.pts, messages.pop(buffer.pts, None), buffer)
+        if "objects" in record and record["objects"] is None and frames == 0:
+            print("note: threshold mode's objects need GStreamer's Python overrides (Debian: python3-gst-1.0)",
+                  file=sys.stderr)
+        print(json.dumps(record), flush=True)
         frames += 1
     return status
 
