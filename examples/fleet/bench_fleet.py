@@ -46,6 +46,8 @@ def has(env, *elements):
 def make_clips(directory, frames, env):
     """The scene encoded as H.264 (if x264enc is there), MJPEG and raw I420, FRAMES and SHORT frames long."""
     h264 = has(env, "x264enc", "h264parse", "mp4mux")
+    if not h264:
+        print("note: no x264enc (Debian: gstreamer1.0-plugins-ugly): the H.264 rows are left out", file=sys.stderr)
     for n, tag in ((frames, "long"), (SHORT, "short")):
         if os.path.exists(os.path.join(directory, f"{tag}.i420")):
             continue
@@ -69,6 +71,8 @@ def cases(directory, env):
     raw = (f"filesrc location={directory}/{{tag}}.i420 blocksize={WIDTH * HEIGHT * 3 // 2} ! "
            f"rawvideoparse width={WIDTH} height={HEIGHT} format=i420 framerate=30/1")
     result = []
+    if os.path.exists(f"{directory}/short-h264.mp4") and not has(env, "avdec_h264"):
+        print("note: no avdec_h264 (Debian: gstreamer1.0-libav): the H.264 rows are left out", file=sys.stderr)
     if os.path.exists(f"{directory}/short-h264.mp4") and has(env, "avdec_h264"):
         h264 = f"filesrc location={directory}/{{tag}}-h264.mp4 ! decodebin"
         result += [("H.264 decode only", f"{h264} ! fakesink sync=false"),

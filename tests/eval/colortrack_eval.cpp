@@ -238,6 +238,10 @@ int run(int argc, char **argv) {
     std::fputs(kEvalUsage, stderr);
     return 2;
   }
+  if (options.help) {
+    std::fputs(kEvalUsage, stdout);
+    return 0;
+  }
   if (options.useBuildPlugin) useBuildPlugin();
   gst_init(nullptr, nullptr);
   if (options.openCvThreads > 0) cv::setNumThreads(options.openCvThreads);

@@ -107,7 +107,10 @@ Options parseOptions(int argc, char **argv) {
   for (int i = 0; i < argc; ++i) options.commandLine += (i ? " " : "") + std::string(argv[i]);
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "-h" || arg == "--help") throw std::invalid_argument("");
+    if (arg == "-h" || arg == "--help") {
+      options.help = true;
+      return options;
+    }
     if (parseFlag(arg, options)) continue;
     if (takesValue(arg)) {
       if (i + 1 >= argc) throw std::invalid_argument(arg + " needs a value");

@@ -9,6 +9,7 @@ namespace colortrack::eval {
 extern const char *const kEvalUsage;
 
 struct Options {
+  bool help = false;  // -h / --help: the usage on stdout, exit 0
   std::vector<std::string> inputs;
   std::vector<std::string> trackers;
   std::vector<std::string> formats = {"BGRx", "I420"};
