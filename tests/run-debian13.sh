@@ -140,7 +140,8 @@ fi
 
 in_chroot() {
   chroot "$root" /usr/bin/env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin HOME=/root LANG=C.UTF-8 \
-    TERM="${TERM:-dumb}" CI="${CI:-}" "${ca_env[@]}" /bin/bash -c "cd $src && $*"
+    TERM="${TERM:-dumb}" CI="${CI:-}" COLORTRACK_REQUIRE_NODE_MAVLINK="${COLORTRACK_REQUIRE_NODE_MAVLINK:-0}" \
+    "${ca_env[@]}" /bin/bash -c "cd $src && $*"
 }
 
 # 3. Packages and build, then the tests.
