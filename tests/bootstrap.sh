@@ -23,7 +23,7 @@ esac
 demo_packages=(
   g++ meson ninja-build pkg-config
   libgstreamer1.0-dev libgstreamer-plugins-base1.0-dev gstreamer1.0-plugins-base gstreamer1.0-plugins-good
-  libopencv-dev libeigen3-dev libserialport-dev libpaho-mqtt-dev nlohmann-json3-dev
+  gstreamer1.0-x libopencv-dev libeigen3-dev libserialport-dev libpaho-mqtt-dev nlohmann-json3-dev
 )
 # The tests, benchmarks and examples on top: gst-inspect-1.0, cvtracker (-bad and -opencv) for the
 # evaluation, GoogleTest, gst-rtsp-server for the RTSP test, PyGObject and GStreamer's Python overrides
