@@ -204,9 +204,10 @@ gboolean onCommand(GIOChannel *channel, GIOCondition, gpointer data) {
   return status == G_IO_STATUS_NORMAL || status == G_IO_STATUS_AGAIN;
 }
 
-// `--serve PORT EPOCH_NS`: PORT 0 takes an ephemeral port; EPOCH_NS 0 holds frame 0 until a line on stdin,
-// then starts the scene clock and prints it ("EPOCH n") so a restarted server can continue the same scene.
-// Prints "PORT n" once listening. Runs until killed.
+// `--serve PORT EPOCH_NS CODEC`: PORT 0 takes an ephemeral port; EPOCH_NS 0 holds frame 0 until a line on
+// stdin, then starts the scene clock and prints it ("EPOCH n") so a restarted server can continue the same
+// scene. CODEC: mjpeg or h264. Prints "INITBOX x,y,w,h" (the object in frame 0) and "PORT n" once listening.
+// Runs until killed.
 int serve(int port, gint64 epochNs, const Codec &codec) {
   gst_init(nullptr, nullptr);
   ServerState state;
@@ -236,6 +237,9 @@ int serve(int port, gint64 epochNs, const Codec &codec) {
     std::fprintf(stderr, "rtsp server: cannot listen on 127.0.0.1:%d\n", port);
     return 1;
   }
+  // Where the object is in frame 0, for a client that is not this test (examples/python/check_rtsp_follow.py).
+  const cv::Rect initBox = Scene(sceneConfig()).initBox();
+  std::printf("INITBOX %d,%d,%d,%d\n", initBox.x, initBox.y, initBox.width, initBox.height);
   std::printf("PORT %d\n", gst_rtsp_server_get_bound_port(server));
   std::fflush(stdout);
   GIOChannel *commands = g_io_channel_unix_new(STDIN_FILENO);
