@@ -213,75 +213,65 @@ void prefetch(const std::uint8_t *begin, int bytes) {
 #endif
 }
 
-}  // namespace
+// Linear layouts (every channel subsampled by a divisor of d, which covers every format at decimation 2):
+// channel c's sample of grid column x is at byteOffset + x * stride[c], and a row is done in two passes,
+// table indices (vectorised for the common layouts) then table loads.
+void segmentLinear(const SampledFrame &frame, const RangeLut &lut, int d, const std::array<int, 3> &stride,
+                   cv::Mat &mask) {
+  const cv::Size grid = mask.size();
+  const std::uint8_t *table = lut.table();
+  const PackedIndices packed3 = packed3IndicesFor(frame, d);
+  const RowIndices strided = stridedIndicesFor(stride);
+  const bool planar420 = stride == std::array<int, 3>{2, 1, 1};
+  std::array<int, 3> rowBytes;  // readable from a channel's first sample in a row
+  for (int c = 0; c < 3; ++c) rowBytes[c] = frame.channels[c].plane.cols - frame.channels[c].byteOffset;
+  // Channels sharing a plane with an earlier one (packed pixels, NV12's UV) share its prefetches.
+  std::array<bool, 3> ownPlane;
+  for (int c = 0; c < 3; ++c)
+    ownPlane[c] = c == 0 || (frame.channels[c].plane.data != frame.channels[0].plane.data &&
+                             (c == 1 || frame.channels[c].plane.data != frame.channels[1].plane.data));
+  const auto rowOf = [&](int c, int y) {
+    const ChannelSampler &ch = frame.channels[c];
+    return ch.plane.ptr(y * d / ch.ySub) + ch.byteOffset;
+  };
+  std::vector<int> idx(grid.width);
+  for (int y = 0; y < grid.height; ++y) {
+    std::array<const std::uint8_t *, 3> p, next;
+    for (int c = 0; c < 3; ++c) {
+      p[c] = rowOf(c, y);
+      next[c] = rowOf(c, std::min(y + 1, grid.height - 1));
+    }
+    for (int x0 = 0; x0 < grid.width; x0 += kChunk) {
+      const int x1 = std::min(x0 + kChunk, grid.width);
+      for (int c = 0; c < 3; ++c)
+        if (ownPlane[c]) prefetch(next[c] + x0 * stride[c], (x1 - x0) * stride[c]);
+      int x = x0;
+      if (packed3) {
+        const ChannelSampler &ch = frame.channels[0];
+        const int begin = x0 * d * 3;
+        const std::uint8_t *row = ch.plane.ptr(y * d) + begin;
+        x += packed3(row, ch.plane.cols - begin, x1 - x0, &idx[x0]);
+      } else if (planar420) {
+        const std::array<int, 3> offset{x0 * 2, x0, x0};
+        x += planar420Indices(p[0] + offset[0], p[1] + offset[1], p[2] + offset[2], rowBytes[0] - offset[0],
+                              rowBytes[1] - offset[1], rowBytes[2] - offset[2], x1 - x0, &idx[x0]);
+      } else if (strided) {
+        strided(p[0] + x0 * stride[0], p[1] + x0 * stride[1], p[2] + x0 * stride[2], x1 - x0, &idx[x0]);
+        x = x1;
+      }
+      for (; x < x1; ++x)  // the rest, or every column of the layouts not special-cased
+        idx[x] = RangeLut::index(p[0][x * stride[0]], p[1][x * stride[1]], p[2][x * stride[2]]);
+    }
+    std::uint8_t *out = mask.ptr(y);
+    for (int x = 0; x < grid.width; ++x) out[x] = table[idx[x]];
+  }
+}
 
-void segment(const SampledFrame &frame, const RangeLut &lut, int decimation, cv::Mat &mask) {
-  const int d = std::max(1, decimation);
-  const cv::Size grid((frame.size.width + d - 1) / d, (frame.size.height + d - 1) / d);
-  mask.create(grid, CV_8UC1);
+// Any other layout: the byte offset of every grid column in each channel's row from tables.
+void segmentByColumnTables(const SampledFrame &frame, const RangeLut &lut, int d, cv::Mat &mask) {
+  const cv::Size grid = mask.size();
   const std::uint8_t *table = lut.table();
   constexpr int shift = RangeLut::kShift, bits = RangeLut::kBits;
-
-  // Linear layouts (every channel subsampled by a divisor of d, which covers every format at decimation 2):
-  // channel c's sample of grid column x is at byteOffset + x * stride[c], and a row is done in two passes,
-  // table indices (vectorised for the common layouts) then table loads.
-  bool linear = true;
-  std::array<int, 3> stride;
-  for (int c = 0; c < 3; ++c) {
-    const ChannelSampler &ch = frame.channels[c];
-    linear = linear && d % ch.xSub == 0;
-    stride[c] = d / ch.xSub * ch.sampleBytes;
-  }
-  if (linear) {
-    const PackedIndices packed3 = packed3IndicesFor(frame, d);
-    const RowIndices strided = stridedIndicesFor(stride);
-    const bool planar420 = stride == std::array<int, 3>{2, 1, 1};
-    std::array<int, 3> rowBytes;  // readable from a channel's first sample in a row
-    for (int c = 0; c < 3; ++c) rowBytes[c] = frame.channels[c].plane.cols - frame.channels[c].byteOffset;
-    // Channels sharing a plane with an earlier one (packed pixels, NV12's UV) share its prefetches.
-    std::array<bool, 3> ownPlane;
-    for (int c = 0; c < 3; ++c)
-      ownPlane[c] = c == 0 || (frame.channels[c].plane.data != frame.channels[0].plane.data &&
-                               (c == 1 || frame.channels[c].plane.data != frame.channels[1].plane.data));
-    const auto rowOf = [&](int c, int y) {
-      const ChannelSampler &ch = frame.channels[c];
-      return ch.plane.ptr(y * d / ch.ySub) + ch.byteOffset;
-    };
-    std::vector<int> idx(grid.width);
-    for (int y = 0; y < grid.height; ++y) {
-      std::array<const std::uint8_t *, 3> p, next;
-      for (int c = 0; c < 3; ++c) {
-        p[c] = rowOf(c, y);
-        next[c] = rowOf(c, std::min(y + 1, grid.height - 1));
-      }
-      for (int x0 = 0; x0 < grid.width; x0 += kChunk) {
-        const int x1 = std::min(x0 + kChunk, grid.width);
-        for (int c = 0; c < 3; ++c)
-          if (ownPlane[c]) prefetch(next[c] + x0 * stride[c], (x1 - x0) * stride[c]);
-        int x = x0;
-        if (packed3) {
-          const ChannelSampler &ch = frame.channels[0];
-          const int begin = x0 * d * 3;
-          const std::uint8_t *row = ch.plane.ptr(y * d) + begin;
-          x += packed3(row, ch.plane.cols - begin, x1 - x0, &idx[x0]);
-        } else if (planar420) {
-          const std::array<int, 3> offset{x0 * 2, x0, x0};
-          x += planar420Indices(p[0] + offset[0], p[1] + offset[1], p[2] + offset[2], rowBytes[0] - offset[0],
-                                rowBytes[1] - offset[1], rowBytes[2] - offset[2], x1 - x0, &idx[x0]);
-        } else if (strided) {
-          strided(p[0] + x0 * stride[0], p[1] + x0 * stride[1], p[2] + x0 * stride[2], x1 - x0, &idx[x0]);
-          x = x1;
-        }
-        for (; x < x1; ++x)  // the rest, or every column of the layouts not special-cased
-          idx[x] = RangeLut::index(p[0][x * stride[0]], p[1][x * stride[1]], p[2][x * stride[2]]);
-      }
-      std::uint8_t *out = mask.ptr(y);
-      for (int x = 0; x < grid.width; ++x) out[x] = table[idx[x]];
-    }
-    return;
-  }
-
-  // Any other layout: the byte offset of every grid column in each channel's row from tables.
   std::array<std::vector<int>, 3> columns;
   for (int c = 0; c < 3; ++c) {
     const ChannelSampler &ch = frame.channels[c];
@@ -301,6 +291,24 @@ void segment(const SampledFrame &frame, const RangeLut &lut, int decimation, cv:
       out[x] = table[index];
     }
   }
+}
+
+}  // namespace
+
+void segment(const SampledFrame &frame, const RangeLut &lut, int decimation, cv::Mat &mask) {
+  const int d = std::max(1, decimation);
+  mask.create(cv::Size((frame.size.width + d - 1) / d, (frame.size.height + d - 1) / d), CV_8UC1);
+  bool linear = true;
+  std::array<int, 3> stride;
+  for (int c = 0; c < 3; ++c) {
+    const ChannelSampler &ch = frame.channels[c];
+    linear = linear && d % ch.xSub == 0;
+    stride[c] = d / ch.xSub * ch.sampleBytes;
+  }
+  if (linear)
+    segmentLinear(frame, lut, d, stride, mask);
+  else
+    segmentByColumnTables(frame, lut, d, mask);
 }
 
 void cleanMask(cv::Mat &mask, int size) {

@@ -54,10 +54,10 @@ void orientedGradients(const cv::Mat &gray, Gradients &g) {
 // Felzenszwalb. Every loop runs along a row of cells, so it vectorises; each value is summed in the same
 // order as one cell at a time would (orientations in turn, the four blocks in turn), so the features are the
 // same to the bit.
-void normaliseCells(const cv::Mat &hist, const cv::Mat &intensity, std::vector<cv::Mat> &channels) {
-  const int ch = intensity.rows, cw = intensity.cols;
-  CV_Assert(hist.rows == kOrientations && hist.cols == ch * cw && hist.isContinuous() &&
-            intensity.isContinuous());
+// The four inverse block norms of each cell of a ch x cw grid, as rows 0-3 in cell order, so that the loops
+// of normaliseCells run over all cells at once. Block (by, bx) covers cells (by - 1 .. by, bx - 1 .. bx),
+// clamped to the grid; each block's norm is shared by its four cells.
+const cv::Mat &cellBlockNorms(const cv::Mat &hist, int ch, int cw) {
   thread_local cv::Mat energy, inverseBlockNorm;
   energy.create(ch, cw, CV_32F);
   float *__restrict e = energy.ptr<float>();
@@ -66,8 +66,6 @@ void normaliseCells(const cv::Mat &hist, const cv::Mat &intensity, std::vector<c
     const float *__restrict bins = hist.ptr<float>(o);
     for (int i = 0; i < ch * cw; ++i) e[i] += bins[i] * bins[i];
   }
-  // Block (by, bx) covers cells (by - 1 .. by, bx - 1 .. bx), clamped to the grid; each block's norm is
-  // shared by its four cells.
   inverseBlockNorm.create(ch + 1, cw + 1, CV_32F);
   for (int by = 0; by <= ch; ++by) {
     const float *above = energy.ptr<float>(std::max(by - 1, 0)),
@@ -78,7 +76,6 @@ void normaliseCells(const cv::Mat &hist, const cv::Mat &intensity, std::vector<c
       n[bx] = 1.0f / std::sqrt(above[left] + above[right] + below[left] + below[right] + kEps);
     }
   }
-  // The four block norms of each cell, as planes in cell order, so that the loops below run over all cells.
   const int cells = ch * cw;
   thread_local cv::Mat cellNorms;
   cellNorms.create(4, cells, CV_32F);
@@ -92,6 +89,14 @@ void normaliseCells(const cv::Mat &hist, const cv::Mat &intensity, std::vector<c
       cellNorms.at<float>(3, i) = below[x + 1];
     }
   }
+  return cellNorms;
+}
+
+void normaliseCells(const cv::Mat &hist, const cv::Mat &intensity, std::vector<cv::Mat> &channels) {
+  const int ch = intensity.rows, cw = intensity.cols, cells = ch * cw;
+  CV_Assert(hist.rows == kOrientations && hist.cols == cells && hist.isContinuous() &&
+            intensity.isContinuous());
+  const cv::Mat &cellNorms = cellBlockNorms(hist, ch, cw);
   const float *__restrict n0 = cellNorms.ptr<float>(0), *__restrict n1 = cellNorms.ptr<float>(1);
   const float *__restrict n2 = cellNorms.ptr<float>(2), *__restrict n3 = cellNorms.ptr<float>(3);
   channels.resize(kCellChannels);
