@@ -76,32 +76,28 @@ static gboolean parse_args(int argc, char **argv, int *frames, const char **init
   return TRUE;
 }
 
-int main(int argc, char **argv) {
-  int frames = 150;
-  const char *init_box = NULL, *input = NULL;
-
-  gst_init(&argc, &argv);
-  if (!parse_args(argc, argv, &frames, &init_box, &input)) {
-    fprintf(stderr, "usage: %s [--frames N] [--init-box X,Y,W,H] [FILE-OR-URI]\n", argv[0]);
-    return 2;
-  }
-
-  gchar *source;
-  if (input) {
-    gchar *uri = gst_uri_is_valid(input) ? g_strdup(input) : gst_filename_to_uri(input, NULL);
-    if (!uri) {
-      fprintf(stderr, "cannot make a URI of '%s'\n", input);
-      return 2;
-    }
-    source = g_strdup_printf("uridecodebin uri=\"%s\"", uri);
-    g_free(uri);
-  } else {
-    source = g_strdup_printf(
+/* The source part of the pipeline for `input` (NULL: the test pattern, whose ball `init_box` then marks if
+ * it is unset), or NULL after saying why on stderr. */
+static gchar *source_description(const char *input, int frames, const char **init_box) {
+  if (!input) {
+    if (!*init_box) *init_box = BALL_INIT_BOX;
+    return g_strdup_printf(
         "videotestsrc pattern=ball foreground-color=0xff20c020 num-buffers=%d ! "
         "video/x-raw,width=320,height=240,framerate=30/1",
         frames);
-    if (!init_box) init_box = BALL_INIT_BOX;
   }
+  gchar *uri = gst_uri_is_valid(input) ? g_strdup(input) : gst_filename_to_uri(input, NULL);
+  if (!uri) {
+    fprintf(stderr, "cannot make a URI of '%s'\n", input);
+    return NULL;
+  }
+  gchar *source = g_strdup_printf("uridecodebin uri=\"%s\"", uri);
+  g_free(uri);
+  return source;
+}
+
+/* The pipeline after `source` (taken), or NULL after saying why on stderr. */
+static GstElement *build_pipeline(gchar *source, const char *init_box) {
   /* BGR keeps videoconvert's work small; colortrack also takes YUV (I420, NV12, YUY2) directly. */
   gchar *description = g_strdup_printf(
       "%s ! videoconvert ! video/x-raw,format=BGR ! colortrack name=tracker ! "
@@ -123,20 +119,19 @@ int main(int argc, char **argv) {
                 : "");
     g_clear_error(&error);
     if (pipeline) gst_object_unref(pipeline);
-    return 1;
+    return NULL;
   }
   GstElement *tracker = gst_bin_get_by_name(GST_BIN(pipeline), "tracker");
   if (init_box) g_object_set(tracker, "init-box", init_box, NULL);
   gst_object_unref(tracker);
+  return pipeline;
+}
 
-  GstAppSink *sink = GST_APP_SINK(gst_bin_get_by_name(GST_BIN(pipeline), "sink"));
-  GstBus *bus = gst_element_get_bus(pipeline);
-  int status = 0;
-  if (gst_element_set_state(pipeline, GST_STATE_PLAYING) == GST_STATE_CHANGE_FAILURE) status = 1;
-
-  /* Pull frames in this thread; an error ends the loop through the bus check below. */
+/* Pulls frames in this thread until EOS, an error or `frames` (for a file or URI); returns the exit status.
+ */
+static int pull_frames(GstAppSink *sink, GstBus *bus, const char *input, int frames) {
   guint64 frame = 0;
-  while (status == 0 && (input == NULL || frames <= 0 || frame < (guint64)frames)) {
+  while (input == NULL || frames <= 0 || frame < (guint64)frames) {
     GstSample *sample = gst_app_sink_try_pull_sample(sink, GST_SECOND / 10);
     if (sample) {
       print_frame(frame++, gst_sample_get_buffer(sample));
@@ -146,6 +141,7 @@ int main(int argc, char **argv) {
     if (gst_app_sink_is_eos(sink)) break;
     GstMessage *message = gst_bus_pop_filtered(bus, GST_MESSAGE_ERROR);
     if (message) {
+      GError *error = NULL;
       gchar *debug = NULL;
       gst_message_parse_error(message, &error, &debug);
       fprintf(stderr, "error from %s: %s\n%s\n", GST_OBJECT_NAME(GST_MESSAGE_SRC(message)), error->message,
@@ -153,9 +149,31 @@ int main(int argc, char **argv) {
       g_clear_error(&error);
       g_free(debug);
       gst_message_unref(message);
-      status = 1;
+      return 1;
     }
   }
+  return 0;
+}
+
+int main(int argc, char **argv) {
+  int frames = 150;
+  const char *init_box = NULL, *input = NULL;
+
+  gst_init(&argc, &argv);
+  if (!parse_args(argc, argv, &frames, &init_box, &input)) {
+    fprintf(stderr, "usage: %s [--frames N] [--init-box X,Y,W,H] [FILE-OR-URI]\n", argv[0]);
+    return 2;
+  }
+  gchar *source = source_description(input, frames, &init_box);
+  if (!source) return 2;
+  GstElement *pipeline = build_pipeline(source, init_box);
+  if (!pipeline) return 1;
+
+  GstAppSink *sink = GST_APP_SINK(gst_bin_get_by_name(GST_BIN(pipeline), "sink"));
+  GstBus *bus = gst_element_get_bus(pipeline);
+  int status = 1;
+  if (gst_element_set_state(pipeline, GST_STATE_PLAYING) != GST_STATE_CHANGE_FAILURE)
+    status = pull_frames(sink, bus, input, frames);
   fflush(stdout);
 
   gst_element_set_state(pipeline, GST_STATE_NULL);
