@@ -24,7 +24,6 @@ KNOWN = {
     "examples/demo.cpp": 813,
     "examples/demo.cpp:run": 232,
     "examples/demo.cpp:parseOptions": 82,
-    "tests/gst/test_rtsp.cpp": 742,
 }
 
 
