@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "colortrack-modes.h"
+#include "property-table.h"
 
 #define GST_CAT_DEFAULT gst_color_track_debug
 
@@ -50,10 +51,10 @@ InitBoxFit checkInitBox(GstColorTrack *self, const cv::Rect &box, cv::Size frame
                         (nullptr));
     return InitBoxFit::Ignored;
   }
-  GST_ELEMENT_ERROR(
-      self, RESOURCE, SETTINGS,
-      ("Property 'init-box' '%s' does not fit in the %dx%d frame.", text.c_str(), frame.width, frame.height),
-      (nullptr));
+  GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
+                    ("Property 'init-box' '%s' does not fit in the %dx%d frame.",
+                     gstglue::validUtf8(text).c_str(), frame.width, frame.height),
+                    (nullptr));
   return InitBoxFit::Error;
 }
 

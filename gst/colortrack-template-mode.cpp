@@ -5,6 +5,7 @@
 #include <gst/gst.h>
 
 #include "colortrack-modes.h"
+#include "property-table.h"
 
 #define GST_CAT_DEFAULT gst_color_track_debug
 
@@ -68,7 +69,7 @@ void reloadTemplate(GstColorTrack *self, State &state, const std::string &locati
       try {
         state.templateTracker->setTemplate(bgr, mask);
         state.templateLocation = location;
-        targetChanged(state, "template-location '" + location + "'");
+        targetChanged(state, "the image '" + location + "' (property 'template-location')");
         return;
       } catch (const std::exception &e) {
         why = e.what();
@@ -78,7 +79,7 @@ void reloadTemplate(GstColorTrack *self, State &state, const std::string &locati
   GST_ELEMENT_WARNING(self, RESOURCE, OPEN_READ,
                       ("Could not use the template image '%s' (property 'template-location'): %s. "
                        "Keeping the previous template.",
-                       location.c_str(), why.c_str()),
+                       gstglue::validUtf8(location).c_str(), gstglue::validUtf8(why).c_str()),
                       (missing ? "the file does not exist" : nullptr));
   restoreTemplateLocation(self, location, state.templateLocation);
 }
@@ -122,7 +123,7 @@ bool prepareTemplateFrame(GstColorTrack *self, const Snapshot &snapshot, const R
     if (fit == InitBoxFit::Error) return false;
     if (fit == InitBoxFit::Fits) {
       tracker.setTemplateFromBox(view, *requests.initBox);
-      targetChanged(state, "init-box '" + snapshot.initBox + "'");
+      targetChanged(state, "the box '" + snapshot.initBox + "' (property 'init-box')");
     }
   }
   if (requests.click) applyClick(self, state, *requests.click, snapshot.clickBoxSize, view);
@@ -146,7 +147,8 @@ TemplateReadiness templateReadiness(GstColorTrack *self, cv::Size frame) {
   if (size.width > frame.width || size.height > frame.height) {
     GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
                       ("The template from %s (%dx%d) is larger than the %dx%d frame.",
-                       state.templateOrigin.c_str(), size.width, size.height, frame.width, frame.height),
+                       gstglue::validUtf8(state.templateOrigin).c_str(), size.width, size.height, frame.width,
+                       frame.height),
                       (nullptr));
     return TemplateReadiness::Error;
   }

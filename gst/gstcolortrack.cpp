@@ -49,6 +49,7 @@
  */
 
 #include "gstcolortrack.h"
+#include "property-table.h"
 
 #include <algorithm>
 #include <memory>
@@ -230,7 +231,8 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
   if (!rangeError.empty()) {
     GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
                       ("Properties 'hsv-lower' '%s' and 'hsv-upper' '%s' do not make a range: %s",
-                       snapshot.hsvLower.c_str(), snapshot.hsvUpper.c_str(), rangeError.c_str()),
+                       gstglue::validUtf8(snapshot.hsvLower).c_str(),
+                       gstglue::validUtf8(snapshot.hsvUpper).c_str(), gstglue::validUtf8(rangeError).c_str()),
                       (nullptr));
     return FALSE;
   }
@@ -253,12 +255,12 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
         if (missing)
           GST_ELEMENT_ERROR(self, RESOURCE, NOT_FOUND,
                             ("Template file '%s' (property 'template-location') does not exist.",
-                             snapshot.templateLocation.c_str()),
+                             gstglue::validUtf8(snapshot.templateLocation).c_str()),
                             ("%s", why.c_str()));
         else
           GST_ELEMENT_ERROR(self, RESOURCE, OPEN_READ,
                             ("Could not read the template image '%s' (property 'template-location'): %s",
-                             snapshot.templateLocation.c_str(), why.c_str()),
+                             gstglue::validUtf8(snapshot.templateLocation).c_str(), why.c_str()),
                             (nullptr));
         state = State{};
         return FALSE;
@@ -266,13 +268,13 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
       if (const std::string problem = colortrack::templateSizeProblem(bgr.size()); !problem.empty()) {
         GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
                           ("Cannot use the template image '%s' (property 'template-location'): %s.",
-                           snapshot.templateLocation.c_str(), problem.c_str()),
+                           gstglue::validUtf8(snapshot.templateLocation).c_str(), problem.c_str()),
                           (nullptr));
         state = State{};
         return FALSE;
       }
       state.templateTracker->setTemplate(bgr, mask);
-      state.templateOrigin = "template-location '" + snapshot.templateLocation + "'";
+      state.templateOrigin = "the image '" + snapshot.templateLocation + "' (property 'template-location')";
       state.templateLocation = snapshot.templateLocation;
     }
   } catch (const std::exception &e) {

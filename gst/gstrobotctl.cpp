@@ -74,6 +74,7 @@
  */
 
 #include "gstrobotctl.h"
+#include "property-table.h"
 #include "command-writer.h"
 #include "enum-types.h"
 #include "robot-port.h"
@@ -239,18 +240,19 @@ std::unique_ptr<robotctl::Port> openPort(GstRobotCtl *self, const robotctl::Sett
   if (!port->open(why)) {
     if (udp)
       GST_ELEMENT_ERROR(self, RESOURCE, OPEN_WRITE,
-                        ("Cannot send to '%s' (property 'location'): %s", s.location.c_str(), why.c_str()),
+                        ("Cannot send to '%s' (property 'location'): %s",
+                         gstglue::validUtf8(s.location).c_str(), gstglue::validUtf8(why).c_str()),
                         (nullptr));
     else if (!s.device.empty())
-      GST_ELEMENT_ERROR(
-          self, RESOURCE, OPEN_WRITE,
-          ("Could not open serial port '%s' (property 'device'): %s", s.device.c_str(), why.c_str()),
-          (nullptr));
+      GST_ELEMENT_ERROR(self, RESOURCE, OPEN_WRITE,
+                        ("Could not open serial port '%s' (property 'device'): %s",
+                         gstglue::validUtf8(s.device).c_str(), gstglue::validUtf8(why).c_str()),
+                        (nullptr));
     else
-      GST_ELEMENT_ERROR(
-          self, RESOURCE, OPEN_WRITE,
-          ("Could not open '%s' (property 'location') for writing: %s", s.location.c_str(), why.c_str()),
-          (nullptr));
+      GST_ELEMENT_ERROR(self, RESOURCE, OPEN_WRITE,
+                        ("Could not open '%s' (property 'location') for writing: %s",
+                         gstglue::validUtf8(s.location).c_str(), gstglue::validUtf8(why).c_str()),
+                        (nullptr));
     return nullptr;
   }
   return port;
@@ -268,10 +270,10 @@ bool checkSettings(GstRobotCtl *self, const robotctl::Settings &s, const std::st
     return false;
   }
   if (!s.device.empty() && !s.location.empty()) {
-    GST_ELEMENT_ERROR(
-        self, RESOURCE, SETTINGS,
-        ("Set either 'device' ('%s') or 'location' ('%s'), not both.", s.device.c_str(), s.location.c_str()),
-        (nullptr));
+    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
+                      ("Set either 'device' ('%s') or 'location' ('%s'), not both.",
+                       gstglue::validUtf8(s.device).c_str(), gstglue::validUtf8(s.location).c_str()),
+                      (nullptr));
     return false;
   }
   if (!s.device.empty() && !robotctl::isStandardBaudRate(s.baudRate)) {
@@ -305,10 +307,10 @@ static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
   const std::optional<colortrack::ZoneChars> zoneChars =
       colortrack::parseZoneChars(s.zoneChars, &zoneCharsError);
   if (!zoneChars) {
-    GST_ELEMENT_ERROR(
-        self, RESOURCE, SETTINGS,
-        ("Invalid value '%s' for property 'zone-chars': %s", s.zoneChars.c_str(), zoneCharsError.c_str()),
-        (nullptr));
+    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
+                      ("Invalid value '%s' for property 'zone-chars': %s",
+                       gstglue::validUtf8(s.zoneChars).c_str(), zoneCharsError.c_str()),
+                      (nullptr));
     return FALSE;
   }
 

@@ -32,6 +32,7 @@
  */
 
 #include "gsttrackpublish.h"
+#include "property-table.h"
 
 #include <gst/video/video.h>
 #include <fcntl.h>
@@ -73,7 +74,7 @@ class ElementMqttListener : public trackpublish::MqttListener {
     GST_ELEMENT_WARNING(element_, RESOURCE, OPEN_WRITE,
                         ("Cannot reach MQTT broker %s (property 'address'): %s. Retrying; documents are "
                          "queued (up to max-queued=%u).",
-                         address.c_str(), why.c_str(), maxQueued_),
+                         gstglue::validUtf8(address).c_str(), why.c_str(), maxQueued_),
                         (nullptr));
   }
   void connectionLost(const std::string &address, const std::string &why, std::size_t queued,
@@ -82,7 +83,7 @@ class ElementMqttListener : public trackpublish::MqttListener {
     if (!first) return;
     GST_ELEMENT_WARNING(element_, RESOURCE, WRITE,
                         ("Lost the connection to MQTT broker %s: %s. Reconnecting; %zu documents queued.",
-                         address.c_str(), why.c_str(), queued),
+                         gstglue::validUtf8(address).c_str(), why.c_str(), queued),
                         (nullptr));
   }
   void dropped(std::uint64_t total, std::size_t maxQueued) override {
@@ -182,10 +183,10 @@ bool openFile(GstTrackPublish *self, State &state, const std::string &location) 
     }
   }
   if (!state.file) {
-    GST_ELEMENT_ERROR(
-        self, RESOURCE, OPEN_WRITE,
-        ("Could not open '%s' (property 'location') for writing: %s", location.c_str(), why.c_str()),
-        (nullptr));
+    GST_ELEMENT_ERROR(self, RESOURCE, OPEN_WRITE,
+                      ("Could not open '%s' (property 'location') for writing: %s",
+                       gstglue::validUtf8(location).c_str(), gstglue::validUtf8(why).c_str()),
+                      (nullptr));
     return false;
   }
   state.ownsFile = true;
@@ -204,8 +205,9 @@ bool checkMqttSettings(GstTrackPublish *self, const trackpublish::Settings &s,
       return text.size() > 200 ? text.substr(0, 200) + "..." : text;
     };
     GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                      ("Invalid topic '%s' (property 'topic', with source '%s'): %s.", shown(topic).c_str(),
-                       shown(source).c_str(), badTopic.c_str()),
+                      ("Invalid topic '%s' (property 'topic', with source '%s'): %s.",
+                       gstglue::validUtf8(shown(topic)).c_str(), gstglue::validUtf8(shown(source)).c_str(),
+                       badTopic.c_str()),
                       (nullptr));
     return false;
   }
@@ -224,18 +226,47 @@ bool checkMqttSettings(GstTrackPublish *self, const trackpublish::Settings &s,
     GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
                       ("TLS file '%s' (property '%s') is set but address '%s' does not use TLS: use "
                        "ssl://HOST:PORT, or unset '%s'.",
-                       file.c_str(), property, trackpublish::redactedAddress(s.address).c_str(), property),
+                       gstglue::validUtf8(file).c_str(), property,
+                       gstglue::validUtf8(trackpublish::redactedAddress(s.address)).c_str(), property),
                       (nullptr));
     return false;
   }
+  if (!tls && !s.tlsVerify) {
+    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
+                      ("TLS verification is off (property 'tls-verify') but address '%s' does not use TLS: "
+                       "use ssl://HOST:PORT, "
+                       "or leave 'tls-verify' alone.",
+                       trackpublish::redactedAddress(s.address).c_str()),
+                      (nullptr));
+    return false;
+  }
+  // MQTT 3.1.1 (3.1.2.9): a password is only sent with a user name.
+  if (!s.password.empty() && s.username.empty()) {
+    GST_ELEMENT_ERROR(
+        self, RESOURCE, SETTINGS,
+        ("Property 'password' is set without 'username': MQTT sends a password only with a user "
+         "name."),
+        (nullptr));
+    return false;
+  }
   return true;
+}
+
+// The default client id: colortrack-<source>-<process id>, the source's characters outside [A-Za-z0-9_-]
+// replaced by '_' (some brokers refuse a client id with other characters, and the refusal would be blamed on
+// the address).
+std::string defaultClientId(const std::string &source) {
+  std::string safe = source;
+  for (char &c : safe)
+    if (!g_ascii_isalnum(c) && c != '_' && c != '-') c = '_';
+  return "colortrack-" + safe + "-" + std::to_string(getpid());
 }
 
 bool openMqtt(GstTrackPublish *self, State &state, const trackpublish::Settings &s,
               const std::string &source) {
   trackpublish::MqttConfig config;
   config.address = trackpublish::brokerUri(s.address);
-  config.clientId = s.clientId.empty() ? "colortrack-" + source + "-" + std::to_string(getpid()) : s.clientId;
+  config.clientId = s.clientId.empty() ? defaultClientId(source) : s.clientId;
   config.username = s.username;
   config.password = s.password;
   config.caFile = s.tlsCaFile;
@@ -252,7 +283,7 @@ bool openMqtt(GstTrackPublish *self, State &state, const trackpublish::Settings 
   if (!state.mqtt->start(why)) {
     GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
                       ("Invalid MQTT address '%s' (property 'address'): %s.",
-                       trackpublish::redactedAddress(s.address).c_str(), why.c_str()),
+                       gstglue::validUtf8(trackpublish::redactedAddress(s.address)).c_str(), why.c_str()),
                       (nullptr));
     return false;
   }
@@ -260,7 +291,7 @@ bool openMqtt(GstTrackPublish *self, State &state, const trackpublish::Settings 
   if (s.failOnConnect && !state.mqtt->waitFirstAttempt(milliseconds(6000), why)) {
     GST_ELEMENT_ERROR(self, RESOURCE, OPEN_WRITE,
                       ("Cannot reach MQTT broker %s (property 'address', fail-on-connect=true): %s.",
-                       trackpublish::redactedAddress(s.address).c_str(), why.c_str()),
+                       gstglue::validUtf8(trackpublish::redactedAddress(s.address)).c_str(), why.c_str()),
                       (nullptr));
     return false;
   }
@@ -385,10 +416,10 @@ static GstFlowReturn gst_track_publish_transform_ip(GstBaseTransform *trans, Gst
     // One line per document, flushed so that a reader following the file sees whole frames.
     if (std::fputs(document.c_str(), state.file) < 0 || std::fputc('\n', state.file) == EOF ||
         std::fflush(state.file) != 0) {
-      GST_ELEMENT_ERROR(
-          self, RESOURCE, WRITE,
-          ("Could not write to '%s' (property 'location'): %s", state.location.c_str(), g_strerror(errno)),
-          (nullptr));
+      GST_ELEMENT_ERROR(self, RESOURCE, WRITE,
+                        ("Could not write to '%s' (property 'location'): %s",
+                         gstglue::validUtf8(state.location).c_str(), g_strerror(errno)),
+                        (nullptr));
       return GST_FLOW_ERROR;
     }
   }

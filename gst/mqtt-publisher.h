@@ -52,6 +52,9 @@ std::string brokerUri(const std::string &address);
 // A topic a publisher may use (UTF-8 of at most 65,535 bytes, not empty, no NUL, no wildcards, not the
 // broker's own $...), or why not (empty when fine).
 std::string checkTopic(const std::string &topic);
+// Why `text` is not an MQTT "UTF-8 encoded string" (at most 65,535 bytes of UTF-8, no NUL), naming it as
+// `what`; empty when it is one.
+std::string checkMqttString(const std::string &text, const char *what);
 // A client id MQTT can carry (UTF-8 of at most 65,535 bytes, no NUL), or why not (empty when fine).
 std::string checkClientId(const std::string &clientId);
 // Whether the address's scheme is a TLS one (ssl://, mqtts://).

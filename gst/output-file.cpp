@@ -53,6 +53,17 @@ int openOutputFile(const std::string &path, int extraFlags, mode_t &kind, std::s
   return fd;
 }
 
+bool looksLikeUrl(const std::string &location) {
+  const std::size_t colon = location.find(':');
+  if (colon == std::string::npos || colon == 0) return false;
+  if (!g_ascii_isalpha(location[0])) return false;
+  for (std::size_t i = 1; i < colon; ++i) {
+    const char c = location[i];
+    if (!g_ascii_isalnum(c) && c != '+' && c != '-' && c != '.') return false;
+  }
+  return true;
+}
+
 std::string checkOutputPath(const std::string &path) {
   if (path.empty()) return "it is empty";
   struct stat st;

@@ -17,6 +17,12 @@ std::string fileKindName(mode_t kind);
 // descriptor, still non-blocking, and its kind in `kind`; or -1 with the reason in `why`.
 int openOutputFile(const std::string &path, int extraFlags, mode_t &kind, std::string &why);
 
+// Whether `location` starts like a URL or a drive letter, "scheme:" (letters, digits, + - . after a first
+// letter): such a string is an address the element cannot reach, never a file name it should create in the
+// working directory ("udp:127.0.0.1:14550", "tcp://...", "C:\\robot.txt"). A file whose name really has a
+// colon is written "./udp:x".
+bool looksLikeUrl(const std::string &location);
+
 // Why `path` cannot be an output location, judged without opening or creating anything (so it may be
 // checked when the property is set): it exists and is not a regular file, character device or FIFO, or it
 // does not exist and neither does its folder. Empty when it may be: whether a FIFO has a reader, or a file

@@ -57,12 +57,19 @@ bool sameValue(const GValue *a, const GValue *b) {
   return gst_value_compare(a, b) == GST_VALUE_EQUAL;
 }
 
+std::string validUtf8(const std::string &text) {
+  gchar *valid = g_utf8_make_valid(text.data(), static_cast<gssize>(text.size()));
+  std::string result(valid);
+  g_free(valid);
+  return result;
+}
+
 std::string refusalText(GParamSpec *pspec, const GValue *value, const char *why) {
-  return "Invalid value " + shownValue(value) + " for property '" + pspec->name + "': " + why;
+  return validUtf8("Invalid value " + shownValue(value) + " for property '" + pspec->name + "': " + why);
 }
 
 std::string keepingText(const std::string &refusal, const GValue *kept) {
-  return refusal + ". Keeping " + shownValue(kept) + ".";
+  return validUtf8(refusal + ". Keeping " + shownValue(kept) + ".");
 }
 
 std::string readAtStartText(GParamSpec *pspec) {
@@ -72,7 +79,7 @@ std::string readAtStartText(GParamSpec *pspec) {
 
 #define GST_CAT_DEFAULT category
 void postSettingsWarning(GstElement *element, GstDebugCategory *category, const std::string &text) {
-  GST_ELEMENT_WARNING(element, RESOURCE, SETTINGS, ("%s", text.c_str()), (nullptr));
+  GST_ELEMENT_WARNING(element, RESOURCE, SETTINGS, ("%s", validUtf8(text).c_str()), (nullptr));
 }
 void logRefusedBeforeStart(GstElement *element, GstDebugCategory *category, const std::string &refusal) {
   GST_WARNING_OBJECT(element, "%s: the element will fail to start", refusal.c_str());

@@ -118,6 +118,9 @@ void setValue(ClassOf<field> &s, const GValue *v) {
 // The helpers the table's templates share; in property-table.cpp.
 GParamFlags flagsFor(Apply apply);
 bool sameValue(const GValue *a, const GValue *b);
+// `text` with each invalid UTF-8 sequence replaced (U+FFFD): a GStreamer message must be valid UTF-8, and a
+// value typed or read from a file may not be (an application in Python would fail to read the message).
+std::string validUtf8(const std::string &text);
 std::string refusalText(GParamSpec *pspec, const GValue *value, const char *why);
 std::string keepingText(const std::string &refusal, const GValue *kept);
 std::string readAtStartText(GParamSpec *pspec);

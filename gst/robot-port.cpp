@@ -122,7 +122,7 @@ WriteResult FilePort::write(const std::vector<std::uint8_t> &bytes, int timeoutM
 }
 
 std::string FilePort::describe() const {
-  return path_ == "-" ? "stdout" : "'" + path_ + "'";
+  return path_ == "-" ? "stdout (property 'location')" : "'" + path_ + "' (property 'location')";
 }
 
 // ---------------------------------------------------------------------------------------------------------

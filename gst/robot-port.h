@@ -81,7 +81,7 @@ class SerialPort : public Port {
   bool isOpen() const override { return port_ != nullptr; }
   WriteResult write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::size_t &written,
                     std::string &why) override;
-  std::string describe() const override { return "serial port '" + config_.device + "'"; }
+  std::string describe() const override { return "serial port '" + config_.device + "' (property 'device')"; }
 
  private:
   SerialConfig config_;

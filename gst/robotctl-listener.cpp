@@ -1,6 +1,7 @@
 #include "robotctl-listener.h"
 
 #include "colortrack-meta.h"
+#include "property-table.h"
 
 #define GST_CAT_DEFAULT category_
 
@@ -25,21 +26,25 @@ void ElementListener::busy(const std::string &port, bool tail, std::size_t left)
 
 void ElementListener::connectionLost(const std::string &port, const std::string &why) {
   GST_ELEMENT_WARNING(element_, RESOURCE, WRITE,
-                      ("Lost the connection to %s: %s. Retrying.", port.c_str(), why.c_str()), (nullptr));
+                      ("Lost the connection to %s: %s. Retrying.", gstglue::validUtf8(port).c_str(),
+                       gstglue::validUtf8(why).c_str()),
+                      (nullptr));
 }
 
 void ElementListener::linkLost(const std::string &port, const std::string &why) {
-  GST_ELEMENT_WARNING(
-      element_, RESOURCE, WRITE,
-      ("Lost the link to %s: %s. Sending only stop until it answers again.", port.c_str(), why.c_str()),
-      (nullptr));
+  GST_ELEMENT_WARNING(element_, RESOURCE, WRITE,
+                      ("Lost the link to %s: %s. Sending only stop until it answers again.",
+                       gstglue::validUtf8(port).c_str(), gstglue::validUtf8(why).c_str()),
+                      (nullptr));
 }
 
 void ElementListener::reopenFailed(const std::string &port, const std::string &why, bool newReason,
                                    std::chrono::milliseconds retryIn) {
   if (newReason)
     GST_ELEMENT_WARNING(element_, RESOURCE, OPEN_WRITE,
-                        ("Cannot reopen %s: %s. Retrying.", port.c_str(), why.c_str()), (nullptr));
+                        ("Cannot reopen %s: %s. Retrying.", gstglue::validUtf8(port).c_str(),
+                         gstglue::validUtf8(why).c_str()),
+                        (nullptr));
   GST_DEBUG_OBJECT(element_, "could not reopen %s: %s (next try in %lld ms)", port.c_str(), why.c_str(),
                    static_cast<long long>(retryIn.count()));
 }

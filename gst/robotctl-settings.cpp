@@ -1,5 +1,6 @@
 #include "robotctl-settings.h"
 
+#include "colortrack/protocol.hpp"
 #include "output-file.h"
 #include "udp-port.h"
 
@@ -22,6 +23,11 @@ using colortrack::ControllerSettings;
 using colortrack::FailsafeSettings;
 
 constexpr bool kVersioned = true;
+
+std::string checkZoneCharsValue(const PropertyStore &, const GValue *v, std::string *) {
+  std::string why;
+  return colortrack::parseZoneChars(textOf(v), &why) ? "" : why;
+}
 
 std::string checkLocationValue(const PropertyStore &, const GValue *v, std::string *) {
   const std::string location = textOf(v);
@@ -189,7 +195,7 @@ const Def kProperties[] = {
            "stop, in that order (five distinct printable characters); read at start",
            Settings{}.zoneChars.c_str(), f);
      },
-     getText<&Settings::zoneChars>, setText<&Settings::zoneChars>},
+     getText<&Settings::zoneChars>, setText<&Settings::zoneChars>, nullptr, checkZoneCharsValue, true},
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_int(

@@ -1,6 +1,9 @@
 #include "trackpublish-settings.h"
 
 #include "mqtt-publisher.h"
+#include <vector>
+
+#include "colortrack/regular_file.hpp"
 #include "output-file.h"
 #include "track-document.h"
 
@@ -22,7 +25,12 @@ constexpr Apply kAtStart = Apply::AtStart;
 
 std::string checkLocationValue(const PropertyStore &, const GValue *v, std::string *) {
   const std::string location = textOf(v);
-  return location.empty() || location == "-" ? "" : colortrack_gst::checkOutputPath(location);
+  if (location.empty() || location == "-") return "";
+  if (colortrack_gst::looksLikeUrl(location))
+    return "it looks like a URL (or a drive letter), but location names a file (an MQTT broker goes in "
+           "'address'); a file whose name has a colon is written ./" +
+           location;
+  return colortrack_gst::checkOutputPath(location);
 }
 
 std::string checkAddressValue(const PropertyStore &, const GValue *v, std::string *) {
@@ -36,6 +44,41 @@ std::string checkTopicValue(const PropertyStore &, const GValue *v, std::string 
 
 std::string checkClientIdValue(const PropertyStore &, const GValue *v, std::string *) {
   return checkClientId(textOf(v));
+}
+
+// A PEM file holding `what` ("CERTIFICATE", "PRIVATE KEY"), read without waiting: a FIFO or a directory
+// would hold Paho's thread (and the pipeline's stop) for ever, and a missing or garbled file would only show
+// as "cannot reach the broker", blamed on the address.
+std::string checkPemFile(const std::string &path, const char *what) {
+  if (path.empty()) return "";
+  std::vector<unsigned char> bytes;
+  std::string why;
+  if (!colortrack::readRegularFile(path, 1 << 20, bytes, why)) return why;
+  const std::string text(bytes.begin(), bytes.end());
+  if (text.find("-----BEGIN ") == std::string::npos || text.find(what) == std::string::npos)
+    return std::string("'") + path + "' is not a PEM file with a " + what + " (-----BEGIN ..." + what +
+           "-----)";
+  return "";
+}
+
+std::string checkCaFileValue(const PropertyStore &, const GValue *v, std::string *) {
+  return checkPemFile(textOf(v), "CERTIFICATE");
+}
+
+std::string checkCertFileValue(const PropertyStore &, const GValue *v, std::string *) {
+  return checkPemFile(textOf(v), "CERTIFICATE");
+}
+
+std::string checkKeyFileValue(const PropertyStore &, const GValue *v, std::string *) {
+  return checkPemFile(textOf(v), "PRIVATE KEY");
+}
+
+std::string checkUsernameValue(const PropertyStore &, const GValue *v, std::string *) {
+  return checkMqttString(textOf(v), "the user name");
+}
+
+std::string checkPasswordValue(const PropertyStore &, const GValue *v, std::string *) {
+  return checkMqttString(textOf(v), "the password");
 }
 
 std::string checkTagsValue(const PropertyStore &, const GValue *v, std::string *) {
@@ -120,12 +163,12 @@ const Def kProperties[] = {
      [](GParamFlags f) {
        return g_param_spec_string("username", "User name", "MQTT user name; NULL = none", nullptr, f);
      },
-     getTextOrNull<&Settings::username>, setText<&Settings::username>},
+     getTextOrNull<&Settings::username>, setText<&Settings::username>, nullptr, checkUsernameValue, true},
     {kAtStart, false,
      [](GParamFlags f) {
        return g_param_spec_string("password", "Password", "MQTT password; NULL = none", nullptr, f);
      },
-     getTextOrNull<&Settings::password>, setText<&Settings::password>},
+     getTextOrNull<&Settings::password>, setText<&Settings::password>, nullptr, checkPasswordValue, true},
     {kAtStart, false,
      [](GParamFlags f) {
        return g_param_spec_string(
@@ -134,13 +177,14 @@ const Def kProperties[] = {
            "tcp://); NULL = the system's",
            nullptr, f);
      },
-     getTextOrNull<&Settings::tlsCaFile>, setText<&Settings::tlsCaFile>},
+     getTextOrNull<&Settings::tlsCaFile>, setText<&Settings::tlsCaFile>, nullptr, checkCaFileValue, true},
     {kAtStart, false,
      [](GParamFlags f) {
        return g_param_spec_string("tls-cert-file", "TLS certificate file",
                                   "PEM client certificate (ssl:// only); NULL = none", nullptr, f);
      },
-     getTextOrNull<&Settings::tlsCertFile>, setText<&Settings::tlsCertFile>},
+     getTextOrNull<&Settings::tlsCertFile>, setText<&Settings::tlsCertFile>, nullptr, checkCertFileValue,
+     true},
     {kAtStart, false,
      [](GParamFlags f) {
        return g_param_spec_string("tls-key-file", "TLS key file",
@@ -148,7 +192,7 @@ const Def kProperties[] = {
                                   "certificate file",
                                   nullptr, f);
      },
-     getTextOrNull<&Settings::tlsKeyFile>, setText<&Settings::tlsKeyFile>},
+     getTextOrNull<&Settings::tlsKeyFile>, setText<&Settings::tlsKeyFile>, nullptr, checkKeyFileValue, true},
     {kAtStart, false,
      [](GParamFlags f) {
        return g_param_spec_boolean("tls-verify", "TLS verify",

@@ -1,9 +1,8 @@
 #include "udp-port.h"
 
-#include <algorithm>
-#include <cctype>
-
 #include <gio/gio.h>
+
+#include "output-file.h"
 
 #include <cstdlib>
 
@@ -26,17 +25,9 @@ bool isUdpLocation(const std::string &location) {
 std::string checkLocation(const std::string &location) {
   std::string why;
   if (isUdpLocation(location)) return parseUdpLocation(location, why) ? "" : why;
-  const std::size_t colon = location.find(':');
-  if (colon == std::string::npos || colon < 2) return "";
-  const std::string scheme = location.substr(0, colon);
-  const bool urlLike =
-      std::isalpha(static_cast<unsigned char>(scheme[0])) &&
-      std::all_of(scheme.begin(), scheme.end(), [](char c) {
-        return std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '-' || c == '.';
-      });
-  if (!urlLike) return "";
-  return "it looks like a URL, but the only one robotctl sends to is udp://HOST:PORT (e.g. "
-         "udp://127.0.0.1:14550); a file whose name has a colon is written ./" +
+  if (!colortrack_gst::looksLikeUrl(location)) return "";
+  return "it looks like a URL (or a drive letter), but the only address robotctl sends to is udp://HOST:PORT "
+         "(e.g. udp://127.0.0.1:14550); a file whose name has a colon is written ./" +
          location;
 }
 

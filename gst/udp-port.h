@@ -19,7 +19,7 @@ constexpr const char *kUdpScheme = "udp://";
 bool isUdpLocation(const std::string &location);
 
 // Why `location` cannot be used as written, or empty when it can: a valid udp://HOST:PORT, or a path. A
-// string that starts like a URL (a scheme of two or more letters, then ':', as in "udp:127.0.0.1:14550")
+// string that starts like a URL or a drive letter (looksLikeUrl: "udp:127.0.0.1:14550", "C:\\robot.txt")
 // but is not a valid udp:// one is refused rather than taken as a file name, which would quietly write the
 // robot's commands into a new file; a file whose name really has a colon is written "./udp:x".
 std::string checkLocation(const std::string &location);
@@ -53,7 +53,7 @@ class UdpPort : public Port {
                     std::string &why) override;
   // One datagram the destination sent back (only it: the socket is connected to it).
   bool receive(std::uint8_t *buffer, std::size_t capacity, std::size_t &received, std::string &why) override;
-  std::string describe() const override { return "'" + location_ + "'"; }
+  std::string describe() const override { return "'" + location_ + "' (property 'location')"; }
 
  private:
   std::string location_;

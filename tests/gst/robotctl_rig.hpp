@@ -20,6 +20,8 @@
 #include <gst/check/gstharness.h>
 #include <gst/video/video.h>
 
+#include "pty.hpp"
+
 namespace robotctl_rig {
 
 using Bytes = std::vector<std::uint8_t>;
@@ -27,56 +29,7 @@ using Clock = std::chrono::steady_clock;
 using colortrack::gst_test_util::waitForCommandOf;
 inline constexpr int kWidth = 320, kHeight = 240, kFps = 30;
 
-struct Pty {
-  int master = -1;
-  std::string slave;
-  Pty() {
-    master = posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK);
-    fail_unless(master >= 0 && grantpt(master) == 0 && unlockpt(master) == 0);
-    slave = ptsname(master);
-    // Held open so that the element closing its end does not hang up the pty (the master would read EIO
-    // and lose what was written last).
-    keepSlave = open(slave.c_str(), O_RDWR | O_NOCTTY);
-    fail_unless(keepSlave >= 0);
-  }
-  ~Pty() {
-    close(keepSlave);
-    close(master);
-  }
-  int keepSlave = -1;
-  Bytes drain() const {
-    Bytes bytes;
-    std::uint8_t chunk[4096];
-    ssize_t n;
-    while ((n = read(master, chunk, sizeof chunk)) > 0) bytes.insert(bytes.end(), chunk, chunk + n);
-    return bytes;
-  }
-  // Reads for `ms` milliseconds.
-  Bytes readFor(int ms) const {
-    Bytes bytes;
-    const auto end = Clock::now() + std::chrono::milliseconds(ms);
-    while (Clock::now() < end) {
-      const Bytes more = drain();
-      bytes.insert(bytes.end(), more.begin(), more.end());
-      std::this_thread::sleep_for(std::chrono::milliseconds(2));
-    }
-    return bytes;
-  }
-  // Milliseconds until `byte` arrives (-1 after timeoutMs); the bytes before it are appended to `seen`.
-  int waitForByte(std::uint8_t byte, int timeoutMs, Bytes *seen = nullptr) const {
-    const auto start = Clock::now();
-    while (Clock::now() - start < std::chrono::milliseconds(timeoutMs)) {
-      for (std::uint8_t b : drain()) {
-        if (b == byte)
-          return static_cast<int>(
-              std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - start).count());
-        if (seen) seen->push_back(b);
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
-    return -1;
-  }
-};
+using colortrack::gst_test_util::Pty;
 
 struct Roi {
   const char *type = "colortrack";

@@ -72,7 +72,8 @@ std::vector<std::string> textProperties(GstElement *element, const std::vector<s
 }
 
 // Starts `pipeline` (PAUSED: the two frames reach the element) and back to NULL; fails when a refused start
-// does not name `property` or the start does not end within 5 s. True when the start was refused.
+// does not name `property`, its message is not UTF-8, or the start does not end within 5 s. True when the
+// start was refused.
 bool startOnce(GstElement *pipeline, const std::string &property, const std::string &value) {
   const auto begin = Clock::now();
   const GstStateChangeReturn ret = gst_element_set_state(pipeline, GST_STATE_PAUSED);
@@ -90,6 +91,10 @@ bool startOnce(GstElement *pipeline, const std::string &property, const std::str
     // Values of other properties were valid (defaults), so a refusal is this property's.
     fail_unless(contains(text, "'" + property + "'"), "%s='%s': the error does not name it: %s",
                 property.c_str(), g_strescape(value.c_str(), nullptr), text.c_str());
+    // Whatever bytes the value had, the message is UTF-8 (an application in Python could not read it else).
+    fail_unless(g_utf8_validate(text.data(), static_cast<gssize>(text.size()), nullptr),
+                "%s='%s': the error is not valid UTF-8", property.c_str(),
+                g_strescape(value.c_str(), nullptr));
   }
   gst_bus_set_flushing(bus, TRUE);
   gst_bus_set_flushing(bus, FALSE);

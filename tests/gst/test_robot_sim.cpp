@@ -34,6 +34,8 @@
 
 #include <gst/app/gstappsrc.h>
 #include <gst/check/gstcheck.h>
+
+#include "pty.hpp"
 #include <gst/video/video.h>
 
 namespace {
@@ -55,23 +57,7 @@ constexpr double kMaxAngular = 0.3;    // robotctl's default max-angular: the fi
 constexpr int kLatencyFrames = 3;      // 100 ms at 30 fps
 constexpr double kDeg = CV_PI / 180;
 
-struct Pty {
-  int master = -1;
-  std::string slave;
-  Pty() {
-    master = posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK);
-    fail_unless(master >= 0 && grantpt(master) == 0 && unlockpt(master) == 0);
-    slave = ptsname(master);
-  }
-  ~Pty() { close(master); }
-  std::vector<std::uint8_t> drain() const {
-    std::vector<std::uint8_t> bytes;
-    std::uint8_t chunk[4096];
-    ssize_t n;
-    while ((n = read(master, chunk, sizeof chunk)) > 0) bytes.insert(bytes.end(), chunk, chunk + n);
-    return bytes;
-  }
-};
+using colortrack::gst_test_util::Pty;
 
 struct Scenario {
   const char *controller = "zone";

@@ -22,6 +22,7 @@
 
 #include "colortrack/mavlink.hpp"
 #include "gst_test_util.hpp"
+#include "robot_sim.hpp"
 #include "udp_receiver.hpp"
 
 #include <glib/gstdio.h>
@@ -36,15 +37,7 @@ namespace {
 
 using namespace robotctl_rig;
 
-std::uint8_t crc8(const std::uint8_t *data, std::size_t size) {
-  std::uint8_t crc = 0;
-  for (std::size_t i = 0; i < size; ++i) {
-    crc ^= data[i];
-    for (int bit = 0; bit < 8; ++bit)
-      crc = static_cast<std::uint8_t>(crc & 0x80 ? (crc << 1) ^ 0x07 : crc << 1);
-  }
-  return crc;
-}
+using colortrack::robot_sim::crc8;
 
 GST_START_TEST(test_zone_char_decisions) {
   Ctl ctl("rate=100");

@@ -51,7 +51,7 @@ GST_START_TEST(test_start_settings_warn_when_changed) {
   // A location that could never be opened is refused when set, not at the next start: the old one stays.
   gchar *before = nullptr;
   g_object_get(element, "location", &before, nullptr);
-  for (const char *bad : {"/nonexistent/x", "udp://127.0.0.1:0", "/tmp"}) {
+  for (const char *bad : {"/nonexistent/x", "udp://127.0.0.1:0", "/tmp", "C:robot.txt"}) {
     g_object_set(element, "location", bad, nullptr);
     gchar *now = nullptr;
     g_object_get(element, "location", &now, nullptr);
@@ -66,6 +66,18 @@ GST_START_TEST(test_start_settings_warn_when_changed) {
     gst_message_unref(m);
   }
   g_free(before);
+  // zone-chars that could never be used (four characters): refused when set too, the old ones kept.
+  g_object_set(element, "zone-chars", "FBLR", nullptr);
+  gchar *chars = nullptr;
+  g_object_get(element, "zone-chars", &chars, nullptr);
+  fail_unless_equals_string(chars, "FBLRS");
+  g_free(chars);
+  m = gst_bus_pop_filtered(ctl.bus, GST_MESSAGE_WARNING);
+  fail_unless(m != nullptr, "no warning for zone-chars=FBLR");
+  gst_message_parse_warning(m, &error, nullptr);
+  fail_unless(std::string(error->message).find("'zone-chars'") != std::string::npos, "%s", error->message);
+  g_error_free(error);
+  gst_message_unref(m);
   gst_object_unref(element);
 }
 GST_END_TEST;
@@ -124,8 +136,8 @@ GST_START_TEST(test_url_typos_are_never_files) {
   gchar *before = g_get_current_dir();
   fail_unless(g_chdir(dir) == 0);
   const std::string src = "videotestsrc num-buffers=1 ! ";
-  for (const char *typo :
-       {"udp:127.0.0.1:14550", "udp:/127.0.0.1:14550", "tcp://127.0.0.1:5760", "serial:/dev/ttyUSB0"}) {
+  for (const char *typo : {"udp:127.0.0.1:14550", "udp:/127.0.0.1:14550", "tcp://127.0.0.1:5760",
+                           "serial:/dev/ttyUSB0", "C:robot.txt"}) {
     const std::string text = startError(src + "robotctl location=" + typo);
     fail_unless(text.find("'location'") != std::string::npos && text.find(typo) != std::string::npos, "%s",
                 text.c_str());

@@ -43,6 +43,11 @@ namespace {
 using namespace trackpublish_rig;
 
 GST_START_TEST(test_bad_addresses_and_topics) {
+  // A TLS file that is a FIFO nobody writes to: Paho's open would wait for ever (and the pipeline's stop with
+  // it); refused at once instead.
+  gchar *dir = g_dir_make_tmp("trackpublish-XXXXXX", nullptr);
+  const std::string fifo = std::string(dir) + "/ca.fifo";
+  fail_unless(mkfifo(fifo.c_str(), 0600) == 0);
   // Set before start: an error at start naming the property.
   for (const auto &[properties, part] : std::vector<std::pair<std::string, std::string>>{
            {"address=http://127.0.0.1:1883", "property 'address'"},
@@ -58,14 +63,27 @@ GST_START_TEST(test_bad_addresses_and_topics) {
            {"address=tcp://127.0.0.1:1883 client-id=" + std::string(70000, 'c'), "property 'client-id'"},
            {"address=tcp://127.0.0.1:1883 tls-ca-file=/etc/hostname", "property 'tls-ca-file'"},
            {"address=tcp://127.0.0.1:1883 tls-key-file=/etc/hostname", "property 'tls-key-file'"},
+           {"address=ssl://127.0.0.1:8883 tls-ca-file=" + fifo, "property 'tls-ca-file'"},
+           {"address=ssl://127.0.0.1:8883 tls-ca-file=" + std::string(dir), "property 'tls-ca-file'"},
+           {"address=ssl://127.0.0.1:8883 tls-cert-file=/etc/hostname", "property 'tls-cert-file'"},
+           {"address=ssl://127.0.0.1:8883 tls-key-file=/nonexistent.pem", "property 'tls-key-file'"},
+           {"address=tcp://127.0.0.1:1883 tls-verify=false", "property 'tls-verify'"},
+           {"address=tcp://127.0.0.1:1883 password=x", "Property 'password'"},
+           {"address=tcp://127.0.0.1:1883 username=" + std::string(70000, 'u'), "property 'username'"},
            {"location=/nonexistent/x", "property 'location'"},
            {"location=/tmp", "property 'location'"},
+           {"location=udp:1.2.3.4:5", "property 'location'"},
            {"", "No output"}}) {
     Publisher p(properties);
     fail_unless_equals_int(p.play(), GST_STATE_CHANGE_FAILURE);
     const std::vector<std::string> errors = p.messages(GST_MESSAGE_ERROR);
-    fail_unless(anyContains(errors, part), "'%s': no error with '%s'", properties.c_str(), part.c_str());
+    fail_unless(anyContains(errors, part), "'%s': no error with '%s'",
+                properties.size() > 200 ? "(long)" : properties.c_str(), part.c_str());
   }
+  fail_if(g_file_test("udp:1.2.3.4:5", G_FILE_TEST_EXISTS), "a URL-like location was created as a file");
+  g_unlink(fifo.c_str());
+  g_rmdir(dir);
+  g_free(dir);
   // Unreachable with fail-on-connect: an error at start, within the connect timeout.
   {
     Publisher p("address=tcp://127.0.0.1:" + std::to_string(freePort()) + " fail-on-connect=true");

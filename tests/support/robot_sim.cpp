@@ -130,7 +130,6 @@ void RobotSim::drive(double left, double right, double dt) {
 CommandDecoder::CommandDecoder(Protocol protocol, double zoneLinear, double zoneAngular, int outputScale)
     : protocol_(protocol), zoneLinear_(zoneLinear), zoneAngular_(zoneAngular), outputScale_(outputScale) {}
 
-namespace {
 std::uint8_t crc8(const std::uint8_t *data, std::size_t size) {
   std::uint8_t crc = 0;
   for (std::size_t i = 0; i < size; ++i) {
@@ -140,7 +139,6 @@ std::uint8_t crc8(const std::uint8_t *data, std::size_t size) {
   }
   return crc;
 }
-}  // namespace
 
 std::vector<WheelCommand> CommandDecoder::feed(const std::uint8_t *data, std::size_t size) {
   std::vector<WheelCommand> out;

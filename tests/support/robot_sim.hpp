@@ -107,4 +107,8 @@ class CommandDecoder {
   int rejected_ = 0;
 };
 
+// CRC-8/SMBUS (polynomial 0x07, initial 0) as a robot checks robotctl's binary packets: written here apart
+// from core's crc8, so that the tests check robotctl's packets against a second reading of the rule.
+std::uint8_t crc8(const std::uint8_t *data, std::size_t size);
+
 }  // namespace colortrack::robot_sim
