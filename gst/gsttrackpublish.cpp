@@ -71,10 +71,16 @@ class ElementMqttListener : public trackpublish::MqttListener {
     GST_DEBUG_OBJECT(element_, "cannot reach %s: %s; retrying in %lld ms", address.c_str(), why.c_str(),
                      static_cast<long long>(retryIn.count()));
     if (!first) return;
+    // Over TLS a CA that does not sign the broker's certificate, or a certificate that does not match its
+    // key, fails the same way as a wrong address: the message names every property that may be at fault.
+    const char *suspects = trackpublish::usesTls(address)
+                               ? "property 'address', or the TLS settings 'tls-ca-file', 'tls-cert-file', "
+                                 "'tls-key-file', 'tls-verify'"
+                               : "property 'address'";
     GST_ELEMENT_WARNING(element_, RESOURCE, OPEN_WRITE,
-                        ("Cannot reach MQTT broker %s (property 'address'): %s. Retrying; documents are "
-                         "queued (up to max-queued=%u).",
-                         gstglue::validUtf8(address).c_str(), why.c_str(), maxQueued_),
+                        ("Cannot reach MQTT broker %s (%s): %s. Retrying; documents are queued (up to "
+                         "max-queued=%u).",
+                         gstglue::validUtf8(address).c_str(), suspects, why.c_str(), maxQueued_),
                         (nullptr));
   }
   void connectionLost(const std::string &address, const std::string &why, std::size_t queued,

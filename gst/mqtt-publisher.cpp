@@ -76,6 +76,10 @@ std::string checkTopic(const std::string &topic) {
   if (!bad.empty()) return bad;
   if (topic.find_first_of("+#") != std::string::npos)
     return "a topic to publish to must not contain the wildcards + or #";
+  // MQTT 3.1.1, 1.5.3: control characters should not be in a topic, and brokers (mosquitto) drop the
+  // connection of a client that publishes one; that would show only as a lost connection.
+  for (const unsigned char c : topic)
+    if (c < 0x20 || c == 0x7F) return "a topic must not contain control characters (a newline, a tab, ...)";
   // Brokers keep topics starting with $ ($SYS/...) for themselves and refuse publishes to them silently.
   if (topic[0] == '$') return "topics starting with $ belong to the broker ($SYS/...)";
   return "";

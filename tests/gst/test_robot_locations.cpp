@@ -1,0 +1,80 @@
+// Where robotctl (and trackpublish) may send: udp://HOST:PORT parsed exactly, URL-like and drive-letter
+// strings never taken for file names, output paths judged without opening anything, and a FIFO without a
+// reader refused at once. GoogleTest, no GStreamer.
+#include <gtest/gtest.h>
+#include <glib/gstdio.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <string>
+
+#include "output-file.h"
+#include "udp-port.h"
+
+namespace robotctl {
+namespace {
+
+TEST(UdpLocation, ParsesHostsAndPorts) {
+  std::string why;
+  const auto v4 = parseUdpLocation("udp://127.0.0.1:14550", why);
+  ASSERT_TRUE(v4) << why;
+  EXPECT_EQ(v4->host, "127.0.0.1");
+  EXPECT_EQ(v4->port, 14550);
+  const auto v6 = parseUdpLocation("udp://[::1]:1", why);
+  ASSERT_TRUE(v6) << why;
+  EXPECT_EQ(v6->host, "::1");
+  EXPECT_EQ(v6->port, 1);
+  const auto name = parseUdpLocation("udp://flight-controller.local:65535", why);
+  ASSERT_TRUE(name) << why;
+  EXPECT_EQ(name->port, 65535);
+}
+
+TEST(UdpLocation, RefusesWhatIsNotHostAndPort) {
+  for (const char *bad : {"udp://127.0.0.1", "udp://127.0.0.1:", "udp://127.0.0.1:0", "udp://127.0.0.1:65536",
+                          "udp://127.0.0.1:14550x", "udp://:14550", "udp://::1:14550", "udp://[::1]14550",
+                          "udp://[::1", "udp://127.0.0.1:-1", "udp://127.0.0.1:999999"}) {
+    std::string why;
+    EXPECT_FALSE(parseUdpLocation(bad, why)) << bad;
+    EXPECT_FALSE(why.empty()) << bad;
+    EXPECT_FALSE(checkLocation(bad).empty()) << bad;
+  }
+}
+
+TEST(Location, UrlLikeAndDriveLettersAreNeverFiles) {
+  for (const char *typo : {"udp:127.0.0.1:14550", "udp:/127.0.0.1:1", "tcp://127.0.0.1:5760",
+                           "serial:/dev/tty", "C:robot.txt", "c:\\robot.txt", "mqtt+ssl://x:1"}) {
+    EXPECT_TRUE(colortrack_gst::looksLikeUrl(typo)) << typo;
+    EXPECT_FALSE(checkLocation(typo).empty()) << typo;
+  }
+  for (const char *file : {"./udp:x", "/tmp/a:b", "commands.txt", "-", "1:2", ":x", "dir/udp:x"}) {
+    EXPECT_FALSE(colortrack_gst::looksLikeUrl(file)) << file;
+    EXPECT_TRUE(checkLocation(file).empty()) << file << ": " << checkLocation(file);
+  }
+}
+
+TEST(OutputPath, JudgedWithoutOpening) {
+  gchar *dir = g_dir_make_tmp("locations-XXXXXX", nullptr);
+  ASSERT_NE(dir, nullptr);
+  const std::string fifo = std::string(dir) + "/fifo", file = std::string(dir) + "/file";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  ASSERT_TRUE(g_file_set_contents(file.c_str(), "x", 1, nullptr));
+  EXPECT_EQ(colortrack_gst::checkOutputPath(file), "");
+  EXPECT_EQ(colortrack_gst::checkOutputPath(fifo), "");  // a reader may come before the start
+  EXPECT_EQ(colortrack_gst::checkOutputPath(std::string(dir) + "/new"), "");
+  EXPECT_EQ(colortrack_gst::checkOutputPath("/dev/null"), "");
+  EXPECT_NE(colortrack_gst::checkOutputPath(dir), "");  // a directory
+  EXPECT_NE(colortrack_gst::checkOutputPath("/nonexistent-folder/x"), "");
+  EXPECT_NE(colortrack_gst::checkOutputPath(""), "");
+  // Opening the FIFO without a reader fails at once instead of waiting in open().
+  mode_t kind = 0;
+  std::string why;
+  EXPECT_EQ(colortrack_gst::openOutputFile(fifo, 0, kind, why), -1);
+  EXPECT_NE(why.find("reading"), std::string::npos) << why;
+  g_unlink(fifo.c_str());
+  g_unlink(file.c_str());
+  g_rmdir(dir);
+  g_free(dir);
+}
+
+}  // namespace
+}  // namespace robotctl
