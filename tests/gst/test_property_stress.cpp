@@ -1,8 +1,9 @@
-// Property stress: stress threads flip properties of colortrack (template and threshold mode) and robotctl
-// between valid values while buffers flow. Neither element may crash, stop producing output, lose the meta it
-// owes a tracked frame, or post an error; the only warnings allowed are robotctl's for a read-at-start
-// property. C++ headers first: gstcheck.h defines macros (fail, ...) that clash with names in the standard
-// library.
+// Property stress: stress threads flip properties of colortrack (template and threshold mode; also its
+// targets: init-box, bins, and mode, which is refused while started), robotctl and trackpublish between valid
+// values while buffers flow. No element may crash, stop producing output, lose the meta it owes a tracked
+// frame, or post an error; the only warnings allowed are the ones the docs promise (a read-at-start property,
+// mode while started). C++ headers first: gstcheck.h defines macros (fail, ...) that clash with names in the
+// standard library.
 #include <chrono>
 #include <string>
 #include <vector>
@@ -370,6 +371,114 @@ GST_START_TEST(test_robotctl_under_property_flips) {
 }
 GST_END_TEST;
 
+// A new target every few milliseconds (init-box, two boxes of the object), the histogram bins and mode (fixed
+// while started: each change refused with a warning, the mode kept) flip while frames flow: every frame comes
+// out with at most one track, and nothing but mode's refusal is said.
+GST_START_TEST(test_colortrack_targets_under_property_flips) {
+  colortrack::scene::SceneConfig config;
+  config.frameSize = cv::Size(320, 240);
+  config.objectSize = cv::Size(40, 40);
+  const colortrack::scene::Scene scene(config);
+  const std::string props = "post-messages=true init-box=" + boxString(scene.initBox());
+  GstElement *element = makeColortrack(props.c_str());
+  GstBus *bus = gst_bus_new();
+  GstHarness *h = harnessAround(element, bus, "src", videoCaps("BGR", config.frameSize));
+  gst_object_unref(element);
+  const std::string box = boxString(scene.initBox());
+  const std::vector<Flip> flips = {
+      {"init-box", {box.c_str(), "10,10,30,30"}},
+      {"bins", {"16,16,8", "8,8,4"}},
+      {"mode", {"threshold", "template"}},
+  };
+  BusLog log;
+  int frames = 0, tracked = 0;
+  {
+    Flipper flipper(h, flips);
+    for (const auto end = Clock::now() + kStressTime; Clock::now() < end || frames < 30; ++frames) {
+      const colortrack::scene::SceneFrame f = scene.render(pingPong(frames, config.frames));
+      fail_unless_equals_int(gst_harness_push(h, bgrBuffer(f.bgr, frames)), GST_FLOW_OK);
+      GstBuffer *out = gst_harness_pull(h);
+      fail_unless(out != nullptr, "no output for frame %d", frames);
+      const std::vector<GstVideoRegionOfInterestMeta *> rois = colortrackRois(out);
+      fail_unless(rois.size() <= 1, "%zu ROI metas on frame %d", rois.size(), frames);
+      tracked += !rois.empty();
+      gst_buffer_unref(out);
+      log.read(bus);
+    }
+    GST_INFO("targets: %u property sets over %d frames, %d with a track", flipper.stop(), frames, tracked);
+  }
+  log.read(bus);
+  log.expectNoErrors();
+  for (const std::string &w : log.warnings)
+    fail_unless(contains(w, "'mode'"), "unexpected warning: %s", w.c_str());
+  fail_unless(!log.warnings.empty(), "mode changed while started without a warning");
+  fail_unless(tracked > 0, "no frame with a track");
+  // Refused every time while started: the mode it started in.
+  GValue mode = G_VALUE_INIT;
+  g_object_get_property(G_OBJECT(h->element), "mode", &mode);
+  gchar *modeText = gst_value_serialize(&mode);
+  fail_unless_equals_string(modeText, "template");
+  g_free(modeText);
+  g_value_unset(&mode);
+  gst_element_set_bus(h->element, nullptr);
+  gst_harness_teardown(h);
+  gst_object_unref(bus);
+}
+GST_END_TEST;
+
+// trackpublish writing to a file: its properties (all read at start) flip while buffers pass; each change
+// only warns, every buffer passes through, and a document is written for every frame.
+GST_START_TEST(test_trackpublish_under_property_flips) {
+  gchar *path = nullptr;
+  const gint fd = g_file_open_tmp("trackpublish-stress-XXXXXX", &path, nullptr);
+  fail_unless(fd >= 0);
+  g_close(fd, nullptr);
+  GstElement *element = gst_element_factory_make("trackpublish", nullptr);
+  fail_unless(element != nullptr);
+  g_object_set(element, "location", path, "add-empty-results", TRUE, nullptr);
+  GstBus *bus = gst_bus_new();
+  GstHarness *h = harnessAround(element, bus, "src", videoCaps("GRAY8", {320, 240}));
+  gst_object_unref(element);
+  const std::vector<Flip> flips = {
+      {"roi-type", {"colortrack", "object"}},  {"source", {"cam1", "cam2"}},
+      {"tags", {"{\"a\":1}", "{}"}},           {"add-empty-results", {"true", "false"}},
+      {"topic", {"x/{source}", "y/{source}"}},
+  };
+  BusLog log;
+  int frames = 0;
+  {
+    Flipper flipper(h, flips);
+    for (const auto end = Clock::now() + kStressTime; Clock::now() < end || frames < 30; ++frames) {
+      GstBuffer *buffer = gst_buffer_new_allocate(nullptr, 320 * 240, nullptr);
+      gst_buffer_memset(buffer, 0, 0, 320 * 240);
+      GST_BUFFER_PTS(buffer) = gst_util_uint64_scale_int(frames, GST_SECOND, kFps);
+      fail_unless_equals_int(gst_harness_push(h, buffer), GST_FLOW_OK);
+      GstBuffer *out = gst_harness_pull(h);
+      fail_unless(out != nullptr, "no output for frame %d", frames);
+      gst_buffer_unref(out);
+      log.read(bus);
+    }
+    GST_INFO("trackpublish: %u property sets over %d frames", flipper.stop(), frames);
+  }
+  log.read(bus);
+  log.expectNoErrors();
+  for (const std::string &w : log.warnings)
+    fail_unless(contains(w, "is read at start"), "unexpected warning: %s", w.c_str());
+  gst_element_set_bus(h->element, nullptr);
+  gst_harness_teardown(h);
+  gst_object_unref(bus);
+  gchar *text = nullptr;
+  gsize length = 0;
+  fail_unless(g_file_get_contents(path, &text, &length, nullptr));
+  int lines = 0;
+  for (gsize i = 0; i < length; ++i) lines += text[i] == '\n';
+  g_free(text);
+  fail_unless_equals_int(lines, frames);  // the settings of the start hold: a document per frame
+  g_unlink(path);
+  g_free(path);
+}
+GST_END_TEST;
+
 static Suite *property_stress_suite(void) {
   preloadPlugins({"colortrack"});
   Suite *s = suite_create("property_stress");
@@ -378,6 +487,8 @@ static Suite *property_stress_suite(void) {
   tcase_add_test(tc, test_colortrack_template_under_property_flips);
   tcase_add_test(tc, test_colortrack_threshold_under_property_flips);
   tcase_add_test(tc, test_robotctl_under_property_flips);
+  tcase_add_test(tc, test_colortrack_targets_under_property_flips);
+  tcase_add_test(tc, test_trackpublish_under_property_flips);
   return s;
 }
 
