@@ -209,7 +209,7 @@ static std::string first_refusal(GstColorTrack *self) {
     const auto refused = store.refused.find(pspec->param_id);
     if (refused != store.refused.end()) return refused->second;
   }
-  return store.refused.empty() ? std::string() : store.refused.begin()->second;
+  return store.firstRefusal();
 }
 
 // Validates what was set before streaming, loads the template file and creates the tracker.
@@ -223,7 +223,7 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
   GST_OBJECT_UNLOCK(self);
 
   if (!refusal.empty()) {
-    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("%s", refusal.c_str()), (nullptr));
+    gstglue::postStartRefusal(GST_ELEMENT(self), GST_CAT_DEFAULT, refusal);
     return FALSE;
   }
 

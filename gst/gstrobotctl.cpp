@@ -285,7 +285,7 @@ bool checkSettings(GstRobotCtl *self, const robotctl::Settings &s, const std::st
     return false;
   }
   if (!refusal.empty()) {
-    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("%s.", refusal.c_str()), (nullptr));
+    gstglue::postStartRefusal(GST_ELEMENT(self), GST_CAT_DEFAULT, refusal);
     return false;
   }
   return true;
@@ -299,7 +299,7 @@ static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
   const robotctl::PropertyStore &store = storeOf(self);
   const robotctl::Settings s = store.settings;
   const guint64 version = store.versions[0];
-  const std::string refusal = store.refused.empty() ? std::string() : store.refused.begin()->second;
+  const std::string refusal = store.firstRefusal();
   GST_OBJECT_UNLOCK(self);
 
   if (!checkSettings(self, s, refusal)) return FALSE;

@@ -337,10 +337,10 @@ static gboolean gst_track_publish_start(GstBaseTransform *trans) {
   GST_OBJECT_LOCK(self);
   trackpublish::PropertyStore &store = self->priv->properties;
   const trackpublish::Settings s = store.settings;
-  const std::string refusal = store.refused.empty() ? std::string() : store.refused.begin()->second;
+  const std::string refusal = store.firstRefusal();
   GST_OBJECT_UNLOCK(self);
   if (!refusal.empty()) {
-    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("%s.", refusal.c_str()), (nullptr));
+    gstglue::postStartRefusal(GST_ELEMENT(self), GST_CAT_DEFAULT, refusal);
     return FALSE;
   }
   if (s.location.empty() && s.address.empty()) {

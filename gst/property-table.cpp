@@ -81,6 +81,9 @@ std::string readAtStartText(GParamSpec *pspec) {
 void postSettingsWarning(GstElement *element, GstDebugCategory *category, const std::string &text) {
   GST_ELEMENT_WARNING(element, RESOURCE, SETTINGS, ("%s", validUtf8(text).c_str()), (nullptr));
 }
+void postStartRefusal(GstElement *element, GstDebugCategory *category, const std::string &refusal) {
+  GST_ELEMENT_ERROR(element, RESOURCE, SETTINGS, ("%s.", validUtf8(refusal).c_str()), (nullptr));
+}
 void logRefusedBeforeStart(GstElement *element, GstDebugCategory *category, const std::string &refusal) {
   GST_WARNING_OBJECT(element, "%s: the element will fail to start", refusal.c_str());
 }

@@ -35,6 +35,9 @@ struct PropertyStore {
   guint64 versions[4] = {};
   bool running = false;                  // between start and stop
   std::map<guint, std::string> refused;  // by property id: a value refused before start, an error at start
+
+  // The refusal the start reports (the first property's), or empty.
+  std::string firstRefusal() const { return refused.empty() ? std::string() : refused.begin()->second; }
 };
 
 // One property.
@@ -126,6 +129,8 @@ std::string keepingText(const std::string &refusal, const GValue *kept);
 std::string readAtStartText(GParamSpec *pspec);
 void postSettingsWarning(GstElement *element, GstDebugCategory *category, const std::string &text);
 void logRefusedBeforeStart(GstElement *element, GstDebugCategory *category, const std::string &refusal);
+// The start's error for a value refused before it (PropertyStore::firstRefusal()).
+void postStartRefusal(GstElement *element, GstDebugCategory *category, const std::string &refusal);
 
 template <typename S, typename X = NoShared>
 class PropertyTable {
