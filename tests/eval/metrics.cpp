@@ -10,6 +10,8 @@
 #include <limits>
 #include <sstream>
 
+#include "scene.hpp"
+
 namespace colortrack::eval {
 
 std::string format(const char *fmt, ...) {
@@ -111,10 +113,7 @@ bool parseGroundTruth(const std::string &text, double originOffset, std::vector<
 }
 
 double overlap(const cv::Rect2d &a, const cv::Rect2d &b) {
-  if (a.width <= 0 || a.height <= 0 || b.width <= 0 || b.height <= 0) return 0.0;
-  const double intersection = (a & b).area();
-  const double unionArea = a.area() + b.area() - intersection;
-  return unionArea > 0 ? intersection / unionArea : 0.0;
+  return scene::iou(a, b);  // the one IoU of the tests, the demo and the evaluation
 }
 
 double centreDistance(const cv::Rect2d &a, const cv::Rect2d &b) {
