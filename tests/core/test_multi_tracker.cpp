@@ -138,17 +138,7 @@ TEST(MultiTracker, PrimaryIsTheLargest) {
 // Three balls of different colours whose straight paths cross (two of them overlap for several frames):
 // every ball keeps the id it got, and no extra track appears.
 TEST(MultiTracker, IdsHoldThroughCrossings) {
-  BallSceneConfig config;
-  config.clutterHueClearance = 0;
-  config.clutterSaturation = 0.35;  // colourful but below the range's saturation
-  std::vector<Ball> three(3);
-  three[0].hue = 0;
-  three[0].path = {{0, {40, 240}}, {90, {600, 240}}};
-  three[1].hue = 120;
-  three[1].path = {{0, {60, 40}}, {90, {560, 440}}};
-  three[2].hue = 240;
-  three[2].path = {{0, {580, 60}}, {90, {80, 400}}};
-  const BallScene scene(config, three);
+  const BallScene scene = colortrack::balls::threeCrossingBalls();
 
   BlobSettings blobSettings;
   blobSettings.range = kSaturated;

@@ -172,17 +172,7 @@ GST_END_TEST;
 
 // Three balls of different colours crossing, as I420 (read through the YUV table): every ball keeps its id.
 GST_START_TEST(test_three_balls_crossing_i420) {
-  BallSceneConfig config;
-  config.clutterHueClearance = 0;
-  config.clutterSaturation = 0.35;
-  std::vector<Ball> three(3);
-  three[0].hue = 0;
-  three[0].path = {{0, {40, 240}}, {90, {600, 240}}};
-  three[1].hue = 120;
-  three[1].path = {{0, {60, 40}}, {90, {560, 440}}};
-  three[2].hue = 240;
-  three[2].path = {{0, {580, 60}}, {90, {80, 400}}};
-  const BallScene scene(config, three);
+  const BallScene scene = colortrack::balls::threeCrossingBalls();
   Harness h("mode=threshold hsv-lower=0,0.5,0.25 hsv-upper=360,1,1 draw=box+label+trail", {640, 480}, "I420");
   std::map<int, int> idOfBall;
   int checked = 0;

@@ -174,4 +174,18 @@ cv::Mat BallScene::render(int index, std::vector<BallTruth> *truth) const {
   return frame;
 }
 
+BallScene threeCrossingBalls() {
+  BallSceneConfig config;
+  config.clutterHueClearance = 0;
+  config.clutterSaturation = 0.35;  // colourful but below a saturated range
+  std::vector<Ball> three(3);
+  three[0].hue = 0;
+  three[0].path = {{0, {40, 240}}, {90, {600, 240}}};
+  three[1].hue = 120;
+  three[1].path = {{0, {60, 40}}, {90, {560, 440}}};
+  three[2].hue = 240;
+  three[2].path = {{0, {580, 60}}, {90, {80, 400}}};
+  return BallScene(config, three);
+}
+
 }  // namespace colortrack::balls

@@ -63,4 +63,9 @@ class BallScene {
 
 cv::Vec3b bgrOfHsv(double hue, double saturation, double value);
 
+// Three saturated balls (hue 0, 120, 240) on 640x480 whose straight paths cross within 90 frames (two of
+// them overlap for several frames), over clutter too pale for a saturated range: the crossing scene of the
+// multi-tracker's tests, in the core and in the element.
+BallScene threeCrossingBalls();
+
 }  // namespace colortrack::balls
