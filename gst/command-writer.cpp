@@ -44,9 +44,11 @@ CommandWriter::CommandWriter(std::unique_ptr<Port> port, const WriterConfig &con
       retryDelay_(kFirstRetry),
       stallTimeout_(config.stallTimeout),
       bufferWatchdog_(config.stallTimeout) {
-  if (encoder_.hasHeartbeat() && config.linkTimeout > 0)
+  // target-system 0 (broadcast) names no vehicle to watch.
+  const colortrack::MavlinkSettings &m = config.protocol.mavlink;
+  if (encoder_.hasHeartbeat() && config.linkTimeout > 0 && m.targetSystem != 0)
     heartbeats_.emplace(
-        config.protocol.mavlink.targetSystem,
+        m.targetSystem, m.targetComponent, m.systemId, m.componentId,
         std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(config.linkTimeout)));
 }
 
@@ -176,7 +178,7 @@ bool CommandWriter::followLink(const Command &command, Clock::time_point deadlin
   if (!linkDown_) return true;
   const bool back = link == HeartbeatWatch::Link::Alive;
   Command stop;
-  stop.reason = back ? "reconnected" : "link lost";
+  stop.reason = back ? "reconnected" : "link-lost";
   if (!write(stop, deadline) || !back) return false;
   linkDown_ = false;
   listener_.reconnected(port_->describe());
@@ -307,8 +309,12 @@ void CommandWriter::connectionLost(const std::string &why) {
     if (!linkDown_) listener_.connectionLost(port_->describe(), why);
     retryDelay_ = kFirstRetry;
   }
-  // A vehicle that was answering must answer again before anything but stop is sent.
-  if (heartbeats_ && heartbeats_->state(Clock::now()) != HeartbeatWatch::Link::Unknown) linkDown_ = true;
+  // A vehicle that was answering must answer again, after the port is back, before anything but stop is
+  // sent: a heartbeat heard before the loss is no news of now, however recent.
+  if (heartbeats_ && heartbeats_->state(Clock::now()) != HeartbeatWatch::Link::Unknown) {
+    linkDown_ = true;
+    heartbeats_->forget();
+  }
   retryAt_ = Clock::now() + retryDelay_;
 }
 

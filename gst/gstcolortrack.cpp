@@ -219,6 +219,7 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
 
   GST_OBJECT_LOCK(self);
   const Snapshot snapshot = snapshotOf(storeOf(self));
+  colortrack_gst::properties().recheckRefused(storeOf(self));
   const std::string refusal = first_refusal(self);
   GST_OBJECT_UNLOCK(self);
 

@@ -46,7 +46,7 @@
  * command (string), left and right (int, as sent; with MAVLink instead pitch-rate or vx and yaw-rate, as
  * sent: rad/s and m/s, yaw > 0 to the right), linear and angular (double), target-visible (boolean),
  * timestamp (the buffer the decision came from, or GST_CLOCK_TIME_NONE) and reason ("target", "no-target",
- * "stalled", "eos", "flush", "paused", "ready", "start", "reconnected", "link lost", "shutdown").
+ * "stalled", "eos", "flush", "paused", "ready", "start", "reconnected", "link-lost", "shutdown").
  *
  * ## Example launch lines
  * |[
@@ -296,7 +296,8 @@ bool checkSettings(GstRobotCtl *self, const robotctl::Settings &s, const std::st
 static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
   GstRobotCtl *self = GST_ROBOT_CTL(sink);
   GST_OBJECT_LOCK(self);
-  const robotctl::PropertyStore &store = storeOf(self);
+  robotctl::PropertyStore &store = storeOf(self);
+  robotctl::properties().recheckRefused(store);
   const robotctl::Settings s = store.settings;
   const guint64 version = store.versions[0];
   const std::string refusal = store.firstRefusal();

@@ -2,29 +2,31 @@
  * SECTION:element-trackpublish
  * @title: trackpublish
  *
- * Publishes the tracks on each buffer as one JSON document per frame, for fleets of cameras and anything
+ * Publishes the tracks on each buffer as one JSON document per frame with an object (every frame with
+ * #GstTrackPublish:add-empty-results), for fleets of cameras and anything
  * else that wants tracks outside the pipeline: to a file of JSON lines or stdout (#GstTrackPublish:location)
  * and/or to an MQTT broker (#GstTrackPublish:address, #GstTrackPublish:topic). The buffers pass through
  * untouched, so it can sit before a display sink or robotctl.
  *
- * A document is shaped like DL Streamer's gvametaconvert output: "timestamp" (the buffer's PTS in ns),
- * "source", "frame" (from 0), "resolution" {"width", "height"}, and "objects", one per region-of-interest
- * meta of #GstTrackPublish:roi-type, each with the pixel box "x", "y", "w", "h", the track "id", "state",
- * "score", "verified", "vx", "vy" (those colortrack attaches), and "detection" {"bounding_box" {"x_min",
- * "y_min", "x_max", "y_max"} normalised to the frame, "confidence", "label"}.
+ * A document follows DL Streamer's gvametaconvert schema: "timestamp" (the buffer's stream time in ns),
+ * "source", "run" (an id drawn at every start), "frame" (from 0), "resolution" {"width", "height"}, "tags"
+ * (#GstTrackPublish:tags, when set), and "objects", one per region-of-interest meta of
+ * #GstTrackPublish:roi-type, each with "roi_type", the pixel box "x", "y", "w", "h", the track "id",
+ * "state", "score", "verified", "vx", "vy" (those colortrack attaches), and "detection" {"bounding_box"
+ * {"x_min", "y_min", "x_max", "y_max"} normalised to the frame, "confidence", "label", "label_id"}.
  *
  * MQTT never holds up the stream: documents go into a queue that a worker thread delivers in order. While
  * the broker is unreachable they stay queued, up to #GstTrackPublish:max-queued (the oldest are then dropped
  * and counted in a warning), and the queue drains in order after reconnecting. A broker unreachable at start
  * is a warning and the element keeps retrying, or an error with #GstTrackPublish:fail-on-connect. With QoS 1
- * a document may arrive twice after a reconnect: the pair ("source", "frame") identifies it. At EOS the
+ * a document may arrive twice after a reconnect: ("source", "run", "frame") identifies it. At EOS the
  * element waits up to #GstTrackPublish:drain-timeout for the queue to be delivered before passing EOS on.
  *
  * ## Example launch lines
  * |[
  * gst-launch-1.0 v4l2src ! videoconvert ! colortrack mode=threshold ! \
  *     trackpublish address=tcp://broker.local:1883 source=cam1 ! fakesink
- * ]| Publishes every frame's tracks to colortrack/cam1.
+ * ]| Publishes the tracks of every frame with an object to colortrack/cam1.
  * |[
  * gst-launch-1.0 filesrc location=clip.mp4 ! decodebin ! videoconvert ! colortrack init-box=120,80,64,64 ! \
  *     trackpublish location=tracks.jsonl ! fakesink
@@ -242,7 +244,7 @@ bool checkMqttSettings(GstTrackPublish *self, const trackpublish::Settings &s,
                       ("TLS verification is off (property 'tls-verify') but address '%s' does not use TLS: "
                        "use ssl://HOST:PORT, "
                        "or leave 'tls-verify' alone.",
-                       trackpublish::redactedAddress(s.address).c_str()),
+                       gstglue::validUtf8(trackpublish::redactedAddress(s.address)).c_str()),
                       (nullptr));
     return false;
   }
@@ -337,6 +339,7 @@ static gboolean gst_track_publish_start(GstBaseTransform *trans) {
   GST_OBJECT_LOCK(self);
   trackpublish::PropertyStore &store = self->priv->properties;
   const trackpublish::Settings s = store.settings;
+  trackpublish::properties().recheckRefused(store);
   const std::string refusal = store.firstRefusal();
   GST_OBJECT_UNLOCK(self);
   if (!refusal.empty()) {
@@ -413,8 +416,11 @@ static GstFlowReturn gst_track_publish_transform_ip(GstBaseTransform *trans, Gst
   GstTrackPublish *self = GST_TRACK_PUBLISH(trans);
   State &state = self->priv->state;
   // Stream time, as gvametaconvert gives it: from 0 at the start of the stream whatever the PTS origin.
+  // A segment in another format (appsrc's default is bytes) has no stream time: the PTS then.
   state.facts.timestamp =
-      gst_segment_to_stream_time(&trans->segment, GST_FORMAT_TIME, GST_BUFFER_PTS(buffer));
+      trans->segment.format == GST_FORMAT_TIME
+          ? gst_segment_to_stream_time(&trans->segment, GST_FORMAT_TIME, GST_BUFFER_PTS(buffer))
+          : GST_BUFFER_PTS(buffer);
   const std::string document = trackpublish::trackDocument(buffer, state.roiType, state.facts);
   ++state.facts.frame;
   if (document.empty()) return GST_FLOW_OK;  // no object, and add-empty-results=false

@@ -6,16 +6,20 @@ namespace robotctl {
 
 void HeartbeatWatch::feed(const std::uint8_t *bytes, std::size_t size, Clock::time_point now) {
   for (const colortrack::mavlink::Frame &frame : colortrack::mavlink::parseFrames(bytes, size)) {
-    // Any component of the system counts (the autopilot, its gimbal manager): the vehicle is there.
     if (frame.messageId != colortrack::mavlink::kHeartbeat.id || frame.systemId != system_) continue;
+    // The autopilot (target-component), not another program that shares the vehicle's system id (a camera
+    // manager, a second robotctl behind mavlink-router), and never our own heartbeat echoed back.
+    if (component_ != 0 && frame.componentId != component_) continue;
+    if (frame.systemId == self_ && frame.componentId == selfComponent_) continue;
     heard_ = true;
+    stale_ = false;
     lastHeartbeat_ = now;
   }
 }
 
 HeartbeatWatch::Link HeartbeatWatch::state(Clock::time_point now) const {
   if (!heard_) return Link::Unknown;
-  return now - lastHeartbeat_ > timeout_ ? Link::Lost : Link::Alive;
+  return stale_ || now - lastHeartbeat_ > timeout_ ? Link::Lost : Link::Alive;
 }
 
 }  // namespace robotctl

@@ -51,7 +51,11 @@ std::string checkAddress(const std::string &address) {
   if (colon == std::string::npos || colon == 0)
     return "it needs a host and a port: HOST:PORT, tcp://HOST:PORT or ssl://HOST:PORT";
   // Not a host: what a typo of the scheme leaves ("tcp:/host:1883" read as HOST:PORT).
-  if (rest.find('/') != std::string::npos) return "'" + rest.substr(0, colon) + "' is not a host";
+  // (Shown from after a user:password@, which must not appear in a message.)
+  const std::size_t at = rest.rfind('@', colon);
+  const std::size_t hostFrom = at == std::string::npos ? 0 : at + 1;
+  if (rest.find('/') != std::string::npos)
+    return "'" + rest.substr(hostFrom, colon - std::min(colon, hostFrom)) + "' is not a host";
   const std::string port = rest.substr(colon + 1);
   char *end = nullptr;
   const long number = std::strtol(port.c_str(), &end, 10);
@@ -365,7 +369,8 @@ void MqttPublisher::connectDone(bool ok, const std::string &why) {
       again = everConnected_;
       everConnected_ = true;
       failedSinceSuccess_ = false;
-      backoff_ = kFirstBackoff;
+      // A peer that keeps dropping the connection soon after it is made is retried less and less often.
+      if (!flapping_) backoff_ = kFirstBackoff;
     } else {
       lastError_ = why;
       first = !failedSinceSuccess_;
@@ -391,8 +396,11 @@ void MqttPublisher::lost(const std::string &why) {
     requeueInFlight();
     queued = queue_.size();
     const auto now = Clock::now();
-    first = !flapping_;
-    flapping_ = now - connectedAt_ < kStableConnection;
+    // Announced unless it repeats a connection that keeps failing soon after it is made; one that lasted is
+    // news again.
+    const bool quick = now - connectedAt_ < kStableConnection;
+    first = !(flapping_ && quick);
+    flapping_ = quick;
     if (flapping_) {
       nextAttempt_ = now + backoff_;
       backoff_ = std::min(backoff_ * 2, kMaxBackoff);
@@ -409,15 +417,13 @@ void MqttPublisher::lost(const std::string &why) {
 // failed or never answered; their documents are already back in the queue) and make a new one.
 void MqttPublisher::abandonUnanswered(std::unique_lock<std::mutex> &lock) {
   connected_ = false;
-  connecting_ = true;  // no new connection before this one is closed
-  lock.unlock();
+  lock.unlock();  // this is the worker, the only thread that connects: none can start meanwhile
   MQTTAsync_disconnectOptions options = MQTTAsync_disconnectOptions_initializer;
   options.timeout = 0;
   MQTTAsync_disconnect(static_cast<MQTTAsync>(client_), &options);
   lost("it accepted the connection but answered no document for " +
        std::to_string(kAnswerTimeout.count() / 1000) + " s (is it an MQTT broker?)");
   lock.lock();
-  connecting_ = false;
 }
 
 }  // namespace trackpublish

@@ -64,12 +64,13 @@ std::string validUtf8(const std::string &text) {
   return result;
 }
 
-std::string refusalText(GParamSpec *pspec, const GValue *value, const char *why) {
-  return validUtf8("Invalid value " + shownValue(value) + " for property '" + pspec->name + "': " + why);
+std::string refusalText(GParamSpec *pspec, const GValue *value, const char *why, ShowValue shown) {
+  const std::string text = shown ? shown(value) : shownValue(value);
+  return validUtf8("Invalid value " + text + " for property '" + pspec->name + "': " + why);
 }
 
-std::string keepingText(const std::string &refusal, const GValue *kept) {
-  return validUtf8(refusal + ". Keeping " + shownValue(kept) + ".");
+std::string keepingText(const std::string &refusal, const GValue *kept, ShowValue shown) {
+  return validUtf8(refusal + ". Keeping " + (shown ? shown(kept) : shownValue(kept)) + ".");
 }
 
 std::string readAtStartText(GParamSpec *pspec) {

@@ -6,6 +6,7 @@
 #include <gst/gst.h>
 
 #include <cstddef>
+#include <iterator>
 #include <map>
 #include <string>
 #include <type_traits>
@@ -58,6 +59,9 @@ struct PropertyDef {
   bool keepRefused = false;
   // Called under the lock after an accepted value is set, e.g. to post a request for the streaming thread.
   void (*accepted)(PropertyStore<S, X> &store) = nullptr;
+  // How a value of this property is shown in messages, when not as itself: a secret ('***'), an address
+  // whose password must not show. Null: as itself.
+  std::string (*shown)(const GValue *value) = nullptr;
 };
 
 // The class a pointer to member belongs to, so that the field accessors below need only the member.
@@ -124,8 +128,10 @@ bool sameValue(const GValue *a, const GValue *b);
 // `text` with each invalid UTF-8 sequence replaced (U+FFFD): a GStreamer message must be valid UTF-8, and a
 // value typed or read from a file may not be (an application in Python would fail to read the message).
 std::string validUtf8(const std::string &text);
-std::string refusalText(GParamSpec *pspec, const GValue *value, const char *why);
-std::string keepingText(const std::string &refusal, const GValue *kept);
+// `shown`: the property's own way to show a value (PropertyDef::shown), or null.
+using ShowValue = std::string (*)(const GValue *value);
+std::string refusalText(GParamSpec *pspec, const GValue *value, const char *why, ShowValue shown = nullptr);
+std::string keepingText(const std::string &refusal, const GValue *kept, ShowValue shown = nullptr);
 std::string readAtStartText(GParamSpec *pspec);
 void postSettingsWarning(GstElement *element, GstDebugCategory *category, const std::string &text);
 void logRefusedBeforeStart(GstElement *element, GstDebugCategory *category, const std::string &refusal);
@@ -176,9 +182,9 @@ class PropertyTable {
     if (why.empty() && def.apply == Apply::BeforeStart && store.running && !sameValue(&before, value))
       why = "it cannot change while the element is started; set it before";
     if (!why.empty()) {
-      const std::string refusal = refusalText(pspec, value, why.c_str());
+      const std::string refusal = refusalText(pspec, value, why.c_str(), def.shown);
       if (store.running) {
-        if (warning.empty()) warning = keepingText(refusal, &before);
+        if (warning.empty()) warning = keepingText(refusal, &before, def.shown);
       } else {
         store.refused[id] = refusedBeforeStart = refusal;
         if (def.keepRefused) def.set(store.settings, value);
@@ -200,6 +206,24 @@ class PropertyTable {
     g_value_unset(&before);
     g_value_unset(&after);
     if (!warning.empty()) postSettingsWarning(element, category, warning);
+  }
+
+  // At start, under the object lock: a read-at-start text refused when it was set is judged again (a folder
+  // or a certificate the application created since may make it good now), and forgotten if it passes.
+  void recheckRefused(PropertyStore<S, X> &store) const {
+    for (auto it = store.refused.begin(); it != store.refused.end();) {
+      const PropertyDef<S, X> &def = defs_[it->first - 1];
+      bool good = false;
+      if (def.apply == Apply::AtStart && def.keepRefused && def.check) {
+        GValue value = G_VALUE_INIT;
+        g_value_init(&value, G_TYPE_STRING);
+        def.get(store.settings, &value);
+        std::string warning;
+        good = (!def.refuse || !def.refuse(&value)) && def.check(store, &value, &warning).empty();
+        g_value_unset(&value);
+      }
+      it = good ? store.refused.erase(it) : std::next(it);
+    }
   }
 
  private:

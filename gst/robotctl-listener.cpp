@@ -50,7 +50,8 @@ void ElementListener::reopenFailed(const std::string &port, const std::string &w
 }
 
 void ElementListener::reconnected(const std::string &port) {
-  GST_ELEMENT_INFO(element_, RESOURCE, WRITE, ("Reconnected to %s.", port.c_str()), (nullptr));
+  GST_ELEMENT_INFO(element_, RESOURCE, WRITE, ("Reconnected to %s.", gstglue::validUtf8(port).c_str()),
+                   (nullptr));
 }
 
 void ElementListener::post(const Command &command) {

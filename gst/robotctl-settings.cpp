@@ -119,7 +119,8 @@ void setControl(Settings &s, const GValue *v) {
 }
 
 // Each numeric property's declared range is the range it accepts (gst-inspect tells the truth), and GLib
-// refuses values outside it. NaN passes GLib's range check (every comparison with it is false): refused here.
+// refuses values outside it. GLib's check refuses NaN too (its clamp leaves NaN, which never equals itself);
+// this is for a GLib that would not, so that NaN never reaches the controller.
 const char *refuseNotFinite(const GValue *v) {
   return std::isfinite(g_value_get_double(v)) ? nullptr : "the value must be a number";
 }
@@ -274,10 +275,10 @@ const Def kProperties[] = {
      [](GParamFlags f) {
        return g_param_spec_uint(
            "link-timeout", "Link timeout",
-           "protocol=mavlink over udp://: ms without a HEARTBEAT from target-system "
+           "protocol=mavlink over udp://: ms without a HEARTBEAT from target-system's target-component "
            "before the link counts as lost (a warning; only stop is sent until one comes "
-           "again, then stop first); starts with the first heartbeat heard; 0: off; "
-           "read at start",
+           "again, then stop first); starts with the first heartbeat heard; 0 (or target-system=0): off; "
+           "under about 1500 a 1 Hz heartbeat makes the link flap; read at start",
            0, 60000, Settings{}.linkTimeoutMs, f);
      },
      getValue<&Settings::linkTimeoutMs>, setValue<&Settings::linkTimeoutMs>},

@@ -61,11 +61,8 @@ std::string checkPemFile(const std::string &path, const char *what) {
   return "";
 }
 
-std::string checkCaFileValue(const PropertyStore &, const GValue *v, std::string *) {
-  return checkPemFile(textOf(v), "CERTIFICATE");
-}
-
-std::string checkCertFileValue(const PropertyStore &, const GValue *v, std::string *) {
+// tls-ca-file and tls-cert-file both hold certificates.
+std::string checkCertificateFileValue(const PropertyStore &, const GValue *v, std::string *) {
   return checkPemFile(textOf(v), "CERTIFICATE");
 }
 
@@ -110,7 +107,8 @@ const Def kProperties[] = {
            "MQTT",
            nullptr, f);
      },
-     getTextOrNull<&Settings::address>, setText<&Settings::address>, nullptr, checkAddressValue, true},
+     getTextOrNull<&Settings::address>, setText<&Settings::address>, nullptr, checkAddressValue, true,
+     nullptr, [](const GValue *v) { return "'" + redactedAddress(textOf(v)) + "'"; }},
     {kAtStart, false,
      [](GParamFlags f) {
        return g_param_spec_string("topic", "Topic",
@@ -168,7 +166,8 @@ const Def kProperties[] = {
      [](GParamFlags f) {
        return g_param_spec_string("password", "Password", "MQTT password; NULL = none", nullptr, f);
      },
-     getTextOrNull<&Settings::password>, setText<&Settings::password>, nullptr, checkPasswordValue, true},
+     getTextOrNull<&Settings::password>, setText<&Settings::password>, nullptr, checkPasswordValue, true,
+     nullptr, [](const GValue *) { return std::string("'***'"); }},
     {kAtStart, false,
      [](GParamFlags f) {
        return g_param_spec_string(
@@ -177,14 +176,15 @@ const Def kProperties[] = {
            "tcp://); NULL = the system's",
            nullptr, f);
      },
-     getTextOrNull<&Settings::tlsCaFile>, setText<&Settings::tlsCaFile>, nullptr, checkCaFileValue, true},
+     getTextOrNull<&Settings::tlsCaFile>, setText<&Settings::tlsCaFile>, nullptr, checkCertificateFileValue,
+     true},
     {kAtStart, false,
      [](GParamFlags f) {
        return g_param_spec_string("tls-cert-file", "TLS certificate file",
                                   "PEM client certificate (ssl:// only); NULL = none", nullptr, f);
      },
-     getTextOrNull<&Settings::tlsCertFile>, setText<&Settings::tlsCertFile>, nullptr, checkCertFileValue,
-     true},
+     getTextOrNull<&Settings::tlsCertFile>, setText<&Settings::tlsCertFile>, nullptr,
+     checkCertificateFileValue, true},
     {kAtStart, false,
      [](GParamFlags f) {
        return g_param_spec_string("tls-key-file", "TLS key file",

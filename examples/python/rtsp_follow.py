@@ -69,7 +69,11 @@ class Follower:
         # robotctl sends stop when no confirmed target (or no frame at all) came for lost-timeout.
         tail = "fakesink sync=false"
         if self.args.robot:
-            tail = f"robotctl protocol=text sync=false lost-timeout=500 location={self.args.robot}"
+            # A serial port through libserialport (device=, baud rate and framing set); a file, FIFO or
+            # udp://HOST:PORT as written (location=).
+            target = "device" if self.args.robot.startswith("/dev/tty") else "location"
+            tail = f'robotctl protocol=text sync=false lost-timeout=500 {target}="{self.args.robot}"'
+
         return f"{depay} ! decodebin ! videoconvert ! {tracker} ! {tail}"
 
     def on_pad_added(self, _source, pad):
@@ -148,7 +152,8 @@ def main():
     parser.add_argument("--codec", choices=("h264", "mjpeg"), default="h264", help="what the camera sends")
     parser.add_argument("--init-box", help='"x,y,w,h" of the target in the first frame')
     parser.add_argument("--template", help="template image (survives even a restart of this program)")
-    parser.add_argument("--robot", help="robotctl location (a serial device, file or udp://HOST:PORT)")
+    parser.add_argument("--robot", help="where robotctl sends: a serial port /dev/tty... (device=), a file or "
+                        "udp://HOST:PORT (location=)")
     parser.add_argument("--latency", type=int, default=100, help="rtspsrc jitter buffer, ms")
     parser.add_argument("--seconds", type=float, default=0, help="stop after this long (0: run for ever)")
     args = parser.parse_args()

@@ -41,6 +41,11 @@ class Deduper:
 
     def is_new(self, source, frame):
         state = self.sources.get(source)
+        if state is None and isinstance(source, tuple):
+            # A new run of a camera: keep its previous run (late repeats of it are still caught), forget older.
+            runs = [k for k in self.sources if isinstance(k, tuple) and k[0] == source[0]]
+            for old in runs[:-1]:
+                del self.sources[old]
         if state is None or frame + self.restart_gap < state[0]:
             state = self.sources[source] = [frame, set()]  # first document, or the pipeline restarted
         if frame in state[1]:

@@ -110,7 +110,7 @@ inline gint64 monotonicNs() {
 // slowly the client connects.
 class SceneFeeder {
  public:
-  SceneFeeder(GstAppSrc *appsrc, gint64 &epochNs, const std::atomic<bool> &go)
+  SceneFeeder(GstAppSrc *appsrc, std::atomic<gint64> &epochNs, const std::atomic<bool> &go)
       : appsrc_(appsrc), epochNs_(epochNs), go_(go) {
     thread_ = std::thread([this] { run(); });
   }
@@ -131,12 +131,13 @@ class SceneFeeder {
     while (!stop_) {
       const auto wakeUp = Clock::now() + std::chrono::nanoseconds(period);
       const gint64 now = monotonicNs();
-      if (epochNs_ == 0 && go_) {
-        epochNs_ = now;
-        std::printf("EPOCH %" G_GINT64_FORMAT "\n", epochNs_);
+      gint64 unset = 0;
+      if (go_ && epochNs_.compare_exchange_strong(unset, now)) {  // the first feeder to start the clock
+        std::printf("EPOCH %" G_GINT64_FORMAT "\n", now);
         std::fflush(stdout);
       }
-      const double sinceEpoch = epochNs_ == 0 ? 0 : (now - epochNs_) / 1e9;
+      const gint64 epoch = epochNs_.load();
+      const double sinceEpoch = epoch == 0 ? 0 : (now - epoch) / 1e9;
       const int index = sinceEpoch <= 0 ? 0 : static_cast<int>(sinceEpoch * kFps);
 
       cv::Mat bgr = scene.render(index).bgr;
@@ -158,14 +159,14 @@ class SceneFeeder {
   }
 
   GstAppSrc *appsrc_;
-  gint64 &epochNs_;
+  std::atomic<gint64> &epochNs_;  // shared by the feeders of every client
   const std::atomic<bool> &go_;
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };
 
 struct ServerState {
-  gint64 epochNs = 0;
+  std::atomic<gint64> epochNs{0};
   std::atomic<bool> go{false};
   std::vector<std::unique_ptr<SceneFeeder>> feeders;
 };

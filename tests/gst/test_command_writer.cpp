@@ -444,13 +444,13 @@ TEST(CommandWriter, MissingHeartbeatsStopTheVehicleUntilTheyAreBack) {
   const std::size_t lastTurn = static_cast<std::size_t>(
       std::find(reasons.rbegin(), reasons.rend(), "target").base() - reasons.begin());
   ASSERT_LT(lastTurn + 5, reasons.size());  // ~25 stops since
-  for (std::size_t i = lastTurn; i < reasons.size(); ++i) EXPECT_EQ(reasons[i], "link lost") << i;
+  for (std::size_t i = lastTurn; i < reasons.size(); ++i) EXPECT_EQ(reasons[i], "link-lost") << i;
   link.beat(1, 0.3);
   reasons = link.reasons();
   const auto back = std::find(reasons.begin() + static_cast<std::ptrdiff_t>(lastTurn), reasons.end(),
                               std::string("reconnected"));
   ASSERT_NE(back, reasons.end());
-  EXPECT_EQ(*(back - 1), "link lost");
+  EXPECT_EQ(*(back - 1), "link-lost");
   ASSERT_NE(back + 1, reasons.end());
   EXPECT_EQ(*(back + 1), "target");
   EXPECT_EQ(link.rig.wire.read([&] { return link.rig.wire.reconnected; }), 1);
@@ -480,10 +480,28 @@ TEST(CommandWriter, APortLostWhileTheVehicleAnsweredWaitsForItsHeartbeat) {
   EXPECT_EQ(link.rig.port->openAttempts.size(), 4u);
   EXPECT_EQ(link.rig.wire.read([&] { return link.rig.wire.lost; }), 1);
   EXPECT_EQ(link.rig.wire.read([&] { return link.rig.wire.reconnected; }), 0);
-  EXPECT_EQ(link.reasons().back(), "link lost");
+  EXPECT_EQ(link.reasons().back(), "link-lost");
   link.beat(1, 0.3);
   EXPECT_EQ(link.rig.wire.read([&] { return link.rig.wire.reconnected; }), 1);
   EXPECT_EQ(link.rig.wire.read([&] { return link.rig.wire.lost; }), 1);
+  EXPECT_EQ(link.reasons().back(), "target");
+}
+
+// A port outage shorter than link-timeout: the heartbeat heard before it is no news of after it, so only
+// stop goes out from the reopen until a fresh heartbeat comes (then "reconnected" once).
+TEST(CommandWriter, AShortPortOutageStillWaitsForAFreshHeartbeat) {
+  LinkRig link;
+  link.rig.writer->setPlaying(true);
+  link.beat(1, 0.3);
+  const std::size_t before = link.reasons().size();
+  link.rig.port->failNextWrite(0);  // reopened 0.1 s later, well within link-timeout (0.3 s)
+  link.beat(0, 0.25);
+  std::vector<std::string> reasons = link.reasons();
+  ASSERT_LT(before + 3, reasons.size());
+  for (std::size_t i = before; i < reasons.size(); ++i) EXPECT_NE(reasons[i], "target") << i;
+  EXPECT_EQ(link.rig.wire.read([&] { return link.rig.wire.reconnected; }), 0);
+  link.beat(1, 0.3);
+  EXPECT_EQ(link.rig.wire.read([&] { return link.rig.wire.reconnected; }), 1);
   EXPECT_EQ(link.reasons().back(), "target");
 }
 

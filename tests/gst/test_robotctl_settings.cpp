@@ -193,6 +193,28 @@ GST_START_TEST(test_bad_field_of_view_while_running) {
 }
 GST_END_TEST;
 
+// A location refused when set (its folder did not exist yet) is judged again at start: an application that
+// creates the folder in between starts fine.
+GST_START_TEST(test_location_refused_when_set_is_judged_again_at_start) {
+  gchar *dir = g_dir_make_tmp("robotctl-XXXXXX", nullptr);
+  const std::string folder = std::string(dir) + "/later", file = folder + "/commands.txt";
+  GstElement *pipeline = gst_parse_launch("videotestsrc num-buffers=2 ! robotctl name=r", nullptr);
+  GstElement *robot = gst_bin_get_by_name(GST_BIN(pipeline), "r");
+  g_object_set(robot, "location", file.c_str(), nullptr);  // refused: the folder is missing
+  fail_unless(g_mkdir(folder.c_str(), 0700) == 0);
+  fail_unless(gst_element_set_state(pipeline, GST_STATE_PAUSED) != GST_STATE_CHANGE_FAILURE,
+              "the start failed although the folder exists now");
+  gst_element_set_state(pipeline, GST_STATE_NULL);
+  fail_unless(g_file_test(file.c_str(), G_FILE_TEST_IS_REGULAR));
+  g_unlink(file.c_str());
+  g_rmdir(folder.c_str());
+  g_rmdir(dir);
+  g_free(dir);
+  gst_object_unref(robot);
+  gst_object_unref(pipeline);
+}
+GST_END_TEST;
+
 }  // namespace
 
 static Suite *robotctl_settings_suite(void) {
@@ -203,6 +225,7 @@ static Suite *robotctl_settings_suite(void) {
   tcase_add_test(tc, test_bad_settings_give_clear_errors);
   tcase_add_test(tc, test_url_typos_are_never_files);
   tcase_add_test(tc, test_bad_field_of_view_while_running);
+  tcase_add_test(tc, test_location_refused_when_set_is_judged_again_at_start);
   return s;
 }
 

@@ -40,9 +40,9 @@
 
 #include "trackpublish_rig.hpp"
 
-    namespace {
+namespace {
 
-  using namespace trackpublish_rig;
+using namespace trackpublish_rig;
 
 }  // namespace
 

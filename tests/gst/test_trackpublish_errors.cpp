@@ -121,6 +121,16 @@ GST_START_TEST(test_password_in_address_is_never_shown) {
   for (const std::string &e : p.messages(GST_MESSAGE_ERROR)) all.push_back(e);
   fail_unless(anyContains(all, "tcp://robot:***@127.0.0.1"), "no message names the broker");
   fail_unless(!anyContains(all, "s3cret"), "a message shows the password");
+  // Refused values do not show it either: a password MQTT cannot carry, an address with a typo after it.
+  for (const std::string &properties :
+       {"address=tcp://127.0.0.1:1883 username=u password=s3cret" + std::string(70000, 'x'),
+        std::string("address=tcp://robot:s3cret@127.0.0.1/x:1883")}) {
+    Publisher refused(properties);
+    fail_unless_equals_int(refused.play(), GST_STATE_CHANGE_FAILURE);
+    const std::vector<std::string> errors = refused.messages(GST_MESSAGE_ERROR);
+    fail_unless(!errors.empty());
+    fail_unless(!anyContains(errors, "s3cret"), "a refusal shows the password: %s", errors[0].c_str());
+  }
 }
 GST_END_TEST;
 
