@@ -360,6 +360,17 @@ const Def kProperties[] = {
      [](Settings &s, const GValue *v) { s.tracker.maxCoastFrames = g_value_get_int(v); }},
     {Apply::Live, kTracker,
      [](GParamFlags f) {
+       return g_param_spec_boolean(
+           "follow-camera", "Follow the camera",
+           "mode=threshold: measure how the camera moved since the last frame (phase correlation of a "
+           "small grey copy, the objects left out) and move the tracks with the picture, so a panning or "
+           "turning camera does not carry predictions off their objects",
+           TrackerSettings{}.followCamera, f);
+     },
+     [](const Settings &s, GValue *v) { g_value_set_boolean(v, s.tracker.followCamera); },
+     [](Settings &s, const GValue *v) { s.tracker.followCamera = g_value_get_boolean(v); }},
+    {Apply::Live, kTracker,
+     [](GParamFlags f) {
        return g_param_spec_enum("verify", "Verify",
                                 "Edge check that tells the object from same-coloured look-alikes",
                                 GST_TYPE_COLOR_TRACK_VERIFY, fromVerifyMode(TrackerSettings{}.verify), f);

@@ -17,6 +17,7 @@ colortrack::MultiTrackerSettings multiTrackerSettings(const Settings &settings) 
   colortrack::MultiTrackerSettings m;
   m.kalman = settings.tracker.kalman;
   m.maxCoastFrames = settings.tracker.maxCoastFrames;
+  m.followCamera = settings.tracker.followCamera;
   return m;
 }
 

@@ -96,6 +96,11 @@ void KalmanFilter9::setVelocity(double vx, double vy) {
   state_(4) = vy;
 }
 
+void KalmanFilter9::translate(double dx, double dy) {
+  state_(0) += dx;
+  state_(3) += dy;
+}
+
 void KalmanFilter9::correct(double x, double y, double scale) {
   if (!initialised_) {
     init(x, y, scale);

@@ -494,6 +494,15 @@ std::vector<TrackedObject> MultiTracker::update(const std::vector<Blob> &detecte
   return out;
 }
 
+void MultiTracker::followCamera(cv::Point2d shift) {
+  for (Track &t : tracks_) {
+    t.filter.translate(shift.x, shift.y);
+    t.lastSeen += shift;
+    for (auto &[clock, centroid] : t.path) centroid += shift;
+  }
+  for (Exit &e : exits_) e.position += shift;
+}
+
 std::vector<TrackedObject> MultiTracker::allTracks() const {
   std::vector<TrackedObject> out;
   for (const Track &t : tracks_) out.push_back(report(t));

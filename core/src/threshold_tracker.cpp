@@ -39,8 +39,27 @@ void ThresholdTracker::setTrackSettings(const MultiTrackerSettings &settings) {
   tracks_.setSettings(s);
 }
 
+// The camera's motion since the last frame, measured on the background (the blobs left out, with a margin
+// for their motion since then), moves every track before the blobs are assigned. Without it, a camera that
+// jerks 10 px in a frame puts each prediction that far from its object, where the next object may be.
+void ThresholdTracker::followCamera(const SampledFrame &frame, const std::vector<Blob> &blobs) {
+  if (!tracks_.settings().followCamera) {
+    camera_.reset();
+    return;
+  }
+  constexpr int kMargin = 4;
+  std::vector<cv::Rect2d> objects;
+  for (const Blob &b : blobs)
+    objects.emplace_back(b.box.x - kMargin, b.box.y - kMargin, b.box.width + 2 * kMargin,
+                         b.box.height + 2 * kMargin);
+  const GlobalMotion::Shift moved = camera_.measure(frame, objects);
+  if (moved.valid) tracks_.followCamera(moved.offset);
+}
+
 FrameReport ThresholdTracker::track(const ImageSource &frame, double dt) {
-  const std::vector<Blob> blobs = detector_.detect(frame.channels(converted_));
+  const SampledFrame bytes = frame.channels(converted_);
+  const std::vector<Blob> blobs = detector_.detect(bytes);
+  followCamera(bytes, blobs);
   const std::vector<TrackedObject> objects = tracks_.update(blobs, frame.size(), dt, detector_.labels());
   FrameReport report;
   report.listsTracks = true;

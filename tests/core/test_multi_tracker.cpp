@@ -317,3 +317,40 @@ TEST(MultiTracker, CoastingDoesNotFollowAOneFrameJump) {
     EXPECT_NEAR(reported[0].centre.x, lostAt + 8 * speed, 20) << "jump " << jump;  // half its size
   }
 }
+
+// Two balls 60 px apart moving right at 2 px a frame; the camera jerks 60 px left in one frame, so in the
+// picture both jump 60 px right: the left ball lands where the right one was. Told how the picture moved,
+// each track keeps its ball; not told, the right ball's track takes the left ball.
+TEST(MultiTracker, FollowsTheCameraThroughAJerk) {
+  for (const bool told : {true, false}) {
+    MultiTracker tracker;
+    std::vector<TrackedObject> out;
+    cv::Point2d left(200, 240), right(260, 240);
+    for (int i = 0; i < 10; ++i) {
+      out = tracker.update({blobAt(left.x, left.y, 20), blobAt(right.x, right.y, 20)}, cv::Size(640, 480));
+      left.x += 2;
+      right.x += 2;
+    }
+    ASSERT_EQ(out.size(), 2u);
+    const int leftId = nearest(out, left, 10)->id, rightId = nearest(out, right, 10)->id;
+    const cv::Point2d jerk(60, 0);
+    for (int i = 0; i < 5; ++i) {
+      if (told && i == 0) tracker.followCamera(jerk);
+      const cv::Point2d l = left + jerk, r = right + jerk;
+      out = tracker.update({blobAt(l.x, l.y, 20), blobAt(r.x, r.y, 20)}, cv::Size(640, 480));
+      left.x += 2;
+      right.x += 2;
+    }
+    const TrackedObject *l = nearest(out, left + jerk, 4), *r = nearest(out, right + jerk, 4);
+    if (told) {
+      ASSERT_TRUE(l && r);
+      EXPECT_EQ(l->id, leftId);
+      EXPECT_EQ(r->id, rightId);
+      EXPECT_NEAR(l->vx, 2, 0.5);  // the ball's own motion: the jerk is not in the velocity
+    } else {
+      ASSERT_TRUE(l && r);
+      EXPECT_EQ(l->id, rightId);  // the right ball's track took the left ball
+      EXPECT_NE(r->id, rightId);
+    }
+  }
+}

@@ -96,6 +96,66 @@ MotScene distractors() {
   return s;
 }
 
+// Bounces off the walls of `arena` at a constant speed: one waypoint a frame.
+std::vector<balls::Waypoint> bouncingPath(cv::RNG &rng, cv::Rect arena, double radius, int frames) {
+  const double x0 = arena.x + radius, x1 = arena.br().x - radius;
+  const double y0 = arena.y + radius, y1 = arena.br().y - radius;
+  cv::Point2d p(rng.uniform(x0, x1), rng.uniform(y0, y1));
+  const double speed = rng.uniform(2.0, 5.0), angle = rng.uniform(0.0, 2 * CV_PI);
+  cv::Point2d v(speed * std::cos(angle), speed * std::sin(angle));
+  std::vector<balls::Waypoint> path;
+  for (int f = 0; f <= frames; ++f) {
+    path.push_back({f, p});
+    p += v;
+    if (p.x < x0 || p.x > x1) v.x = -v.x;
+    if (p.y < y0 || p.y > y1) v.y = -v.y;
+  }
+  return path;
+}
+
+// Still spells of 4-15 frames and bursts of 4-10 frames at 6-14 px a frame in a random direction, turned
+// back at the scene's edge: a hand-held or robot camera that jerks.
+std::vector<cv::Point> jerkyCamera(cv::RNG &rng, cv::Size scene, cv::Size frame, int frames) {
+  const cv::Point limit(scene.width - frame.width, scene.height - frame.height);
+  cv::Point2d p(limit.x / 2.0, limit.y / 2.0);
+  std::vector<cv::Point> path;
+  while (static_cast<int>(path.size()) < frames) {
+    for (int still = rng.uniform(4, 16); still > 0; --still) path.push_back(cv::Point(p));
+    const double speed = rng.uniform(6.0, 14.0), angle = rng.uniform(0.0, 2 * CV_PI);
+    cv::Point2d v(std::round(speed * std::cos(angle)), std::round(speed * std::sin(angle)));
+    for (int burst = rng.uniform(4, 11); burst > 0; --burst) {
+      if (p.x + v.x < 0 || p.x + v.x > limit.x) v.x = -v.x;
+      if (p.y + v.y < 0 || p.y + v.y > limit.y) v.y = -v.y;
+      p += v;
+      path.push_back(cv::Point(p));
+    }
+  }
+  path.resize(frames);
+  return path;
+}
+
+// Six red balls bounce in a scene larger than the frame while the camera pans and jerks over it, within the
+// part of the scene every view of the camera holds: an object that changes id changed it because the camera
+// moved, not because it left the view.
+MotScene panningCamera(int seed) {
+  balls::BallSceneConfig config;
+  config.seed = 16 + seed;
+  config.sceneSize = cv::Size(760, 570);
+  const cv::Size travel = config.sceneSize - config.frameSize;
+  const cv::Rect arena(cv::Point(travel), config.frameSize - travel);
+  constexpr int kFrames = 300;
+  cv::RNG rng(seed);
+  config.cameraPath = jerkyCamera(rng, config.sceneSize, config.frameSize, kFrames);
+  std::vector<balls::Ball> list;
+  for (int i = 0; i < 6; ++i) {
+    const double radius = rng.uniform(14.0, 26.0);
+    list.push_back(ball(kRed, radius, bouncingPath(rng, arena, radius, kFrames)));
+  }
+  MotScene s = makeScene("panning-camera-" + std::to_string(seed), config, list, std::vector<bool>(6, true));
+  s.frames = kFrames;
+  return s;
+}
+
 }  // namespace
 
 cv::Mat MotScene::render(int index, MotFrame &truth, double minVisibleFraction, int minArea) const {
@@ -146,7 +206,8 @@ cv::Mat MotScene::render(int index, MotFrame &truth, double minVisibleFraction, 
 }
 
 std::vector<MotScene> motScenes() {
-  return {crossing(), eightAtRandom(), enterLeaveBehindBoard(), lightingAndShadow(), distractors()};
+  return {crossing(),    eightAtRandom(),  enterLeaveBehindBoard(), lightingAndShadow(),
+          distractors(), panningCamera(1), panningCamera(2),        panningCamera(3)};
 }
 
 }  // namespace colortrack::eval

@@ -30,7 +30,7 @@ struct MotScene {
   cv::Mat render(int index, MotFrame &truth, double minVisibleFraction = 0.25, int minArea = 50) const;
 };
 
-// The five scenes, deterministic.
+// The scenes, deterministic.
 std::vector<MotScene> motScenes();
 
 }  // namespace colortrack::eval

@@ -68,7 +68,7 @@ cv::Vec3b bgrOfHsv(double hue, double saturation, double value) {
 BallScene::BallScene(const BallSceneConfig &config, std::vector<Ball> balls)
     : config_(config), balls_(std::move(balls)) {
   cv::RNG rng(config.seed);
-  const cv::Size size = config.frameSize;
+  const cv::Size size = config.sceneSize.empty() ? config.frameSize : config.sceneSize;
   // Smooth grey blotches with a faint tint: texture that no sensible range picks up.
   cv::Mat small(std::max(2, size.height / 24), std::max(2, size.width / 24), CV_8UC3);
   for (int y = 0; y < small.rows; ++y)
@@ -102,7 +102,7 @@ BallScene::BallScene(const BallSceneConfig &config, std::vector<Ball> balls)
 BallTruth BallScene::truthOf(int ball, int index) const {
   const Ball &b = balls_[ball];
   BallTruth t;
-  t.centre = positionAt(b, index);
+  t.centre = positionAt(b, index) - cv::Point2d(cameraAt(index));
   t.radius = b.radius;
   const cv::Size s = config_.frameSize;
   t.fullyVisible = t.centre.x - b.radius >= 0 && t.centre.y - b.radius >= 0 &&
@@ -110,6 +110,12 @@ BallTruth BallScene::truthOf(int ball, int index) const {
   t.visible = t.centre.x + b.radius >= 0 && t.centre.y + b.radius >= 0 &&
               t.centre.x - b.radius <= s.width - 1 && t.centre.y - b.radius <= s.height - 1;
   return t;
+}
+
+cv::Point BallScene::cameraAt(int index) const {
+  const std::vector<cv::Point> &path = config_.cameraPath;
+  if (path.empty()) return cv::Point();
+  return path[std::clamp(index, 0, static_cast<int>(path.size()) - 1)];
 }
 
 cv::Rect BallScene::boxOf(int ball, int index) const {
@@ -122,7 +128,7 @@ cv::Rect BallScene::boxOf(int ball, int index) const {
 }
 
 cv::Mat BallScene::render(int index, std::vector<BallTruth> *truth) const {
-  cv::Mat frame = background_.clone();
+  cv::Mat frame = background_(cv::Rect(cameraAt(index), config_.frameSize)).clone();
   const cv::Rect inside(cv::Point(), frame.size());
   if (truth) truth->clear();
   for (int i = 0; i < static_cast<int>(balls_.size()); ++i) {

@@ -34,6 +34,11 @@ struct BallSceneConfig {
   double saltPepper = 0;      // fraction of pixels replaced, per frame, by ball 0's colour, white or black
   double brightness = 0;      // the whole frame's brightness varies by +- this fraction
   int brightnessPeriod = 60;  // frames per brightness cycle
+  // A camera that looks at part of a larger scene: the background and the balls' paths are in the
+  // coordinates of a scene of `sceneSize` (empty: the frame's size), and frame `index` shows the part whose
+  // top-left corner is cameraPath[index] (the last one after the end; empty: the origin).
+  cv::Size sceneSize;
+  std::vector<cv::Point> cameraPath;
 };
 
 struct BallTruth {
@@ -51,7 +56,10 @@ class BallScene {
 
   // Frame `index` (deterministic) and, optionally, every ball's ground truth in that frame.
   cv::Mat render(int index, std::vector<BallTruth> *truth = nullptr) const;
+  // In frame coordinates.
   BallTruth truthOf(int ball, int index) const;
+  // The top-left corner of frame `index` in the scene.
+  cv::Point cameraAt(int index) const;
   // The ball's bounding box in frame `index`, rounded to whole pixels (an init-box a user would draw).
   cv::Rect boxOf(int ball, int index) const;
 

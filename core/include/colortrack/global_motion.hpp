@@ -2,10 +2,11 @@
 // from the phase correlation of small grey copies of consecutive frames, the target's box left out.
 #pragma once
 
+#include <vector>
+
 #include <opencv2/core.hpp>
 
 #include "colortrack/image_source.hpp"
-#include "colortrack/scratch_image.hpp"
 
 namespace colortrack {
 
@@ -20,16 +21,26 @@ class GlobalMotion {
   // Reads a small copy of `frame` and measures its shift from the frame measured last, leaving out
   // `exclude` (frame px; the target, which moves on its own; empty: nothing). The first frame, a frame of
   // another size and a frame without texture give an invalid shift.
-  Shift measure(const ImageSource &frame, const cv::Rect2d &exclude = cv::Rect2d());
+  Shift measure(const ImageSource &frame, const cv::Rect2d &exclude = cv::Rect2d()) {
+    return measure(frame, std::vector<cv::Rect2d>{exclude});
+  }
+  // The same, leaving out every box of `exclude` (several objects that move on their own).
+  Shift measure(const ImageSource &frame, const std::vector<cv::Rect2d> &exclude);
+  // The same from the frame's bytes where they lie (threshold mode has them already).
+  Shift measure(const SampledFrame &frame, const std::vector<cv::Rect2d> &exclude);
   // The next frame starts afresh.
   void reset() { previous_.release(); }
 
  private:
-  void smallCopy(const ImageSource &frame);
-  void weights(const cv::Rect2d &exclude);
+  void smallCopy(const SampledFrame &frame);
+  void weights(const std::vector<cv::Rect2d> &exclude);
+  void spectrum();
+  cv::Point2d correlate(double &response);
 
-  ScratchImage read_;
-  cv::Mat small_, grey_, smooth_, current_, previous_, hanning_, mask_, weights_;
+  cv::Mat converted_;  // the frame as BGR, for sources that cannot describe their bytes in place
+  cv::Mat read_, smooth_, detail_, hanning_, mask_, weights_, windowed_;
+  cv::Mat current_, previous_;  // spectra of this frame's and the last frame's weighted detail
+  cv::Mat cross_, surface_;
   cv::Size frameSize_;
   double scale_ = 1;  // frame px per small-copy px
 };

@@ -40,6 +40,9 @@ class KalmanFilter9 {
   void dropAcceleration();
   // Sets the position's velocity (vx, vy), e.g. to a slower estimate before coasting.
   void setVelocity(double vx, double vy);
+  // Moves the position by (dx, dy) and leaves the rest: the picture moved under the object (the camera
+  // turned), which says nothing about how the object itself moves.
+  void translate(double dx, double dy);
 
   double x() const { return state_(0); }
   double y() const { return state_(3); }

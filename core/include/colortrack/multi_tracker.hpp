@@ -32,6 +32,9 @@ struct MultiTrackerSettings {
   // The smallest object (frame pixels; ThresholdTracker sets the detector's minArea): a blob whose shape is
   // several round objects is split into them only where each is at least this large.
   int minObjectArea = 50;
+  // ThresholdTracker measures the camera's motion between frames and moves the tracks with it
+  // (followCamera()).
+  bool followCamera = true;
 };
 
 // One track as reported.
@@ -69,6 +72,11 @@ class MultiTracker {
   // into them.
   std::vector<TrackedObject> update(const std::vector<Blob> &blobs, cv::Size frame, double dt = 1.0,
                                     const BlobLabels &labels = BlobLabels());
+
+  // The picture moved by `shift` px since the last frame (the camera turned or travelled; GlobalMotion
+  // measures it): every track, what it saw and where tracks left the frame move with it, so the next
+  // update() predicts each object's own motion from where the camera put it.
+  void followCamera(cv::Point2d shift);
 
   // Every live track, tentative ones included (tests, debugging).
   std::vector<TrackedObject> allTracks() const;

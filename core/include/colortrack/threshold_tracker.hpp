@@ -6,6 +6,7 @@
 
 #include "colortrack/blobs.hpp"
 #include "colortrack/frame_tracker.hpp"
+#include "colortrack/global_motion.hpp"
 #include "colortrack/multi_tracker.hpp"
 
 namespace colortrack {
@@ -23,12 +24,18 @@ class ThresholdTracker : public FrameTracker {
 
   // Reports every confirmed track (by id); the primary target is the largest.
   FrameReport track(const ImageSource &frame, double dt) override;
-  void reset() override { tracks_.reset(); }
+  void reset() override {
+    tracks_.reset();
+    camera_.reset();
+  }
 
  private:
+  void followCamera(const SampledFrame &frame, const std::vector<Blob> &blobs);
+
   BlobDetector detector_;
   MultiTracker tracks_;
-  cv::Mat converted_;  // the frame as BGR, for sources that cannot be read in place
+  GlobalMotion camera_;  // how the picture moved since the last frame
+  cv::Mat converted_;    // the frame as BGR, for sources that cannot be read in place
 };
 
 }  // namespace colortrack

@@ -46,6 +46,9 @@ struct TrackerSettings {
   double searchMargin = 2.0;  // search region = box grown by margin * size + 3 sigma of the prediction
   KalmanParams kalman;
   int maxCoastFrames = 10;  // frames without detection before the track is lost
+  // The camera's own motion (GlobalMotion) taken out of the predictions: a panning or turning camera moves
+  // every track with the picture. Threshold mode.
+  bool followCamera = true;
   VerifyMode verify = VerifyMode::Both;
   double verifyTolerance = 0.5;
 
