@@ -446,7 +446,7 @@ const Def kProperties[] = {
      [](GParamFlags f) {
        return g_param_spec_uint("lost-timeout", "Lost timeout",
                                 "Milliseconds without a confirmed target, or without any buffer, "
-                                "before the robot is stopped",
+                                "before the robot is stopped (until then it keeps its drive, not its turn)",
                                 1, 600000,
                                 static_cast<guint>(std::lround(FailsafeSettings{}.lostTimeout * 1000)), f);
      },

@@ -265,9 +265,12 @@ DriveOutput RobotController::update(const Observation &o) {
   lastErrors_.reset();
 
   if (!watchdog_.expired(o.time)) {
-    // A short dropout (a coasting track, one bad frame): keep going as decided.
-    DriveOutput held = last_;
-    held.targetVisible = false;
+    // A short dropout (a coasting track, one bad frame): keep driving as decided, but do not turn. The track
+    // coasts where the target was last seen, and a turn held for lost-timeout swings the camera off a
+    // target that did not move, or onto a same-coloured object crossing it; the next confirmed frame turns
+    // again if it must. (The turn axis starts from standstill then, as the robot does.)
+    proportional_.stopTurning();
+    DriveOutput held = makeOutput(last_.linear, 0, false);
     return held;
   }
 

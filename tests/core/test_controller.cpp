@@ -270,26 +270,46 @@ Observation unseen(double time) {
   return o;
 }
 
-TEST(RobotController, HoldsThroughDropoutsThenStops) {
+TEST(RobotController, HoldsTheDriveThroughDropoutsThenStops) {
   ControllerSettings c;
   FailsafeSettings f;  // 0.5 s
   RobotController robot(c, f);
 
   EXPECT_EQ(robot.update(unseen(0.0)).command, DriveCommand::Stop);  // never seen: stop
-  DriveOutput out = robot.update(seen(1.0, 0.5, 30));
-  EXPECT_EQ(out.command, DriveCommand::Right);
+  DriveOutput out = robot.update(seen(1.0, 0.0, 30));                // centred and far
+  EXPECT_EQ(out.command, DriveCommand::Forward);
   EXPECT_TRUE(out.targetVisible);
   out = robot.update(unseen(1.2));
-  EXPECT_EQ(out.command, DriveCommand::Right);  // held
+  EXPECT_EQ(out.command, DriveCommand::Forward);  // held
   EXPECT_FALSE(out.targetVisible);
-  EXPECT_EQ(robot.update(seen(1.3, 0.5, 30, TrackState::Coasting)).command, DriveCommand::Right);
-  EXPECT_EQ(robot.update(unseen(1.499)).command, DriveCommand::Right);
+  EXPECT_EQ(robot.update(seen(1.3, 0.0, 30, TrackState::Coasting)).command, DriveCommand::Forward);
+  EXPECT_EQ(robot.update(unseen(1.499)).command, DriveCommand::Forward);
   out = robot.update(unseen(1.5));  // exactly lost-timeout after the last confirmed target
   EXPECT_EQ(out.command, DriveCommand::Stop);
   EXPECT_DOUBLE_EQ(out.left, 0.0);
   EXPECT_EQ(robot.update(unseen(5.0)).command, DriveCommand::Stop);
   // Back again: the zone controller starts from the centre zone.
   EXPECT_EQ(robot.update(seen(5.1, 0.08, 72)).command, DriveCommand::Stop);
+}
+
+// A turn is not held while the target is unconfirmed: the track coasts where the target was, and a turn
+// held for lost-timeout would swing the camera off it (or onto a decoy crossing it). Both laws.
+TEST(RobotController, StopsTurningWhileTheTargetIsUnconfirmed) {
+  for (const ControllerKind kind : {ControllerKind::Zone, ControllerKind::Proportional}) {
+    ControllerSettings c;
+    c.kind = kind;
+    RobotController robot(c, FailsafeSettings());
+    DriveOutput out;
+    for (double t = 1.0; t < 1.5; t += 0.05) out = robot.update(seen(t, 0.5, 30));  // right and far
+    ASSERT_LT(out.angular, 0);                                                      // turning right
+    out = robot.update(seen(1.5, 0.5, 30, TrackState::Coasting));
+    EXPECT_DOUBLE_EQ(out.angular, 0.0);
+    EXPECT_DOUBLE_EQ(out.left - out.right, 0.0);  // the wheels agree: no turn
+    EXPECT_FALSE(out.targetVisible);
+    // Confirmed again: it turns again.
+    for (double t = 1.55; t < 2.0; t += 0.05) out = robot.update(seen(t, 0.5, 30));
+    EXPECT_LT(out.angular, 0);
+  }
 }
 
 TEST(RobotController, LowScoreAndCoastingAreNotConfirmed) {

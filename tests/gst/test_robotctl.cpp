@@ -189,10 +189,10 @@ GST_END_TEST;
 GST_START_TEST(test_stop_after_lost_timeout_of_stream_time) {
   // Frames 0-2 see the target; stop on the first frame at least 190 ms (stream time) after frame 2: frame 8.
   Ctl ctl("rate=200 lost-timeout=190");
-  for (int i = 0; i < 3; ++i) fail_unless_equals_int(ctl.decide({roi(kRight)}).back(), 'R');
-  Roi coasting = roi(kRight);
+  for (int i = 0; i < 3; ++i) fail_unless_equals_int(ctl.decide({roi(kCentreFar)}).back(), 'F');
+  Roi coasting = roi(kCentreFar);
   coasting.state = "coasting";
-  for (int i = 3; i < 8; ++i) fail_unless_equals_int(ctl.decide({coasting}).back(), 'R');  // held
+  for (int i = 3; i < 8; ++i) fail_unless_equals_int(ctl.decide({coasting}).back(), 'F');  // held
   fail_unless_equals_int(ctl.decide({coasting}).back(), 'S');
   fail_unless_equals_int(ctl.decide({}).back(), 'S');
 }
@@ -205,7 +205,7 @@ GST_START_TEST(test_roi_selection) {
     Roi object = roi(kRight, 0);
     object.type = "object";
     object.state = nullptr;
-    fail_unless_equals_int(ctl.decide({object}).back(), 'L');  // another type is ignored: held
+    fail_unless_equals_int(ctl.decide({object}).back(), 'S');  // another type is ignored: no turn held
   }
   {
     Ctl ctl("rate=100 target-id=2");
@@ -237,10 +237,11 @@ GST_START_TEST(test_lock_on_keeps_the_target_until_its_track_ends) {
     fail_unless_equals_int(ctl.decide({roi(kRight, 5)}).back(), 'R');
     // A newer object with a lower id (a restarted tracker) does not steal the robot.
     fail_unless_equals_int(ctl.decide({roi(kLeft, 3), roi(kRight, 5)}).back(), 'R');
-    // While the followed track coasts (an object passes in front), its id is kept: the last command is held.
+    // While the followed track coasts (an object passes in front), its id is kept: the robot does not turn
+    // towards the other one (nor goes on turning: the hold keeps the drive only).
     Roi coasting = roi(kRight, 5);
     coasting.state = "coasting";
-    fail_unless_equals_int(ctl.decide({roi(kLeft, 3), coasting}).back(), 'R');
+    fail_unless_equals_int(ctl.decide({roi(kLeft, 3), coasting}).back(), 'S');
     fail_unless_equals_int(ctl.decide({roi(kLeft, 3), roi(kRight, 5)}).back(), 'R');
     // Lost: the lock moves on, to the oldest of the others.
     Roi lost = roi(kRight, 5);
@@ -267,8 +268,8 @@ GST_START_TEST(test_lock_on_keeps_the_target_until_its_track_ends) {
   }
   {
     Ctl ctl("rate=100 target-id=2 lock-on=largest");  // a fixed id wins over the policy
-    fail_unless_equals_int(ctl.decide({roi(kCentreNear, 1), roi(kLeft, 2)}).back(), 'L');
-    fail_unless_equals_int(ctl.decide({roi(kCentreNear, 1)}).back(), 'L');  // held, never switched
+    fail_unless_equals_int(ctl.decide({roi(kCentreNear, 1), roi(kCentreFar, 2)}).back(), 'F');
+    fail_unless_equals_int(ctl.decide({roi(kCentreNear, 1)}).back(), 'F');  // held, never switched
   }
 }
 GST_END_TEST;

@@ -169,6 +169,8 @@ class ProportionalController {
   DriveOutput update(const Errors &errors, double dt);
   // Starts again from standstill (after a stop, the slew limit ramps up from zero, integrators empty).
   void reset() { turn_.reset(), drive_.reset(), tilt_.reset(); }
+  // The turn (and the tilt) were stopped while the drive goes on: those axes start from standstill.
+  void stopTurning() { turn_.reset(), tilt_.reset(); }
   // New gains and limits from the next update; the current speeds and integrators are kept.
   void setSettings(const ControllerSettings &settings) { settings_ = settings; }
   const PiAxis &turnAxis() const { return turn_; }
@@ -197,8 +199,9 @@ class Watchdog {
 
 // The controller and the failsafe together: one decision per frame.
 //  - a confirmed target (a box, state tracking, score >= minScore) drives the controller;
-//  - without one, the last decision is held until lostTimeout after the last confirmed target, then the
-//    robot stops (or turns slowly towards where the target was last seen, with searchTurn).
+//  - without one, the last decision's drive (linear speed) is held, without its turn or tilt, until
+//    lostTimeout after the last confirmed target, then the robot stops (or turns slowly towards where the
+//    target was last seen, with searchTurn).
 class RobotController {
  public:
   RobotController(const ControllerSettings &controller, const FailsafeSettings &failsafe);
