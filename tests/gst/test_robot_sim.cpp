@@ -355,24 +355,44 @@ const Roi *ballRoi(const Step &step) {
 // not coast on that jump out of the merged blob (and out of the frame, leaving robotctl only the
 // distractor): docs/benchmarks.md, "Robot closed loop".
 // ROBOT_SIM_TRACE=1 prints every frame's ground truth and ROIs.
-void checkCrossing(const char *controller, const char *extra = "", double distractorSpeed = 0.4) {
+struct Crossing {
+  double speed = 0.4;              // m/s, right to left
+  cv::Point2d start{0.55, -0.85};  // m: between the robot and the ball, out of view on the right
+  // 0: the crossing lasts until the distractor leaves the view (it passes in front). Otherwise it passes
+  // behind the ball, and the crossing ends once it is this far (rad) left of the ball.
+  double passedBy = 0;
+};
+
+// Behind the ball (1.8 m from the robot, the ball 1.16 m), still visible beside it, at `speed`.
+Crossing behind(double speed) {
+  return Crossing{speed, cv::Point2d(1.8, -1.25), 12 * kDeg};
+}
+
+void checkCrossing(const char *controller, const char *extra = "", const Crossing &c = Crossing()) {
   constexpr int kSettleAfter = 45, kAfter = 60;
   Scenario sc = forController(controller);
   sc.extra = extra;
   sc.distance = setPointDistance();
   sc.distractorRadius = 0.12;
   sc.ballVelocity = cv::Point2d(0, -0.1);
-  sc.distractor = cv::Point2d(0.55, -0.85);
-  sc.distractorVelocity = cv::Point2d(0, distractorSpeed);
-  // It leaves the view at frame 85 at 0.4 m/s.
-  sc.frames = static_cast<int>(std::lround(85 * 0.4 / distractorSpeed)) + kAfter;
+  sc.distractor = c.start;
+  sc.distractorVelocity = cv::Point2d(0, c.speed);
+  // In front it leaves the view at frame 85 at 0.4 m/s. Behind, its bearing gains on the ball's by
+  // speed / 1.8 + 0.1 / 1.16 rad/s from 0.69 + 0.16 rad behind (the right edge of the view, the ball's
+  // drift).
+  const double behindSeconds = (0.69 + 0.16 + c.passedBy) / (c.speed / c.start.x + 0.1 / sc.distance);
+  sc.frames = (c.passedBy > 0 ? static_cast<int>(behindSeconds * kFps) + 20
+                              : static_cast<int>(std::lround(85 * 0.4 / c.speed))) +
+              kAfter;
   const LoopResult r = runLoop(sc);
   const bool trace = std::getenv("ROBOT_SIM_TRACE") != nullptr;
 
   int enters = -1, leaves = -1;
   for (int i = 0; i < static_cast<int>(r.steps.size()); ++i) {
-    if (enters < 0 && r.steps[i].distractorInView) enters = i;
-    if (enters >= 0 && leaves < 0 && !r.steps[i].distractorInView) leaves = i;
+    const Step &s = r.steps[i];
+    const bool passed = c.passedBy > 0 ? s.distractorBearing - s.bearing > c.passedBy : !s.distractorInView;
+    if (enters < 0 && s.distractorInView) enters = i;
+    if (enters >= 0 && leaves < 0 && passed) leaves = i;
   }
   fail_unless(enters > 0, "the distractor never came into view");
   const bool left = leaves > 0;  // it stays in view when the robot follows it
@@ -418,8 +438,8 @@ void checkCrossing(const char *controller, const char *extra = "", double distra
       "crossing %s%s%s at %.2f m/s: distractor in view frames %d-%d (the ball's track not measured on %d); "
       "ball track id %d before, %d after; max |bearing| %.1f deg, distance %.3f-%.3f m (set-point %.3f m), "
       "longest turn away from the ball %d frames; centred from frame %d (%d after it left)\n",
-      controller, *extra ? " " : "", extra, distractorSpeed, enters, leaves - 1, unmeasured, idBefore,
-      idAfter, maxBearing / kDeg, minDistance, maxDistance, setPointDistance(), longestAway, centredFrom,
+      controller, *extra ? " " : "", extra, c.speed, enters, leaves - 1, unmeasured, idBefore, idAfter,
+      maxBearing / kDeg, minDistance, maxDistance, setPointDistance(), longestAway, centredFrom,
       left ? centredFrom - leaves : -1);
   fail_unless(left, "%s: the distractor never left the view", controller);
   fail_unless(idBefore > 0 && idAfter == idBefore,
@@ -512,12 +532,25 @@ GST_END_TEST;
 // Slower, the distractor touches the ball while the zone robot turns: the ball's track must not coast on the
 // jump that turn makes in the image (see checkCrossing).
 GST_START_TEST(test_zone_keeps_the_ball_when_another_crosses_slowly) {
-  checkCrossing("zone", "", 0.3);
+  checkCrossing("zone", "", Crossing{0.3});
 }
 GST_END_TEST;
 
 GST_START_TEST(test_proportional_keeps_the_ball_when_another_crosses_slowly) {
-  checkCrossing("proportional", "", 0.3);
+  checkCrossing("proportional", "", Crossing{0.3});
+}
+GST_END_TEST;
+
+// Issue 25: while the robot turns to follow the ball's drift, both laws keep the ball when the distractor
+// passes in front at 0.2 and 0.5 m/s (0.3 and 0.4 above; before follow-camera and the hold without a turn,
+// the zone robot at 0.2 m/s turned 37 degrees off and lost the ball), and when it passes behind the ball at
+// 0.1, 0.2, 0.3 and 0.5 m/s. (In front at 0.1 m/s it hides the ball for 8 s: the track is lost, and the lock
+// moves on to the only ball in view, as lock-on says.)
+GST_START_TEST(test_keeps_the_ball_at_every_crossing_speed) {
+  for (const char *controller : {"zone", "proportional"}) {
+    for (const double speed : {0.2, 0.5}) checkCrossing(controller, "", Crossing{speed});
+    for (const double speed : {0.1, 0.2, 0.3, 0.5}) checkCrossing(controller, "", behind(speed));
+  }
 }
 GST_END_TEST;
 
@@ -531,7 +564,7 @@ GST_END_TEST;
 Suite *robot_sim_suite(void) {
   Suite *s = suite_create("robot_sim");
   TCase *tc = tcase_create("closed-loop");
-  tcase_set_timeout(tc, 120);
+  tcase_set_timeout(tc, 180);
   suite_add_tcase(s, tc);
   tcase_add_test(tc, test_zone_settles);
   tcase_add_test(tc, test_proportional_settles);
@@ -547,6 +580,7 @@ Suite *robot_sim_suite(void) {
   tcase_add_test(tc, test_largest_lock_keeps_the_ball_when_a_larger_one_crosses);
   tcase_add_test(tc, test_zone_keeps_the_ball_when_another_crosses_slowly);
   tcase_add_test(tc, test_proportional_keeps_the_ball_when_another_crosses_slowly);
+  tcase_add_test(tc, test_keeps_the_ball_at_every_crossing_speed);
   return s;
 }
 
