@@ -9,9 +9,11 @@ namespace colortrack {
 
 namespace {
 
-// The small copy is about this wide (an even step: 160 px at 640x480, 213 at 1280x720): enough texture to
-// agree on a shift within 2 px on the synthetic scene's smooth background (160 px at 1280x720: up to 4 px).
-constexpr double kSmallWidth = 200;
+// The small copy is at most this wide, at the smallest even step that fits (160 px at 320x240 and 640x480,
+// 144 at 576x432, 213 at 1280x720, 192 at 1920x1080): enough texture to agree on a shift within 2 px on the
+// synthetic scene's smooth background (160 px at 1280x720: up to 4 px). Rounding the step to the nearest
+// instead made a 576 px frame's copy 288 px wide, read at every pixel: 4.5 ms a frame.
+constexpr double kSmallWidth = 214;
 // Only detail finer than this (small-copy px) is correlated: a smooth background's large light and dark
 // areas, times the window, make a pattern that stays put whatever the camera does.
 constexpr double kDetailSigma = 1.0;
@@ -129,13 +131,13 @@ void sampledLuma(const SampledFrame &frame, int step, cv::Mat &out) {
   }
 }
 
-// detail_: the frame's detail, grey, on a copy about kSmallWidth px wide.
+// detail_: the frame's detail, grey, on a copy at most kSmallWidth px wide.
 void GlobalMotion::smallCopy(const SampledFrame &frame) {
   const cv::Size size = frame.size;
   // Read at half the final step and average pairs: nearest-neighbour samples alone alias fine texture, which
   // then moves differently from the scene. An even step keeps the averaging a whole factor of 2 (a step of 3
   // read every pixel of a 640x480 frame and resized by 1/3: 2 ms).
-  const int step = std::max(2, 2 * cvRound(size.width / (2 * kSmallWidth)));
+  const int step = std::max(2, 2 * static_cast<int>(std::ceil(size.width / (2 * kSmallWidth))));
   const int readStep = step / 2;
   sampledLuma(frame, readStep, read_);
   const cv::Size smallSize(std::max(1, size.width / step), std::max(1, size.height / step));
