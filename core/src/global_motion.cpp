@@ -9,11 +9,6 @@ namespace colortrack {
 
 namespace {
 
-// The small copy is at most this wide, at the smallest even step that fits (160 px at 320x240 and 640x480,
-// 144 at 576x432, 213 at 1280x720, 192 at 1920x1080): enough texture to agree on a shift within 2 px on the
-// synthetic scene's smooth background (160 px at 1280x720: up to 4 px). Rounding the step to the nearest
-// instead made a 576 px frame's copy 288 px wide, read at every pixel: 4.5 ms a frame.
-constexpr double kSmallWidth = 214;
 // Only detail finer than this (small-copy px) is correlated: a smooth background's large light and dark
 // areas, times the window, make a pattern that stays put whatever the camera does.
 constexpr double kDetailSigma = 1.0;
@@ -108,36 +103,46 @@ cv::Point2d GlobalMotion::correlate(double &response) {
 // levels moved the measured shift by half a small-copy pixel). Reading BGR first and converting it cost
 // twice as much: YUV frames were converted to BGR for nothing. Only detail is correlated, so a limited-range
 // Y needs no scaling.
-void sampledLuma(const SampledFrame &frame, int step, cv::Mat &out) {
+void GlobalMotion::sampledLuma(const SampledFrame &frame, int step, cv::Mat &out) {
   const cv::Size size = sampledSize(cv::Rect(cv::Point(), frame.size), step);
   out.create(size, CV_32FC1);
-  const auto at = [](const ChannelSampler &c, int x, const uchar *row) {
-    return row[(x / c.xSub) * c.sampleBytes + c.byteOffset];
-  };
-  const ChannelSampler &c0 = frame.channels[0], &c1 = frame.channels[1], &c2 = frame.channels[2];
+  const bool yuv = frame.encoding == PixelEncoding::Yuv;
+  const int used = yuv ? 1 : 3;  // Y alone, or R, G and B
+  // Byte offset of every sampled column in each channel's row (a division per sample cost 1 ms a frame).
+  for (int c = 0; c < used; ++c) {
+    const ChannelSampler &ch = frame.channels[c];
+    columns_[c].resize(size.width);
+    for (int i = 0; i < size.width; ++i)
+      columns_[c][i] = (i * step / ch.xSub) * ch.sampleBytes + ch.byteOffset;
+  }
   for (int j = 0; j < size.height; ++j) {
     const int y = j * step;
     float *dst = out.ptr<float>(j);
+    const ChannelSampler &c0 = frame.channels[0];
     const uchar *r0 = c0.plane.ptr(y / c0.ySub);
-    if (frame.encoding == PixelEncoding::Yuv) {
-      for (int i = 0; i < size.width; ++i) dst[i] = at(c0, i * step, r0);
+    const int *x0 = columns_[0].data();
+    if (yuv) {
+      for (int i = 0; i < size.width; ++i) dst[i] = r0[x0[i]];
       continue;
     }
+    const ChannelSampler &c1 = frame.channels[1], &c2 = frame.channels[2];
     const uchar *r1 = c1.plane.ptr(y / c1.ySub), *r2 = c2.plane.ptr(y / c2.ySub);
-    for (int i = 0; i < size.width; ++i) {
-      const int x = i * step;
-      dst[i] = 0.299f * at(c0, x, r0) + 0.587f * at(c1, x, r1) + 0.114f * at(c2, x, r2);
-    }
+    const int *x1 = columns_[1].data(), *x2 = columns_[2].data();
+    for (int i = 0; i < size.width; ++i)
+      dst[i] = 0.299f * r0[x0[i]] + 0.587f * r1[x1[i]] + 0.114f * r2[x2[i]];
   }
 }
 
-// detail_: the frame's detail, grey, on a copy at most kSmallWidth px wide.
+// detail_: the frame's detail, grey, on a copy at most maxWidth_ px wide, at the smallest even step that fits
+// (at 214: 160 px at 320x240 and 640x480, 144 at 576x432, 213 at 1280x720, 192 at 1920x1080; 160 px at
+// 1280x720 was up to 4 px off on the synthetic scene). Rounding the step to the nearest instead made a 576 px
+// frame's copy 288 px wide, read at every pixel: 4.5 ms a frame.
 void GlobalMotion::smallCopy(const SampledFrame &frame) {
   const cv::Size size = frame.size;
   // Read at half the final step and average pairs: nearest-neighbour samples alone alias fine texture, which
   // then moves differently from the scene. An even step keeps the averaging a whole factor of 2 (a step of 3
   // read every pixel of a 640x480 frame and resized by 1/3: 2 ms).
-  const int step = std::max(2, 2 * static_cast<int>(std::ceil(size.width / (2 * kSmallWidth))));
+  const int step = std::max(2, 2 * static_cast<int>(std::ceil(size.width / (2 * maxWidth_))));
   const int readStep = step / 2;
   sampledLuma(frame, readStep, read_);
   const cv::Size smallSize(std::max(1, size.width / step), std::max(1, size.height / step));

@@ -39,6 +39,15 @@ void ThresholdTracker::setTrackSettings(const MultiTrackerSettings &settings) {
   tracks_.setSettings(s);
 }
 
+std::vector<cv::Rect2d> movingObjects(const std::vector<Blob> &blobs) {
+  constexpr int kMargin = 4;
+  std::vector<cv::Rect2d> boxes;
+  for (const Blob &b : blobs)
+    boxes.emplace_back(b.box.x - kMargin, b.box.y - kMargin, b.box.width + 2 * kMargin,
+                       b.box.height + 2 * kMargin);
+  return boxes;
+}
+
 // The camera's motion since the last frame, measured on the background (the blobs left out, with a margin
 // for their motion since then), moves every track before the blobs are assigned. Without it, a camera that
 // jerks 10 px in a frame puts each prediction that far from its object, where the next object may be.
@@ -47,12 +56,7 @@ void ThresholdTracker::followCamera(const SampledFrame &frame, const std::vector
     camera_.reset();
     return;
   }
-  constexpr int kMargin = 4;
-  std::vector<cv::Rect2d> objects;
-  for (const Blob &b : blobs)
-    objects.emplace_back(b.box.x - kMargin, b.box.y - kMargin, b.box.width + 2 * kMargin,
-                         b.box.height + 2 * kMargin);
-  const GlobalMotion::Shift moved = camera_.measure(frame, objects);
+  const GlobalMotion::Shift moved = camera_.measure(frame, movingObjects(blobs));
   if (moved.valid) tracks_.followCamera(moved.offset);
 }
 

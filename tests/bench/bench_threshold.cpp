@@ -22,6 +22,7 @@
 #include "colortrack/blobs.hpp"
 #include "colortrack/global_motion.hpp"
 #include "colortrack/multi_tracker.hpp"
+#include "colortrack/threshold_tracker.hpp"
 
 namespace {
 
@@ -96,7 +97,7 @@ Result run(cv::Size size, int objects, bool i420, int frames) {
   settings.range.upper = {objects == 1 ? 20.0 : 360.0, 1, 1};
   BlobDetector detector(settings);
   MultiTracker tracker;
-  GlobalMotion camera;
+  GlobalMotion camera(kCameraCopyWidth);  // as ThresholdTracker
   Result r;
   std::vector<double> total, seg, clean, label, cameraCost;
   const int d = autoDecimation(size);
@@ -111,9 +112,7 @@ Result run(cv::Size size, int objects, bool i420, int frames) {
     // (shared blobs and new touching objects are split).
     const std::vector<Blob> blobs = detector.detect(sampled);
     const auto cameraStart = Clock::now();
-    std::vector<cv::Rect2d> objects;
-    for (const Blob &b : blobs) objects.emplace_back(b.box);
-    const GlobalMotion::Shift moved = camera.measure(sampled, objects);
+    const GlobalMotion::Shift moved = camera.measure(sampled, movingObjects(blobs));
     if (moved.valid) tracker.followCamera(moved.offset);
     const double cameraMs = msSince(cameraStart);
     const std::vector<TrackedObject> reported = tracker.update(blobs, size, 1.0, detector.labels());

@@ -320,7 +320,7 @@ TEST(MultiTracker, CoastingDoesNotFollowAOneFrameJump) {
 
 // Two balls 60 px apart moving right at 2 px a frame; the camera jerks 60 px left in one frame, so in the
 // picture both jump 60 px right: the left ball lands where the right one was. Told how the picture moved,
-// each track keeps its ball; not told, the right ball's track takes the left ball.
+// each track keeps its ball (not told, the right ball's track takes the left ball: printed).
 TEST(MultiTracker, FollowsTheCameraThroughAJerk) {
   for (const bool told : {true, false}) {
     MultiTracker tracker;
@@ -348,9 +348,9 @@ TEST(MultiTracker, FollowsTheCameraThroughAJerk) {
       EXPECT_EQ(r->id, rightId);
       EXPECT_NEAR(l->vx, 2, 0.5);  // the ball's own motion: the jerk is not in the velocity
     } else {
-      ASSERT_TRUE(l && r);
-      EXPECT_EQ(l->id, rightId);  // the right ball's track took the left ball
-      EXPECT_NE(r->id, rightId);
+      // Not told (today the right ball's track takes the left ball): shown, not required.
+      std::printf("not told of the jerk: left ball's track id %d (was %d), right ball's %d (was %d)\n",
+                  l ? l->id : -1, leftId, r ? r->id : -1, rightId);
     }
   }
 }

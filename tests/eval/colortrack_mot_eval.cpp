@@ -2,10 +2,11 @@
 // the scenes of mot_scenes.hpp, scored with CLEAR-MOT and IDF1 (IoU >= 0.3). Also counts reported boxes that
 // break the element's promises: outside the frame, or smaller than min-area allows.
 //
-//   colortrack-mot-eval [--scene NAME] [--no-follow-camera] [--frames-out DIR]
+//   colortrack-mot-eval [--scene NAME] [--exclude NAME] [--no-follow-camera] [--frames-out DIR]
 //                       [--min-mota X] [--min-idf1 X] [--per-scene]
 //
-// Prints one row per scene and the mean. --scene runs the scenes whose name starts with NAME;
+// Prints one row per scene and the mean. --scene runs the scenes whose name starts with NAME, --exclude
+// leaves out those whose name starts with NAME;
 // --no-follow-camera leaves the camera's motion in the predictions (follow-camera=false); --frames-out writes
 // each scene's per-frame tracks and ground truth as CSV. With --min-mota / --min-idf1 (the test suite's
 // regression guard) it exits 1 when a mean (--per-scene: any scene) falls below them or when any reported box
@@ -73,7 +74,7 @@ SceneResult runScene(const MotScene &scene, const std::string &framesOut, bool f
 }
 
 struct Options {
-  std::string framesOut, scenePrefix;
+  std::string framesOut, scenePrefix, excludePrefix;
   double minMota = 0, minIdf1 = 0;
   bool guard = false, perScene = false, followCamera = true;
 };
@@ -86,6 +87,8 @@ bool parseOptions(int argc, char **argv, Options &o) {
       o.framesOut = argv[++i];
     } else if (arg == "--scene" && hasValue) {
       o.scenePrefix = argv[++i];
+    } else if (arg == "--exclude" && hasValue) {
+      o.excludePrefix = argv[++i];
     } else if (arg == "--no-follow-camera") {
       o.followCamera = false;
     } else if (arg == "--per-scene") {
@@ -98,8 +101,8 @@ bool parseOptions(int argc, char **argv, Options &o) {
       o.guard = true;
     } else {
       std::fprintf(stderr,
-                   "usage: %s [--scene NAME] [--no-follow-camera] [--frames-out DIR] [--min-mota X] "
-                   "[--min-idf1 X] [--per-scene]\n",
+                   "usage: %s [--scene NAME] [--exclude NAME] [--no-follow-camera] [--frames-out DIR] "
+                   "[--min-mota X] [--min-idf1 X] [--per-scene]\n",
                    argv[0]);
       return false;
     }
@@ -114,10 +117,13 @@ int main(int argc, char **argv) {
   if (!parseOptions(argc, argv, o)) return 2;
   std::vector<MotScene> scenes = motScenes();
   scenes.erase(std::remove_if(scenes.begin(), scenes.end(),
-                              [&](const MotScene &s) { return s.name.rfind(o.scenePrefix, 0) != 0; }),
+                              [&](const MotScene &s) {
+                                return s.name.rfind(o.scenePrefix, 0) != 0 ||
+                                       (!o.excludePrefix.empty() && s.name.rfind(o.excludePrefix, 0) == 0);
+                              }),
                scenes.end());
   if (scenes.empty()) {
-    std::fprintf(stderr, "no scene's name starts with '%s'\n", o.scenePrefix.c_str());
+    std::fprintf(stderr, "no scene left to run\n");
     return 2;
   }
   std::printf("%-18s %6s %6s %6s %6s %5s %5s %5s %5s %7s %6s\n", "scene", "MOTA", "IDF1", "MOTP", "truth",

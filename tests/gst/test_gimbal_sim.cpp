@@ -118,7 +118,7 @@ struct GimbalLoop {
 
 struct Centring {
   int centredAt = -1;  // the frame from which the error stays under kCentred
-  int overshoots = 0;  // times the yaw error changed sign by more than kCentred / 2
+  int overshoots = 0;  // times the yaw or the pitch error changed sign by more than kCentred / 2
   double finalError = 0;
 };
 
@@ -129,7 +129,7 @@ Centring centre(GimbalLoop &loop, int frames, int latency) {
   const double dt = 1.0 / kFps;
   std::vector<Rates> queue(latency);  // commands on their way, oldest first
   Centring c;
-  int lastSign = 0;
+  int lastSign[2] = {0, 0};  // yaw, pitch
   for (int i = 0; i < frames; ++i) {
     queue.push_back(loop.step());
     loop.rates = queue.front();
@@ -137,10 +137,13 @@ Centring centre(GimbalLoop &loop, int frames, int latency) {
     loop.gimbal.turn(loop.rates.pitch, loop.rates.yaw, dt);
     const double error = loop.gimbal.errorDegrees();
     // Yaw error's sign: the ball's azimuth left in camera terms (12 degrees right at the start).
-    const double yawError = 12 - loop.gimbal.yawDegrees();
-    const int sign = yawError > kCentred / 2 ? 1 : yawError < -kCentred / 2 ? -1 : 0;
-    if (sign != 0 && lastSign != 0 && sign != lastSign) ++c.overshoots;
-    if (sign != 0) lastSign = sign;
+    // Each axis's error: the ball is 12 degrees right and 9 up of the start.
+    const double axisError[2] = {12 - loop.gimbal.yawDegrees(), 9 - loop.gimbal.pitchDegrees()};
+    for (int a = 0; a < 2; ++a) {
+      const int sign = axisError[a] > kCentred / 2 ? 1 : axisError[a] < -kCentred / 2 ? -1 : 0;
+      if (sign != 0 && lastSign[a] != 0 && sign != lastSign[a]) ++c.overshoots;
+      if (sign != 0) lastSign[a] = sign;
+    }
     if (i % 10 == 0)
       std::printf("frame %2d: error %.2f deg (yaw %.2f, pitch %.2f), rates pitch %+.3f yaw %+.3f rad/s\n", i,
                   error, loop.gimbal.yawDegrees(), loop.gimbal.pitchDegrees(), loop.rates.pitch,
@@ -154,7 +157,7 @@ Centring centre(GimbalLoop &loop, int frames, int latency) {
 
 // Centring: within 1 degree by frame 60 at 30 fps, and stays there. Vanishing: then in real time, the ball
 // drifts right at 5 deg/s for a second (the gimbal follows it: rates not zero), disappears, and zero rates
-// must arrive within lost-timeout + 100 ms (at once, in fact: an unconfirmed target's turn is not held).
+// must arrive at once (within 150 ms: an unconfirmed target's turn is not held).
 GST_START_TEST(test_gimbal_centres_the_target_and_stops_when_it_vanishes) {
   GimbalLoop loop(kGimbalGains);
   const Centring c = centre(loop, kCentreWithin + 30, 0);
@@ -197,8 +200,9 @@ GST_START_TEST(test_gimbal_centres_the_target_and_stops_when_it_vanishes) {
       "(lost-timeout %u ms)\n",
       atLoss.yaw, stoppedAfter * 1000, kLostTimeoutMs);
   fail_unless(atLoss.yaw > 0.03, "not following the drifting target: yaw rate %.3f rad/s", atLoss.yaw);
-  fail_unless(stoppedAfter >= 0 && stoppedAfter < kLostTimeoutMs / 1000.0 + 0.1, "stopped after %.3f s",
-              stoppedAfter);
+  // An unconfirmed target's turn is not held: zero rates on the first frame without the ball (33 ms), well
+  // before lost-timeout (holding the turn, as before issue 25, stopped after about 470 ms).
+  fail_unless(stoppedAfter >= 0 && stoppedAfter < 0.15, "stopped after %.3f s", stoppedAfter);
 }
 GST_END_TEST;
 

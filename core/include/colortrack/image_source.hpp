@@ -18,8 +18,8 @@ cv::Rect sampledCover(const cv::Rect &rect, int step);
 
 // What the three bytes sampled from a frame mean.
 enum class PixelEncoding {
-  Rgb,     // channels R, G, B
-  Yuv,     // channels Y, U, V as the frame's YuvColorimetry says
+  Rgb,  // channels R, G, B
+  Yuv,  // channels Y, U, V as the frame's YuvColorimetry says
 };
 
 // One colour channel of a frame as bytes in memory: the sample of frame pixel (x, y) is

@@ -11,6 +11,15 @@
 
 namespace colortrack {
 
+// The width of the copy threshold mode measures the camera's motion on (GlobalMotion): the association gates
+// are at least 12 px plus half the object wide, so a few pixels of error do not matter, and the default copy
+// cost as much as the segmentation.
+inline constexpr double kCameraCopyWidth = 128;
+
+// What GlobalMotion leaves out in threshold mode: every blob's box grown by 4 px (its motion since the last
+// frame).
+std::vector<cv::Rect2d> movingObjects(const std::vector<Blob> &blobs);
+
 class ThresholdTracker : public FrameTracker {
  public:
   explicit ThresholdTracker(const BlobSettings &blobs = BlobSettings(),
@@ -34,8 +43,8 @@ class ThresholdTracker : public FrameTracker {
 
   BlobDetector detector_;
   MultiTracker tracks_;
-  GlobalMotion camera_;  // how the picture moved since the last frame
-  cv::Mat converted_;    // the frame as BGR, for sources that cannot be read in place
+  GlobalMotion camera_{kCameraCopyWidth};  // how the picture moved since the last frame
+  cv::Mat converted_;                      // the frame as BGR, for sources that cannot be read in place
 };
 
 }  // namespace colortrack
