@@ -5,8 +5,9 @@
 // C++ headers first: gstcheck.h defines macros (fail, ...) that clash with names in the standard library.
 #include <chrono>
 #include <cstdio>
-#include <optional>
 #include <memory>
+#include <optional>
+#include <random>
 #include <string>
 #include <thread>
 
@@ -136,8 +137,20 @@ GST_START_TEST(test_mavlink_vehicle_silent_hears_only_stop) {
 }
 GST_END_TEST;
 
+// A receiver on a port below the kernel's ephemeral range (32768 and up by default): the other tests'
+// sockets, bound to port 0, never take it, so the peer finds it free when it comes back (with an ephemeral
+// port, a test running beside this one took it in between once).
+std::unique_ptr<UdpReceiver> receiverBelowEphemeralPorts() {
+  std::mt19937 rng(std::random_device{}());
+  for (int attempt = 0; attempt < 50; ++attempt) {
+    auto receiver = std::make_unique<UdpReceiver>(20000 + static_cast<int>(rng() % 10000));
+    if (receiver->port() > 0) return receiver;
+  }
+  return std::make_unique<UdpReceiver>();
+}
+
 GST_START_TEST(test_udp_peer_back_hears_stop_first) {
-  auto peer = std::make_unique<UdpReceiver>();
+  auto peer = receiverBelowEphemeralPorts();
   const int port = peer->port();
   fail_unless(port > 0);
   // A still colour-bar frame with the target box right of centre: the zone controller turns right ('R').
