@@ -8,6 +8,13 @@ namespace colortrack {
 
 namespace {
 
+// The error half a second ahead at its current rate: tells a target that moves off (away from the
+// set-point) from one that stands, before the error itself does.
+double errorAhead(double error, double rate) {
+  constexpr double kHorizon = 0.5;  // s
+  return error + rate * kHorizon;
+}
+
 // Moves `current` towards `target` by at most rate * dt (rate 0 = no limit).
 double slew(double current, double target, double rate, double dt) {
   if (rate <= 0) return target;
@@ -111,8 +118,15 @@ DriveOutput ZoneController::update(const Errors &e, double now) {
   lastNow_ = now;
   const double turnLeave = std::max(0.0, s.turnDeadband - s.hysteresis);
   turnZone_ = nextZone(turnZone_, e.offset, s.turnDeadband, turnLeave);
-  distanceZone_ = nextZone(distanceZone_, e.distance, s.distanceDeadband,
-                           std::max(0.0, s.distanceDeadband - s.hysteresis));
+  // The distance zone is entered on the error a moment ahead: a target moving away (or closer) is met
+  // before it leaves the deadband, not trailed at its edge.
+  const double distanceLeave = std::max(0.0, s.distanceDeadband - s.hysteresis);
+  const double distanceAhead = errorAhead(e.distance, e.distanceRate);
+  distanceZone_ = nextZone(distanceZone_, e.distance, s.distanceDeadband, distanceLeave);
+  if (distanceZone_ == 0 && std::abs(e.distance) > distanceLeave) {
+    const int ahead = nextZone(0, distanceAhead, s.distanceDeadband, distanceLeave);
+    if (ahead * e.distance > 0) distanceZone_ = ahead;  // never away from where the target is now
+  }
 
   // Turning first: driving towards an off-centre target would lose it from the side of the frame.
   bool turning = turnZone_ != 0;
@@ -145,12 +159,18 @@ DriveOutput ZoneController::update(const Errors &e, double now) {
 
 double PiAxis::update(const Gains &g, double error, double rate, double dt) {
   dt = std::max(0.0, dt);
-  // Arrived: stop rather than creep at a speed the motors cannot hold; go again once the error grows.
-  if (arrived_ && std::abs(error) > g.deadband / 2) arrived_ = false;
-  if (!arrived_ && std::abs(error) < g.deadband / 4) {
-    arrived_ = true;
-    integral_ = 0;
+  // Arrived: stop rather than creep at a speed the motors cannot hold; go again once the error grows, or
+  // once the error a moment ahead does (a target moving off while the robot stands). The integral is kept
+  // while arrived: a target that moves on the same way again (one being followed) is met at the speed it
+  // needed, not trailed by half the deadband while the integral builds up anew; one that moves the other
+  // way clears it.
+  const double ahead = errorAhead(error, rate);
+  const bool movingOff = error * ahead > 0 && std::abs(ahead) > g.deadband / 2;
+  if (arrived_ && (std::abs(error) > g.deadband / 2 || (movingOff && std::abs(error) > g.deadband / 4))) {
+    arrived_ = false;
+    if (integral_ * error < 0) integral_ = 0;
   }
+  if (!arrived_ && std::abs(error) < g.deadband / 4) arrived_ = true;
   double target = 0;
   if (!arrived_) {
     const double integral = integral_ + error * dt;

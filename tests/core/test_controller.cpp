@@ -212,9 +212,15 @@ TEST(ProportionalController, IntegralRemovesTheSteadyError) {
   for (int i = 0; i < 10; ++i) linear = p.update({0, 0.1}, 0.1).linear;
   EXPECT_NEAR(p.driveAxis().integral(), 0.1, 1e-12);  // 0.1 for 1 s
   EXPECT_NEAR(linear, 0.1 + 2.0 * 0.1, 1e-12);
-  // Arriving clears it: no push past the set-point afterwards.
-  EXPECT_EQ(p.update({0, 0.01}, 0.1).linear < linear, true);
-  EXPECT_DOUBLE_EQ(p.driveAxis().integral(), 0.0);
+  // Arriving stops the drive (no push past the set-point) and keeps the integral while arrived.
+  EXPECT_DOUBLE_EQ(p.update({0, 0.01}, 0.1).linear, 0.0);
+  EXPECT_NEAR(p.driveAxis().integral(), 0.1, 1e-12);
+  // The target moves off the same way (rate 0.2 a second: 0.11 half a second ahead): going again at once
+  // with the speed it needed, 0.03 + 2 * (0.1 + 0.003).
+  EXPECT_NEAR(p.update({0, 0.03, 0, 0.16}, 0.1).linear, 0.03 + 2.0 * 0.103, 1e-12);
+  // Arrived again, then it moves off the other way: the integral, of the other direction, is cleared.
+  p.update({0, 0.0}, 0.1);
+  EXPECT_NEAR(p.update({0, -0.06}, 0.1).linear, -0.06 + 2.0 * -0.006, 1e-12);
   p.update({0, 0.2}, 0.1);
   p.reset();
   EXPECT_DOUBLE_EQ(p.driveAxis().integral(), 0.0);

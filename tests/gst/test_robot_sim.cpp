@@ -140,9 +140,9 @@ GST_END_TEST;
 
 // Issue 25, item 3: driven by mode=template (init-box on the ball), from 2 m to the set-point (1.155 m), both
 // laws: the reported box's height (the distance cue) within 5 % of the ball's on every frame, and the
-// distance within 5 % of the set-point over the last 150 frames of 300; then a ball rolling away and across
-// at 0.2 m/s (as checkFollows), whose mean distance error over the last 150 frames must stay under 10 % (the
-// lag of a law without feed-forward: threshold mode gives about the same, docs/benchmarks.md).
+// distance within 5 % of the set-point on each of the last 150 frames of 300; then a ball rolling away and
+// across at 0.2 m/s (as checkFollows), whose mean |distance error| over the last 150 frames must be within
+// 5 % (the zone law drives in pulses, so single frames reach 6-7 %).
 GST_START_TEST(test_template_mode_holds_the_distance) {
   for (const char *controller : {"zone", "proportional"}) {
     for (const double speed : {0.0, 0.2}) {
@@ -151,7 +151,7 @@ GST_START_TEST(test_template_mode_holds_the_distance) {
       sc.ballVelocity = cv::Point2d(speed * std::cos(60 * kDeg), speed * std::sin(60 * kDeg));
       sc.frames = 300;
       const LoopResult r = runLoop(sc);
-      double worstDistance = 0, meanDistance = 0, worstHeight = 0;
+      double worstDistance = 0, meanDistance = 0, meanAbsDistance = 0, worstHeight = 0;
       for (int i = 0; i < static_cast<int>(r.steps.size()); ++i) {
         const Step &st = r.steps[i];
         const Roi *roi = ballRoi(st);
@@ -161,17 +161,16 @@ GST_START_TEST(test_template_mode_holds_the_distance) {
         const double e = st.distance / setPointDistance() - 1;
         worstDistance = std::max(worstDistance, std::abs(e));
         meanDistance += e / (r.steps.size() - 150);
+        meanAbsDistance += std::abs(e) / (r.steps.size() - 150);
       }
       g_print(
           "template mode, %s, ball at %.1f m/s: box height within %.1f %% of the ball's; distance error over "
-          "the last 150 frames mean %+.1f %%, worst %.1f %%\n",
-          controller, speed, 100 * worstHeight, 100 * meanDistance, 100 * worstDistance);
+          "the last 150 frames mean %+.1f %%, mean |error| %.1f %%, worst %.1f %%\n",
+          controller, speed, 100 * worstHeight, 100 * meanDistance, 100 * meanAbsDistance, 100 * worstDistance);
       fail_unless(worstHeight <= 0.05, "%s: box height %.1f %% off", controller, 100 * worstHeight);
-      if (speed == 0)
-        fail_unless(worstDistance <= 0.05, "%s: distance %.1f %% off", controller, 100 * worstDistance);
-      else
-        fail_unless(std::abs(meanDistance) < 0.10, "%s: distance %.1f %% off", controller,
-                    100 * meanDistance);
+      // Still: every frame within 5 %; rolling: on average (the zone law works in pulses).
+      const double error = speed == 0 ? worstDistance : meanAbsDistance;
+      fail_unless(error <= 0.05, "%s: distance %.1f %% off", controller, 100 * error);
       fail_unless_equals_int(r.rejected, 0);
     }
   }

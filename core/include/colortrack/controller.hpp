@@ -115,7 +115,9 @@ DriveCommand classifyCommand(double linear, double angular);
 // The paper's controller: the frame is split into left/centre/right by the offset and into
 // too-far/right/too-close by the distance cue; turning comes before distance so the target stays in view.
 // Each axis is a Schmitt trigger: a side zone is entered beyond the deadband and left only once the error
-// is `hysteresis` inside it, so a target on a border does not make the command chatter.
+// is `hysteresis` inside it, so a target on a border does not make the command chatter. The distance zone
+// is also entered once the error half a second ahead (at its rate) is beyond the deadband on the side the
+// error already lies: a target moving away is met, not trailed at the deadband's edge.
 // With a latency (settings.latency > 0) a turn at full speed would overshoot the centre by the distance
 // turned during the latency, and the next turn overshoot back: so a turn ends once the offset predicted a
 // latency ahead is inside, and within twice the deadband of the centre the robot turns one decision at a
@@ -141,9 +143,11 @@ class ZoneController {
 };
 
 // One axis of the proportional controller: P + I + rate terms, the integrator frozen while the output is
-// limited (by the clamp or the slew limit) in the error's direction and cleared when the axis arrives.
+// limited (by the clamp or the slew limit) in the error's direction.
 // An axis arrives (output 0, no creeping) when its error is within a quarter of the deadband and starts
-// again once the error leaves half of it.
+// again once the error leaves half of it, or leaves a quarter while the error half a second ahead (at its
+// rate) is beyond half: the target moves off. The integral is kept while arrived and cleared on starting
+// again only if it pushes the other way, so a target being followed is met at the speed it needed.
 class PiAxis {
  public:
   struct Gains {
