@@ -153,11 +153,11 @@ COLORTRACK_DEFINE_ENUM_TYPE(gst_robot_ctl_mavlink_mode_get_type, "GstRobotCtlMav
                             {GST_ROBOT_CTL_MAVLINK_MODE_FOLLOW,
                              "SET_POSITION_TARGET_LOCAL_NED, body frame: forward velocity and yaw rate",
                              "follow"})
-COLORTRACK_DEFINE_ENUM_TYPE(gst_robot_ctl_controller_get_type, "GstRobotCtlController",
-                            {GST_ROBOT_CTL_CONTROLLER_ZONE, "Forward/backward/left/right/stop by frame zone",
-                             "zone"},
-                            {GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL, "Wheel speeds proportional to the errors",
-                             "proportional"})
+COLORTRACK_DEFINE_ENUM_TYPE(
+    gst_robot_ctl_controller_get_type, "GstRobotCtlController",
+    {GST_ROBOT_CTL_CONTROLLER_ZONE, "Forward/backward/left/right/stop by frame zone", "zone"},
+    {GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL, "Wheel speeds proportional to the errors", "proportional"},
+    {GST_ROBOT_CTL_CONTROLLER_AUTO, "Zone for a robot or a drone, proportional for a gimbal", "auto"})
 COLORTRACK_DEFINE_ENUM_TYPE(gst_robot_ctl_distance_cue_get_type, "GstRobotCtlDistanceCue",
                             {GST_ROBOT_CTL_DISTANCE_CUE_SIZE, "Box height / frame height", "size"},
                             {GST_ROBOT_CTL_DISTANCE_CUE_POSITION, "Box bottom / frame height", "position"})
@@ -286,6 +286,11 @@ bool checkSettings(GstRobotCtl *self, const robotctl::Settings &s, const std::st
   }
   if (!refusal.empty()) {
     gstglue::postStartRefusal(GST_ELEMENT(self), GST_CAT_DEFAULT, refusal);
+    return false;
+  }
+  const std::string mismatch = robotctl::controllerMismatch(s);
+  if (!mismatch.empty()) {
+    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("%s", mismatch.c_str()), (nullptr));
     return false;
   }
   return true;

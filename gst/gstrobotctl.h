@@ -39,12 +39,15 @@ typedef enum {
 
 /**
  * GstRobotCtlController:
- * @GST_ROBOT_CTL_CONTROLLER_ZONE: five commands from the zone of the frame the target is in
+ * @GST_ROBOT_CTL_CONTROLLER_ZONE: five commands from the zone of the frame the target is in (not for a
+ *   gimbal)
  * @GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL: wheel speeds proportional to the offset and the distance error
+ * @GST_ROBOT_CTL_CONTROLLER_AUTO: zone for a robot or a drone, proportional for a gimbal
  */
 typedef enum {
   GST_ROBOT_CTL_CONTROLLER_ZONE = 0,
   GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL = 1,
+  GST_ROBOT_CTL_CONTROLLER_AUTO = 2,
 } GstRobotCtlController;
 
 /**

@@ -36,12 +36,18 @@ std::string checkLocationValue(const PropertyStore &, const GValue *v, std::stri
   return colortrack_gst::checkOutputPath(location);
 }
 
+// While running (protocol and mavlink-mode are fixed then); before start, start() judges the pair once every
+// property has been set, whatever their order.
+std::string checkControllerValue(const PropertyStore &store, const GValue *v, std::string *);
+
 // GStreamer enum <-> core enum: switches with no default, so -Wswitch names a value added to either side.
 // The value after each switch is only reached by an out-of-range number (GParamSpecEnum refuses those).
 colortrack::ControllerKind toControllerKind(GstRobotCtlController controller) {
   switch (controller) {
     case GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL:
       return colortrack::ControllerKind::Proportional;
+    case GST_ROBOT_CTL_CONTROLLER_AUTO:
+      return colortrack::ControllerKind::Auto;
     case GST_ROBOT_CTL_CONTROLLER_ZONE:
       break;
   }
@@ -52,6 +58,8 @@ GstRobotCtlController fromControllerKind(colortrack::ControllerKind kind) {
   switch (kind) {
     case colortrack::ControllerKind::Proportional:
       return GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL;
+    case colortrack::ControllerKind::Auto:
+      return GST_ROBOT_CTL_CONTROLLER_AUTO;
     case colortrack::ControllerKind::Zone:
       break;
   }
@@ -294,13 +302,16 @@ const Def kProperties[] = {
     // How commands are decided: from the next buffer.
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
-       return g_param_spec_enum("controller", "Controller", "How commands are decided",
-                                GST_TYPE_ROBOT_CTL_CONTROLLER, GST_ROBOT_CTL_CONTROLLER_ZONE, f);
+       return g_param_spec_enum("controller", "Controller",
+                                "How commands are decided; zone cannot drive a gimbal (mavlink-mode=gimbal)",
+                                GST_TYPE_ROBOT_CTL_CONTROLLER, fromControllerKind(Settings{}.controller.kind),
+                                f);
      },
      [](const Settings &s, GValue *v) { g_value_set_enum(v, fromControllerKind(s.controller.kind)); },
      [](Settings &s, const GValue *v) {
        s.controller.kind = toControllerKind(static_cast<GstRobotCtlController>(g_value_get_enum(v)));
-     }},
+     },
+     nullptr, checkControllerValue},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_enum("distance-cue", "Distance cue", "What tells how far the target is",
@@ -525,6 +536,24 @@ colortrack::ControllerSettings controllerSettings(const Settings &s) {
   controller.axes = drivesGimbal(s) ? colortrack::ControlAxes::PanTilt : colortrack::ControlAxes::TurnDrive;
   return controller;
 }
+
+std::string controllerMismatch(const Settings &s) {
+  const colortrack::ControllerSettings c = controllerSettings(s);
+  if (colortrack::lawFits(c.kind, c.axes)) return {};
+  return "controller=zone cannot drive a gimbal (protocol=mavlink mavlink-mode=gimbal): its commands are one "
+         "motion at a time at a fixed speed. Use controller=auto (the default) or controller=proportional";
+}
+
+namespace {
+
+std::string checkControllerValue(const PropertyStore &store, const GValue *v, std::string *) {
+  if (!store.running) return {};
+  Settings s = store.settings;
+  s.controller.kind = toControllerKind(static_cast<GstRobotCtlController>(g_value_get_enum(v)));
+  return controllerMismatch(s);
+}
+
+}  // namespace
 
 const gstglue::PropertyTable<Settings> &properties() {
   static const gstglue::PropertyTable<Settings> table(kProperties);

@@ -47,6 +47,8 @@ using PropertyStore = gstglue::PropertyStore<Settings>;
 bool drivesGimbal(const Settings &settings);
 // The controller's settings as the protocol needs them (a gimbal: PanTilt).
 colortrack::ControllerSettings controllerSettings(const Settings &settings);
+// Why `controller` cannot drive what the protocol drives (zone and a gimbal), or empty.
+std::string controllerMismatch(const Settings &settings);
 
 // In the order gst-inspect-1.0 lists them.
 const gstglue::PropertyTable<Settings> &properties();

@@ -41,7 +41,24 @@ const char *toString(DriveCommand command) {
 }
 
 const char *toString(ControllerKind kind) {
-  return kind == ControllerKind::Zone ? "zone" : "proportional";
+  switch (kind) {
+    case ControllerKind::Zone:
+      return "zone";
+    case ControllerKind::Proportional:
+      return "proportional";
+    case ControllerKind::Auto:
+      break;
+  }
+  return "auto";
+}
+
+bool lawFits(ControllerKind kind, ControlAxes axes) {
+  return !(kind == ControllerKind::Zone && axes == ControlAxes::PanTilt);
+}
+
+ControllerKind lawFor(ControllerKind kind, ControlAxes axes) {
+  if (axes == ControlAxes::PanTilt) return ControllerKind::Proportional;
+  return kind == ControllerKind::Auto ? ControllerKind::Zone : kind;
 }
 
 double horizontalOffset(const cv::Rect2d &box, cv::Size frame) {
@@ -218,7 +235,8 @@ RobotController::RobotController(const ControllerSettings &controller, const Fai
       watchdog_(failsafe.lostTimeout) {}
 
 void RobotController::setSettings(const ControllerSettings &controller, const FailsafeSettings &failsafe) {
-  if (controller.kind != settings_.kind || controller.axes != settings_.axes) {
+  if (lawFor(controller.kind, controller.axes) != lawFor(settings_.kind, settings_.axes) ||
+      controller.axes != settings_.axes) {
     zone_.reset();
     proportional_.reset();
   }
@@ -275,8 +293,7 @@ DriveOutput RobotController::update(const Observation &o) {
       e.verticalRate = lastErrors_->verticalRate;
     }
     lastErrors_ = e;
-    // A gimbal has no zones: its rates are always proportional.
-    const bool zone = settings_.kind == ControllerKind::Zone && settings_.axes == ControlAxes::TurnDrive;
+    const bool zone = lawFor(settings_.kind, settings_.axes) == ControllerKind::Zone;
     last_ = zone ? zone_.update(e, o.time) : proportional_.update(e, dt);
     lastOffset_ = e.offset;
     return last_;

@@ -361,7 +361,7 @@ TEST(RobotController, ProportionalRampsAndFollows) {
 }
 
 TEST(RobotController, PanTiltTurnsAndTiltsAGimbalAndNeverDrives) {
-  ControllerSettings c;  // kind zone: PanTilt is proportional all the same
+  ControllerSettings c;  // kind auto: proportional for PanTilt
   c.axes = ControlAxes::PanTilt;
   c.maxAngularAccel = 0;
   c.turnIntegralGain = c.turnRateGain = 0;
@@ -390,6 +390,29 @@ TEST(RobotController, PanTiltTurnsAndTiltsAGimbalAndNeverDrives) {
   RobotController robot(c, f);
   o.time = 0;
   EXPECT_DOUBLE_EQ(robot.update(o).tilt, 0.0);
+}
+
+TEST(ControllerKind, AutoIsZoneForABaseAndProportionalForAGimbal) {
+  EXPECT_EQ(ControllerSettings{}.kind, ControllerKind::Auto);
+  EXPECT_EQ(lawFor(ControllerKind::Auto, ControlAxes::TurnDrive), ControllerKind::Zone);
+  EXPECT_EQ(lawFor(ControllerKind::Auto, ControlAxes::PanTilt), ControllerKind::Proportional);
+  EXPECT_EQ(lawFor(ControllerKind::Proportional, ControlAxes::TurnDrive), ControllerKind::Proportional);
+  EXPECT_EQ(lawFor(ControllerKind::Zone, ControlAxes::TurnDrive), ControllerKind::Zone);
+  // The zone law cannot move a gimbal: it does not fit, and if asked anyway the proportional law runs.
+  EXPECT_FALSE(lawFits(ControllerKind::Zone, ControlAxes::PanTilt));
+  EXPECT_EQ(lawFor(ControllerKind::Zone, ControlAxes::PanTilt), ControllerKind::Proportional);
+  for (ControllerKind kind : {ControllerKind::Auto, ControllerKind::Proportional})
+    EXPECT_TRUE(lawFits(kind, ControlAxes::PanTilt));
+  for (ControllerKind kind : {ControllerKind::Auto, ControllerKind::Zone, ControllerKind::Proportional})
+    EXPECT_TRUE(lawFits(kind, ControlAxes::TurnDrive));
+  // Auto on a base runs the zone law: full speed in a side zone.
+  ControllerSettings c;
+  RobotController robot(c, FailsafeSettings{});
+  Observation o = seen(0.0, 0.0, 24);
+  o.box = cv::Rect2d(280, 100, 24, 24);  // far right
+  const DriveOutput out = robot.update(o);
+  EXPECT_EQ(out.command, DriveCommand::Right);
+  EXPECT_DOUBLE_EQ(out.angular, -c.maxAngular);
 }
 
 TEST(RobotController, RatesFromSuccessiveBoxesClearedWhenLost) {

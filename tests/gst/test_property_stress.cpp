@@ -291,7 +291,7 @@ GST_START_TEST(test_robotctl_under_property_flips) {
   gst_object_unref(element);
 
   const std::vector<Flip> flips = {
-      {"controller", {"zone", "proportional"}},
+      {"controller", {"zone", "proportional", "auto"}},
       {"distance-cue", {"size", "position"}},
       {"set-point", {"0.2", "0.4"}},
       {"turn-deadband", {"0.05", "0.2"}},

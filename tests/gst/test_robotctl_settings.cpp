@@ -193,6 +193,45 @@ GST_START_TEST(test_bad_field_of_view_while_running) {
 }
 GST_END_TEST;
 
+// The zone law cannot drive a gimbal (issue 25): an error at start that names the fix, whichever order the
+// properties come in; auto, the default, drives it (proportionally: test_gimbal_sim); zone set while running
+// is refused with a warning that keeps the value; a MAVLink follow (a drone) takes the zone law.
+GST_START_TEST(test_zone_law_refused_for_a_gimbal) {
+  const std::string src = "videotestsrc num-buffers=1 ! robotctl location=/dev/null ";
+  for (const char *props :
+       {"protocol=mavlink controller=zone", "controller=zone protocol=mavlink mavlink-mode=gimbal"}) {
+    const std::string text = startError(src + props);
+    std::printf("%s: \"%s\"\n", props, text.c_str());
+    fail_unless(text.find("controller=zone") != std::string::npos &&
+                    text.find("controller=auto") != std::string::npos,
+                "%s", text.c_str());
+  }
+  {
+    Ctl follow("protocol=mavlink mavlink-mode=follow controller=zone rate=100");
+    fail_if(follow.decide({roi(kRight)}).empty());
+  }
+  Ctl ctl("protocol=mavlink rate=100");
+  fail_if(ctl.decide({roi(kRight)}).empty());
+  GstElement *element = gst_harness_find_element(ctl.h, "robotctl");
+  gst_util_set_object_arg(G_OBJECT(element), "controller", "zone");
+  GstMessage *m = gst_bus_pop_filtered(ctl.bus, GST_MESSAGE_WARNING);
+  fail_unless(m != nullptr, "no warning for controller=zone while driving a gimbal");
+  GError *error = nullptr;
+  gst_message_parse_warning(m, &error, nullptr);
+  std::printf("controller=zone while playing: warning \"%s\"\n", error->message);
+  fail_unless(std::string(error->message).find("gimbal") != std::string::npos, "%s", error->message);
+  g_error_free(error);
+  gst_message_unref(m);
+  GValue value = G_VALUE_INIT;
+  g_object_get_property(G_OBJECT(element), "controller", &value);
+  gchar *nick = gst_value_serialize(&value);
+  fail_unless_equals_string(nick, "auto");
+  g_free(nick);
+  g_value_unset(&value);
+  gst_object_unref(element);
+}
+GST_END_TEST;
+
 // A location refused when set (its folder did not exist yet) is judged again at start: an application that
 // creates the folder in between starts fine.
 GST_START_TEST(test_location_refused_when_set_is_judged_again_at_start) {
@@ -225,6 +264,7 @@ static Suite *robotctl_settings_suite(void) {
   tcase_add_test(tc, test_bad_settings_give_clear_errors);
   tcase_add_test(tc, test_url_typos_are_never_files);
   tcase_add_test(tc, test_bad_field_of_view_while_running);
+  tcase_add_test(tc, test_zone_law_refused_for_a_gimbal);
   tcase_add_test(tc, test_location_refused_when_set_is_judged_again_at_start);
   return s;
 }

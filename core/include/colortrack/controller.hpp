@@ -23,12 +23,20 @@ namespace colortrack {
 enum class DriveCommand { Stop, Forward, Backward, Left, Right };
 const char *toString(DriveCommand command);
 
-enum class ControllerKind { Zone, Proportional };
+// Auto: the law that suits the axes (lawFor).
+enum class ControllerKind { Zone, Proportional, Auto };
 const char *toString(ControllerKind kind);
 
 // What the proportional controller moves: a base that turns and drives (a robot, a drone), or a camera that
 // pans and tilts (a gimbal: the turn's gains also tilt, nothing drives).
 enum class ControlAxes { TurnDrive, PanTilt };
+
+// Whether a law can move these axes: the zone law cannot move a gimbal (its commands are one motion at a
+// time at a fixed speed: a gimbal must pan and tilt together, at a rate that falls as it centres).
+bool lawFits(ControllerKind kind, ControlAxes axes);
+// The law that runs: Auto is the zone law for a base (the paper's) and the proportional one for a gimbal;
+// a law that does not fit (see lawFits) falls back to the proportional one.
+ControllerKind lawFor(ControllerKind kind, ControlAxes axes);
 
 // What says how far away the target is.
 enum class DistanceCue {
@@ -46,8 +54,8 @@ struct Observation {
 };
 
 struct ControllerSettings {
-  ControllerKind kind = ControllerKind::Zone;
-  ControlAxes axes = ControlAxes::TurnDrive;  // PanTilt: always proportional, whatever `kind` says
+  ControllerKind kind = ControllerKind::Auto;
+  ControlAxes axes = ControlAxes::TurnDrive;  // PanTilt: always proportional (lawFor)
   DistanceCue distanceCue = DistanceCue::Size;
   double setPoint = 0.3;          // wanted distance cue (fraction of the frame height)
   double turnDeadband = 0.1;      // |offset| below which the target counts as centred
