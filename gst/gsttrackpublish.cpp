@@ -47,6 +47,7 @@
 #include <memory>
 #include <string>
 
+#include "document-file.h"
 #include "mqtt-publisher.h"
 #include "output-file.h"
 #include "track-document.h"
@@ -115,9 +116,10 @@ class ElementMqttListener : public trackpublish::MqttListener {
 
 // What start() opens and the streaming thread uses; reset at stop().
 struct State {
-  FILE *file = nullptr;  // stdout or a file of ours
-  bool ownsFile = false;
+  std::unique_ptr<trackpublish::DocumentFile> file;  // stdout or a file of ours
   std::string location;
+  std::uint64_t fileDropsReported = 0;
+  gint64 fileDropWarning = 0;                     // monotonic µs of the last warning about them
   std::unique_ptr<ElementMqttListener> listener;  // outlives the publisher
   std::unique_ptr<trackpublish::MqttPublisher> mqtt;
   std::string topic;
@@ -169,36 +171,53 @@ static void gst_track_publish_finalize(GObject *object) {
 
 namespace {
 
-bool openFile(GstTrackPublish *self, State &state, const std::string &location) {
+bool openFile(GstTrackPublish *self, State &state, const std::string &location, std::size_t maxQueued) {
   if (location == "-") {
     state.location = "stdout";
-    state.file = stdout;
-    state.ownsFile = false;
+    state.file = std::make_unique<trackpublish::DocumentFile>(STDOUT_FILENO, false, maxQueued);
     return true;
   }
   state.location = location;
   // Opened without waiting: a FIFO nobody reads is refused at once instead of holding the state change in
-  // open(). The writes then block as filesink's do (a reader that stops reading holds the stream).
+  // open(). It stays non-blocking: the writer thread waits for a slow reader, never the stream.
   std::string why;
   mode_t kind = 0;
   const int fd = colortrack_gst::openOutputFile(location, O_CREAT | O_APPEND, kind, why);
-  if (fd >= 0) {
-    fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) & ~O_NONBLOCK);
-    state.file = fdopen(fd, "a");
-    if (!state.file) {
-      why = g_strerror(errno);
-      close(fd);
-    }
-  }
-  if (!state.file) {
+  if (fd < 0) {
     GST_ELEMENT_ERROR(self, RESOURCE, OPEN_WRITE,
                       ("Could not open '%s' (property 'location') for writing: %s",
                        gstglue::validUtf8(location).c_str(), gstglue::validUtf8(why).c_str()),
                       (nullptr));
     return false;
   }
-  state.ownsFile = true;
+  state.file = std::make_unique<trackpublish::DocumentFile>(fd, true, maxQueued);
   return true;
+}
+
+// A write that failed is an error (once the writer thread has seen it: a document or a few later); drops
+// (the file did not keep up with max-queued documents waiting) a warning at most once a second.
+GstFlowReturn checkFile(GstTrackPublish *self, State &state) {
+  const std::string failure = state.file->failure();
+  if (!failure.empty()) {
+    GST_ELEMENT_ERROR(self, RESOURCE, WRITE,
+                      ("Could not write to '%s' (property 'location'): %s",
+                       gstglue::validUtf8(state.location).c_str(), failure.c_str()),
+                      (nullptr));
+    return GST_FLOW_ERROR;
+  }
+  const std::uint64_t dropped = state.file->droppedCount();
+  const gint64 now = g_get_monotonic_time();
+  if (dropped > state.fileDropsReported && now - state.fileDropWarning >= G_USEC_PER_SEC) {
+    GST_ELEMENT_WARNING(
+        self, RESOURCE, WRITE,
+        ("'%s' (property 'location') does not keep up: documents dropped so far: %" G_GUINT64_FORMAT
+         ", the oldest first (max-queued waiting).",
+         gstglue::validUtf8(state.location).c_str(), dropped),
+        (nullptr));
+    state.fileDropsReported = dropped;
+    state.fileDropWarning = now;
+  }
+  return GST_FLOW_OK;
 }
 
 // What MQTT will carry, checked before connecting: the topic after {source} is put in, the client id, and
@@ -328,8 +347,13 @@ void closeOutputs(GstTrackPublish *self, State &state) {
   }
   state.mqtt.reset();
   state.listener.reset();
-  if (state.file && state.ownsFile) std::fclose(state.file);
-  state.file = nullptr;
+  if (state.file) {
+    state.file->stop(state.drain);
+    if (const std::size_t left = state.file->queued())
+      GST_WARNING_OBJECT(self, "%zu documents not written to '%s' when stopping (drain-timeout)", left,
+                         state.location.c_str());
+  }
+  state.file.reset();
 }
 
 }  // namespace
@@ -369,7 +393,7 @@ static gboolean gst_track_publish_start(GstBaseTransform *trans) {
   state.facts.addEmptyResults = s.addEmptyResults;
   state.roiType = g_quark_from_string(s.roiType.c_str());
   state.drain = milliseconds(s.drainTimeoutMs);
-  if (!s.location.empty() && !openFile(self, state, s.location)) return FALSE;
+  if (!s.location.empty() && !openFile(self, state, s.location, s.maxQueued)) return FALSE;
   if (!s.address.empty() && !openMqtt(self, state, s, source)) {
     closeOutputs(self, state);
     return FALSE;
@@ -403,10 +427,18 @@ static gboolean gst_track_publish_sink_event(GstBaseTransform *trans, GstEvent *
   GstTrackPublish *self = GST_TRACK_PUBLISH(trans);
   State &state = self->priv->state;
   // Whoever waits for EOS may take it that every document is out, or is told what is not.
-  if (GST_EVENT_TYPE(event) == GST_EVENT_EOS && state.mqtt) {
-    state.mqtt->waitDelivered(state.drain);
-    reportLosses(self, *state.mqtt, "at EOS after drain-timeout", true);
-    // The queue had its drain-timeout: stopping after EOS does not wait for it a second time.
+  if (GST_EVENT_TYPE(event) == GST_EVENT_EOS && (state.mqtt || state.file)) {
+    if (state.file && !state.file->waitWritten(state.drain))
+      GST_ELEMENT_WARNING(self, RESOURCE, WRITE,
+                          ("%zu documents not yet written to '%s' (property 'location') at EOS after "
+                           "drain-timeout.",
+                           state.file->queued(), gstglue::validUtf8(state.location).c_str()),
+                          (nullptr));
+    if (state.mqtt) {
+      state.mqtt->waitDelivered(state.drain);
+      reportLosses(self, *state.mqtt, "at EOS after drain-timeout", true);
+    }
+    // The queues had their drain-timeout: stopping after EOS does not wait for it a second time.
     state.drain = milliseconds(0);
   }
   return GST_BASE_TRANSFORM_CLASS(parent_class)->sink_event(trans, event);
@@ -425,15 +457,10 @@ static GstFlowReturn gst_track_publish_transform_ip(GstBaseTransform *trans, Gst
   ++state.facts.frame;
   if (document.empty()) return GST_FLOW_OK;  // no object, and add-empty-results=false
   if (state.file) {
-    // One line per document, flushed so that a reader following the file sees whole frames.
-    if (std::fputs(document.c_str(), state.file) < 0 || std::fputc('\n', state.file) == EOF ||
-        std::fflush(state.file) != 0) {
-      GST_ELEMENT_ERROR(self, RESOURCE, WRITE,
-                        ("Could not write to '%s' (property 'location'): %s",
-                         gstglue::validUtf8(state.location).c_str(), g_strerror(errno)),
-                        (nullptr));
-      return GST_FLOW_ERROR;
-    }
+    const GstFlowReturn fileState = checkFile(self, state);
+    if (fileState != GST_FLOW_OK) return fileState;
+    // One line per document, written whole by the writer thread.
+    state.file->write(document);
   }
   if (state.mqtt) state.mqtt->publish(state.topic, document);
   return GST_FLOW_OK;

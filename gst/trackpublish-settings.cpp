@@ -203,8 +203,8 @@ const Def kProperties[] = {
     {kAtStart, false,
      [](GParamFlags f) {
        return g_param_spec_uint("max-queued", "Maximum queued",
-                                "Documents kept while the broker is unreachable; beyond this the oldest are "
-                                "dropped (counted in a warning)",
+                                "Documents kept while the broker is unreachable or the file (location) "
+                                "is behind; beyond this the oldest are dropped (counted in a warning)",
                                 1, 10000000, Settings{}.maxQueued, f);
      },
      getValue<&Settings::maxQueued>, setValue<&Settings::maxQueued>},
@@ -219,8 +219,9 @@ const Def kProperties[] = {
     {kAtStart, false,
      [](GParamFlags f) {
        return g_param_spec_uint("drain-timeout", "Drain timeout",
-                                "Milliseconds to keep delivering queued documents when stopping", 0, 600000,
-                                Settings{}.drainTimeoutMs, f);
+                                "Milliseconds to keep delivering queued documents (to the broker and to "
+                                "the file) at EOS and when stopping",
+                                0, 600000, Settings{}.drainTimeoutMs, f);
      },
      getValue<&Settings::drainTimeoutMs>, setValue<&Settings::drainTimeoutMs>},
     {kAtStart, false,

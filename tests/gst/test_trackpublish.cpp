@@ -69,6 +69,50 @@ GST_START_TEST(test_file_has_one_document_per_frame) {
 }
 GST_END_TEST;
 
+// A FIFO whose reader stops reading holds trackpublish's writer thread, not the stream: 2000 documents (about
+// ten times the pipe's 64 KiB) all pass and EOS arrives; with max-queued=100 the oldest are dropped, in a
+// warning naming the location, and EOS says what is not written after drain-timeout. (Written on the
+// streaming thread, the stream stopped once the pipe was full, and EOS never came.) A file that fails
+// (/dev/full) is an error naming the location.
+GST_START_TEST(test_slow_reader_never_holds_the_stream) {
+  gchar *dir = g_dir_make_tmp("trackpublish-XXXXXX", nullptr);
+  fail_unless(dir != nullptr);
+  const std::string fifo = std::string(dir) + "/tracks.fifo";
+  fail_unless(mkfifo(fifo.c_str(), 0600) == 0);
+  const int reader = open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+  fail_unless(reader >= 0);
+  {
+    Publisher p("location=" + fifo + " max-queued=100 drain-timeout=200");
+    fail_unless(p.play() != GST_STATE_CHANGE_FAILURE);
+    constexpr int kFrames = 2000;
+    for (int i = 0; i < kFrames; ++i) p.push(i);
+    p.endAndWait();
+    fail_unless_equals_int(p.drainSink(), kFrames);
+    const std::vector<std::string> warnings = p.messages(GST_MESSAGE_WARNING);
+    for (const std::string &w : warnings) g_print("slow reader: warning \"%s\"\n", w.c_str());
+    fail_unless(anyContains(warnings, "does not keep up") && anyContains(warnings, fifo),
+                "no warning about the dropped documents");
+    fail_unless(anyContains(warnings, "not yet written"), "no warning about what EOS left unwritten");
+  }
+  close(reader);
+  unlink(fifo.c_str());
+  g_rmdir(dir);
+  g_free(dir);
+  if (g_file_test("/dev/full", G_FILE_TEST_EXISTS)) {
+    Publisher p("location=/dev/full");
+    fail_unless(p.play() != GST_STATE_CHANGE_FAILURE);
+    for (int i = 0; i < 20; ++i) p.push(i);
+    p.end();
+    const auto deadline = Clock::now() + std::chrono::seconds(10);
+    while (p.messages(GST_MESSAGE_ERROR).empty() && Clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    const std::vector<std::string> errors = p.messages(GST_MESSAGE_ERROR);
+    fail_unless(anyContains(errors, "'/dev/full' (property 'location')"), "no error naming /dev/full");
+    g_print("/dev/full: error \"%s\"\n", errors.front().c_str());
+  }
+}
+GST_END_TEST;
+
 // location= a FIFO: refused at once while nobody reads it (the open would otherwise wait for a reader with
 // the state change held), written to once somebody does; a directory is refused naming what it is.
 GST_START_TEST(test_fifo_location_never_blocks) {
@@ -293,6 +337,7 @@ static Suite *trackpublish_suite(void) {
   tcase_add_test(tc, test_mqtt_survives_a_broker_restart);
   tcase_add_test(tc, test_mqtt_over_tls);
   tcase_add_test(tc, test_fifo_location_never_blocks);
+  tcase_add_test(tc, test_slow_reader_never_holds_the_stream);
   return s;
 }
 

@@ -342,9 +342,10 @@ class Publisher {
     }
     return n;
   }
+  void end() { gst_app_src_end_of_stream(GST_APP_SRC(src_)); }
   // EOS, then waits for it on the bus (trackpublish passes EOS on once its queue is delivered).
   void endAndWait() {
-    gst_app_src_end_of_stream(GST_APP_SRC(src_));
+    end();
     const auto deadline = Clock::now() + std::chrono::seconds(30);
     while (Clock::now() < deadline) {
       GstMessage *msg = gst_bus_timed_pop_filtered(
