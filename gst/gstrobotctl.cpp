@@ -141,43 +141,17 @@ GST_ELEMENT_REGISTER_DEFINE(robotctl, "robotctl", GST_RANK_NONE, GST_TYPE_ROBOT_
 // ---------------------------------------------------------------------------------------------------------
 // Enum types
 
-COLORTRACK_DEFINE_ENUM_TYPE(
-    gst_robot_ctl_protocol_get_type, "GstRobotCtlProtocol",
-    {GST_ROBOT_CTL_PROTOCOL_ZONE_CHAR, "One character per command (zone-chars)", "zone-char"},
-    {GST_ROBOT_CTL_PROTOCOL_TEXT, "One line \"L=<int> R=<int>\" per command", "text"},
-    {GST_ROBOT_CTL_PROTOCOL_BINARY, "Framed packet with sequence number and CRC-8", "binary"},
-    {GST_ROBOT_CTL_PROTOCOL_MAVLINK, "MAVLink 2 (mavlink-mode), with a 1 Hz heartbeat", "mavlink"})
-COLORTRACK_DEFINE_ENUM_TYPE(gst_robot_ctl_mavlink_mode_get_type, "GstRobotCtlMavlinkMode",
-                            {GST_ROBOT_CTL_MAVLINK_MODE_GIMBAL,
-                             "GIMBAL_MANAGER_SET_PITCHYAW: pitch and yaw rates", "gimbal"},
-                            {GST_ROBOT_CTL_MAVLINK_MODE_FOLLOW,
-                             "SET_POSITION_TARGET_LOCAL_NED, body frame: forward velocity and yaw rate",
-                             "follow"})
-COLORTRACK_DEFINE_ENUM_TYPE(
-    gst_robot_ctl_controller_get_type, "GstRobotCtlController",
-    {GST_ROBOT_CTL_CONTROLLER_ZONE, "Forward/backward/left/right/stop by frame zone", "zone"},
-    {GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL, "Wheel speeds proportional to the errors", "proportional"},
-    {GST_ROBOT_CTL_CONTROLLER_AUTO, "Zone for a robot or a drone, proportional for a gimbal", "auto"})
-COLORTRACK_DEFINE_ENUM_TYPE(gst_robot_ctl_distance_cue_get_type, "GstRobotCtlDistanceCue",
-                            {GST_ROBOT_CTL_DISTANCE_CUE_SIZE, "Box height / frame height", "size"},
-                            {GST_ROBOT_CTL_DISTANCE_CUE_POSITION, "Box bottom / frame height", "position"})
-COLORTRACK_DEFINE_ENUM_TYPE(gst_robot_ctl_parity_get_type, "GstRobotCtlParity",
-                            {GST_ROBOT_CTL_PARITY_NONE, "None", "none"},
-                            {GST_ROBOT_CTL_PARITY_ODD, "Odd", "odd"},
-                            {GST_ROBOT_CTL_PARITY_EVEN, "Even", "even"},
-                            {GST_ROBOT_CTL_PARITY_MARK, "Mark", "mark"},
-                            {GST_ROBOT_CTL_PARITY_SPACE, "Space", "space"})
-COLORTRACK_DEFINE_ENUM_TYPE(gst_robot_ctl_flow_control_get_type, "GstRobotCtlFlowControl",
-                            {GST_ROBOT_CTL_FLOW_CONTROL_NONE, "None", "none"},
-                            {GST_ROBOT_CTL_FLOW_CONTROL_XONXOFF, "Software (XON/XOFF)", "xonxoff"},
-                            {GST_ROBOT_CTL_FLOW_CONTROL_RTSCTS, "Hardware (RTS/CTS)", "rtscts"},
-                            {GST_ROBOT_CTL_FLOW_CONTROL_DTRDSR, "Hardware (DTR/DSR)", "dtrdsr"})
-COLORTRACK_DEFINE_ENUM_TYPE(gst_robot_ctl_lock_on_get_type, "GstRobotCtlLockOn",
-                            {GST_ROBOT_CTL_LOCK_ON_FIRST_CONFIRMED, "The oldest track (lowest id)",
-                             "first-confirmed"},
-                            {GST_ROBOT_CTL_LOCK_ON_LARGEST, "The largest box", "largest"},
-                            {GST_ROBOT_CTL_LOCK_ON_NEAREST_CENTRE, "The box nearest the frame's centre",
-                             "nearest-centre"})
+COLORTRACK_DEFINE_CHOICE_TYPE(gst_robot_ctl_protocol_get_type, "GstRobotCtlProtocol", colortrack::kProtocols)
+COLORTRACK_DEFINE_CHOICE_TYPE(gst_robot_ctl_mavlink_mode_get_type, "GstRobotCtlMavlinkMode",
+                              colortrack::kMavlinkModes)
+COLORTRACK_DEFINE_CHOICE_TYPE(gst_robot_ctl_controller_get_type, "GstRobotCtlController",
+                              colortrack::kControllerKinds)
+COLORTRACK_DEFINE_CHOICE_TYPE(gst_robot_ctl_distance_cue_get_type, "GstRobotCtlDistanceCue",
+                              colortrack::kDistanceCues)
+COLORTRACK_DEFINE_CHOICE_TYPE(gst_robot_ctl_parity_get_type, "GstRobotCtlParity", robotctl::kParities)
+COLORTRACK_DEFINE_CHOICE_TYPE(gst_robot_ctl_flow_control_get_type, "GstRobotCtlFlowControl",
+                              robotctl::kFlowControls)
+COLORTRACK_DEFINE_CHOICE_TYPE(gst_robot_ctl_lock_on_get_type, "GstRobotCtlLockOn", colortrack::kLockOns)
 
 // ---------------------------------------------------------------------------------------------------------
 // GObject
@@ -325,7 +299,7 @@ static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
   GST_INFO_OBJECT(self, "writing to %s", port->describe().c_str());
 
   robotctl::WriterConfig config;
-  config.protocol.protocol = robotctl::toProtocol(s.protocol);
+  config.protocol.protocol = s.protocol;
   config.protocol.zoneChars = *zoneChars;
   config.protocol.outputScale = s.outputScale;
   config.protocol.mavlink = robotctl::toMavlinkSettings(s);

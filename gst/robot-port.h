@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "colortrack/choice.hpp"
+
 struct sp_port;
 
 namespace robotctl {
@@ -60,7 +62,17 @@ class FilePort : public Port {
 
 // The serial settings libserialport understands; the element maps its enums onto these.
 enum class Parity { None, Odd, Even, Mark, Space };
+inline constexpr colortrack::Choice<Parity> kParities[] = {
+    {Parity::None, "none", "None"}, {Parity::Odd, "odd", "Odd"},       {Parity::Even, "even", "Even"},
+    {Parity::Mark, "mark", "Mark"}, {Parity::Space, "space", "Space"},
+};
 enum class FlowControl { None, XonXoff, RtsCts, DtrDsr };
+inline constexpr colortrack::Choice<FlowControl> kFlowControls[] = {
+    {FlowControl::None, "none", "None"},
+    {FlowControl::XonXoff, "xonxoff", "Software (XON/XOFF)"},
+    {FlowControl::RtsCts, "rtscts", "Hardware (RTS/CTS)"},
+    {FlowControl::DtrDsr, "dtrdsr", "Hardware (DTR/DSR)"},
+};
 
 struct SerialConfig {
   std::string device;

@@ -1,5 +1,5 @@
 // What robotctl's properties say about its output, in the terms of the core's encoder and the serial port:
-// the mapping from the GStreamer enums and units, in one place.
+// the mapping from the property units (degrees, per-property ids) to the encoder's, in one place.
 #pragma once
 
 #include "colortrack/protocol.hpp"
@@ -12,7 +12,6 @@ namespace robotctl {
 bool isStandardBaudRate(guint rate);
 
 SerialConfig toSerialConfig(const Settings &s);
-colortrack::Protocol toProtocol(GstRobotCtlProtocol protocol);
 // The MAVLink ids, mode and bounds (hfov, max-rate in deg/s, max-speed) as the encoder takes them.
 colortrack::MavlinkSettings toMavlinkSettings(const Settings &s);
 

@@ -40,74 +40,15 @@ std::string checkLocationValue(const PropertyStore &, const GValue *v, std::stri
 // property has been set, whatever their order.
 std::string checkControllerValue(const PropertyStore &store, const GValue *v, std::string *);
 
-// GStreamer enum <-> core enum: switches with no default, so -Wswitch names a value added to either side.
-// The value after each switch is only reached by an out-of-range number (GParamSpecEnum refuses those).
-colortrack::ControllerKind toControllerKind(GstRobotCtlController controller) {
-  switch (controller) {
-    case GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL:
-      return colortrack::ControllerKind::Proportional;
-    case GST_ROBOT_CTL_CONTROLLER_AUTO:
-      return colortrack::ControllerKind::Auto;
-    case GST_ROBOT_CTL_CONTROLLER_ZONE:
-      break;
-  }
-  return colortrack::ControllerKind::Zone;
+// An enum of the controller's settings (the controller, the distance cue).
+template <auto field>
+void getController(const Settings &s, GValue *v) {
+  g_value_set_enum(v, static_cast<gint>(s.controller.*field));
 }
-
-GstRobotCtlController fromControllerKind(colortrack::ControllerKind kind) {
-  switch (kind) {
-    case colortrack::ControllerKind::Proportional:
-      return GST_ROBOT_CTL_CONTROLLER_PROPORTIONAL;
-    case colortrack::ControllerKind::Auto:
-      return GST_ROBOT_CTL_CONTROLLER_AUTO;
-    case colortrack::ControllerKind::Zone:
-      break;
-  }
-  return GST_ROBOT_CTL_CONTROLLER_ZONE;
-}
-
-colortrack::DistanceCue toDistanceCue(GstRobotCtlDistanceCue cue) {
-  switch (cue) {
-    case GST_ROBOT_CTL_DISTANCE_CUE_POSITION:
-      return colortrack::DistanceCue::Position;
-    case GST_ROBOT_CTL_DISTANCE_CUE_SIZE:
-      break;
-  }
-  return colortrack::DistanceCue::Size;
-}
-
-GstRobotCtlDistanceCue fromDistanceCue(colortrack::DistanceCue cue) {
-  switch (cue) {
-    case colortrack::DistanceCue::Position:
-      return GST_ROBOT_CTL_DISTANCE_CUE_POSITION;
-    case colortrack::DistanceCue::Size:
-      break;
-  }
-  return GST_ROBOT_CTL_DISTANCE_CUE_SIZE;
-}
-
-colortrack::LockOn toLockOn(GstRobotCtlLockOn lockOn) {
-  switch (lockOn) {
-    case GST_ROBOT_CTL_LOCK_ON_LARGEST:
-      return colortrack::LockOn::Largest;
-    case GST_ROBOT_CTL_LOCK_ON_NEAREST_CENTRE:
-      return colortrack::LockOn::NearestCentre;
-    case GST_ROBOT_CTL_LOCK_ON_FIRST_CONFIRMED:
-      break;
-  }
-  return colortrack::LockOn::FirstConfirmed;
-}
-
-GstRobotCtlLockOn fromLockOn(colortrack::LockOn lockOn) {
-  switch (lockOn) {
-    case colortrack::LockOn::Largest:
-      return GST_ROBOT_CTL_LOCK_ON_LARGEST;
-    case colortrack::LockOn::NearestCentre:
-      return GST_ROBOT_CTL_LOCK_ON_NEAREST_CENTRE;
-    case colortrack::LockOn::FirstConfirmed:
-      break;
-  }
-  return GST_ROBOT_CTL_LOCK_ON_FIRST_CONFIRMED;
+template <auto field>
+void setController(Settings &s, const GValue *v) {
+  s.controller.*field =
+      static_cast<std::remove_reference_t<decltype(s.controller.*field)>>(g_value_get_enum(v));
 }
 
 // A double of the controller's or the failsafe's settings.
@@ -165,7 +106,7 @@ const Def kProperties[] = {
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_enum("parity", "Parity", "Serial port parity; read at start",
-                                GST_TYPE_ROBOT_CTL_PARITY, Settings{}.parity, f);
+                                GST_TYPE_ROBOT_CTL_PARITY, static_cast<gint>(Settings{}.parity), f);
      },
      getValue<&Settings::parity>, setValue<&Settings::parity>},
     {Apply::AtStart, false,
@@ -177,7 +118,8 @@ const Def kProperties[] = {
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_enum("flow-control", "Flow control", "Serial port flow control; read at start",
-                                GST_TYPE_ROBOT_CTL_FLOW_CONTROL, Settings{}.flowControl, f);
+                                GST_TYPE_ROBOT_CTL_FLOW_CONTROL, static_cast<gint>(Settings{}.flowControl),
+                                f);
      },
      getValue<&Settings::flowControl>, setValue<&Settings::flowControl>},
     {Apply::AtStart, false,
@@ -193,7 +135,7 @@ const Def kProperties[] = {
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_enum("protocol", "Protocol", "How commands are encoded; read at start",
-                                GST_TYPE_ROBOT_CTL_PROTOCOL, Settings{}.protocol, f);
+                                GST_TYPE_ROBOT_CTL_PROTOCOL, static_cast<gint>(Settings{}.protocol), f);
      },
      getValue<&Settings::protocol>, setValue<&Settings::protocol>},
     {Apply::AtStart, false,
@@ -219,7 +161,8 @@ const Def kProperties[] = {
                                 "protocol=mavlink: what the commands drive: a gimbal (pitch and yaw rates, "
                                 "always the proportional law) or a drone (forward velocity and yaw rate); "
                                 "read at start",
-                                GST_TYPE_ROBOT_CTL_MAVLINK_MODE, Settings{}.mavlinkMode, f);
+                                GST_TYPE_ROBOT_CTL_MAVLINK_MODE, static_cast<gint>(Settings{}.mavlinkMode),
+                                f);
      },
      getValue<&Settings::mavlinkMode>, setValue<&Settings::mavlinkMode>},
     {Apply::AtStart, false,
@@ -304,23 +247,18 @@ const Def kProperties[] = {
      [](GParamFlags f) {
        return g_param_spec_enum("controller", "Controller",
                                 "How commands are decided; zone cannot drive a gimbal (mavlink-mode=gimbal)",
-                                GST_TYPE_ROBOT_CTL_CONTROLLER, fromControllerKind(Settings{}.controller.kind),
+                                GST_TYPE_ROBOT_CTL_CONTROLLER, static_cast<gint>(Settings{}.controller.kind),
                                 f);
      },
-     [](const Settings &s, GValue *v) { g_value_set_enum(v, fromControllerKind(s.controller.kind)); },
-     [](Settings &s, const GValue *v) {
-       s.controller.kind = toControllerKind(static_cast<GstRobotCtlController>(g_value_get_enum(v)));
-     },
-     nullptr, checkControllerValue},
+     getController<&ControllerSettings::kind>, setController<&ControllerSettings::kind>, nullptr,
+     checkControllerValue},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_enum("distance-cue", "Distance cue", "What tells how far the target is",
-                                GST_TYPE_ROBOT_CTL_DISTANCE_CUE, GST_ROBOT_CTL_DISTANCE_CUE_SIZE, f);
+                                GST_TYPE_ROBOT_CTL_DISTANCE_CUE,
+                                static_cast<gint>(Settings{}.controller.distanceCue), f);
      },
-     [](const Settings &s, GValue *v) { g_value_set_enum(v, fromDistanceCue(s.controller.distanceCue)); },
-     [](Settings &s, const GValue *v) {
-       s.controller.distanceCue = toDistanceCue(static_cast<GstRobotCtlDistanceCue>(g_value_get_enum(v)));
-     }},
+     getController<&ControllerSettings::distanceCue>, setController<&ControllerSettings::distanceCue>},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_double("set-point", "Set-point",
@@ -509,12 +447,9 @@ const Def kProperties[] = {
        return g_param_spec_enum("lock-on", "Lock on",
                                 "With target-id=-1, which region to follow when there is none yet or the "
                                 "followed one is lost or gone; the choice is kept while its track lives",
-                                GST_TYPE_ROBOT_CTL_LOCK_ON, fromLockOn(Settings{}.lockOn), f);
+                                GST_TYPE_ROBOT_CTL_LOCK_ON, static_cast<gint>(Settings{}.lockOn), f);
      },
-     [](const Settings &s, GValue *v) { g_value_set_enum(v, fromLockOn(s.lockOn)); },
-     [](Settings &s, const GValue *v) {
-       s.lockOn = toLockOn(static_cast<GstRobotCtlLockOn>(g_value_get_enum(v)));
-     }},
+     getValue<&Settings::lockOn>, setValue<&Settings::lockOn>},
     {Apply::AtStart, false,
      [](GParamFlags f) {
        return g_param_spec_boolean(
@@ -528,7 +463,7 @@ const Def kProperties[] = {
 }  // namespace
 
 bool drivesGimbal(const Settings &s) {
-  return s.protocol == GST_ROBOT_CTL_PROTOCOL_MAVLINK && s.mavlinkMode == GST_ROBOT_CTL_MAVLINK_MODE_GIMBAL;
+  return s.protocol == colortrack::Protocol::Mavlink && s.mavlinkMode == colortrack::MavlinkMode::Gimbal;
 }
 
 colortrack::ControllerSettings controllerSettings(const Settings &s) {
@@ -549,7 +484,7 @@ namespace {
 std::string checkControllerValue(const PropertyStore &store, const GValue *v, std::string *) {
   if (!store.running) return {};
   Settings s = store.settings;
-  s.controller.kind = toControllerKind(static_cast<GstRobotCtlController>(g_value_get_enum(v)));
+  s.controller.kind = static_cast<colortrack::ControllerKind>(g_value_get_enum(v));
   return controllerMismatch(s);
 }
 

@@ -4,9 +4,11 @@
 #include <string>
 
 #include "colortrack/controller.hpp"
+#include "colortrack/protocol.hpp"
 #include "colortrack/target_lock.hpp"
 #include "gstrobotctl.h"
 #include "property-table.h"
+#include "robot-port.h"
 
 namespace robotctl {
 
@@ -16,15 +18,15 @@ struct Settings {
   std::string device, location;
   guint baudRate = 9600;
   gint dataBits = 8;
-  GstRobotCtlParity parity = GST_ROBOT_CTL_PARITY_NONE;
+  Parity parity = Parity::None;
   gint stopBits = 1;
-  GstRobotCtlFlowControl flowControl = GST_ROBOT_CTL_FLOW_CONTROL_NONE;
-  GstRobotCtlProtocol protocol = GST_ROBOT_CTL_PROTOCOL_ZONE_CHAR;
+  FlowControl flowControl = FlowControl::None;
+  colortrack::Protocol protocol = colortrack::Protocol::ZoneChar;
   std::string zoneChars = "FBLRS";  // checked at start
   gint outputScale = 255;
   // MAVLink (read at start): ours and the receiver's ids, what the commands drive, the camera's field of
   // view, the bounds of every command.
-  GstRobotCtlMavlinkMode mavlinkMode = GST_ROBOT_CTL_MAVLINK_MODE_GIMBAL;
+  colortrack::MavlinkMode mavlinkMode = colortrack::MavlinkMode::Gimbal;
   guint systemId = 1, componentId = 191;  // an onboard computer: MAV_COMP_ID_ONBOARD_COMPUTER
   guint targetSystem = 1, targetComponent = 1;
   gdouble hfov = 60.0;         // degrees

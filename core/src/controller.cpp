@@ -41,15 +41,7 @@ const char *toString(DriveCommand command) {
 }
 
 const char *toString(ControllerKind kind) {
-  switch (kind) {
-    case ControllerKind::Zone:
-      return "zone";
-    case ControllerKind::Proportional:
-      return "proportional";
-    case ControllerKind::Auto:
-      break;
-  }
-  return "auto";
+  return nickOf(kControllerKinds, kind);
 }
 
 bool lawFits(ControllerKind kind, ControlAxes axes) {

@@ -14,6 +14,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "colortrack/choice.hpp"
 #include "colortrack/track.hpp"
 
 namespace colortrack {
@@ -25,6 +26,11 @@ const char *toString(DriveCommand command);
 
 // Auto: the law that suits the axes (lawFor).
 enum class ControllerKind { Zone, Proportional, Auto };
+inline constexpr Choice<ControllerKind> kControllerKinds[] = {
+    {ControllerKind::Zone, "zone", "Forward/backward/left/right/stop by frame zone"},
+    {ControllerKind::Proportional, "proportional", "Wheel speeds proportional to the errors"},
+    {ControllerKind::Auto, "auto", "Zone for a robot or a drone, proportional for a gimbal"},
+};
 const char *toString(ControllerKind kind);
 
 // What the proportional controller moves: a base that turns and drives (a robot, a drone), or a camera that
@@ -42,6 +48,10 @@ ControllerKind lawFor(ControllerKind kind, ControlAxes axes);
 enum class DistanceCue {
   Size,      // box height / frame height: a closer target looks bigger
   Position,  // box bottom / frame height: on a flat floor a closer target sits lower in the image
+};
+inline constexpr Choice<DistanceCue> kDistanceCues[] = {
+    {DistanceCue::Size, "size", "Box height / frame height"},
+    {DistanceCue::Position, "position", "Box bottom / frame height"},
 };
 
 // One frame's view of the target.

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "colortrack/choice.hpp"
 #include "colortrack/controller.hpp"
 #include "colortrack/mavlink.hpp"
 
@@ -18,11 +19,22 @@ enum class Protocol {
   Binary,    // framed packet: start byte, sequence, length, payload, CRC-8
   Mavlink,   // MAVLink 2 (see MavlinkSettings), with a heartbeat
 };
+inline constexpr Choice<Protocol> kProtocols[] = {
+    {Protocol::ZoneChar, "zone-char", "One character per command (zone-chars)"},
+    {Protocol::Text, "text", "One line \"L=<int> R=<int>\" per command"},
+    {Protocol::Binary, "binary", "Framed packet with sequence number and CRC-8"},
+    {Protocol::Mavlink, "mavlink", "MAVLink 2 (mavlink-mode), with a 1 Hz heartbeat"},
+};
 
 // What the MAVLink commands drive.
 enum class MavlinkMode {
   Gimbal,  // GIMBAL_MANAGER_SET_PITCHYAW: pitch and yaw rates (DriveOutput tilt and angular)
   Follow,  // SET_POSITION_TARGET_LOCAL_NED, body frame: forward velocity and yaw rate (linear and angular)
+};
+inline constexpr Choice<MavlinkMode> kMavlinkModes[] = {
+    {MavlinkMode::Gimbal, "gimbal", "GIMBAL_MANAGER_SET_PITCHYAW: pitch and yaw rates"},
+    {MavlinkMode::Follow, "follow",
+     "SET_POSITION_TARGET_LOCAL_NED, body frame: forward velocity and yaw rate"},
 };
 
 struct MavlinkSettings {

@@ -8,6 +8,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "colortrack/choice.hpp"
 #include "colortrack/track.hpp"
 
 namespace colortrack {
@@ -17,6 +18,11 @@ enum class LockOn {
   FirstConfirmed,  // the oldest track (lowest id): the object that was there first
   Largest,         // the largest box
   NearestCentre,   // the box whose centre is nearest the frame's centre
+};
+inline constexpr Choice<LockOn> kLockOns[] = {
+    {LockOn::FirstConfirmed, "first-confirmed", "The oldest track (lowest id)"},
+    {LockOn::Largest, "largest", "The largest box"},
+    {LockOn::NearestCentre, "nearest-centre", "The box nearest the frame's centre"},
 };
 
 struct TargetCandidate {

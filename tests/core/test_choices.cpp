@@ -1,0 +1,46 @@
+// The core's choice tables (colortrack/choice.hpp), from which the elements' enum types are generated: each
+// row's value is its position (so a property's number never changes when a row is added at the end), and
+// each nick is a distinct, non-empty name gst-launch-1.0 can take.
+#include <gtest/gtest.h>
+
+#include <set>
+#include <string>
+
+#include "colortrack/controller.hpp"
+#include "colortrack/protocol.hpp"
+#include "colortrack/target_lock.hpp"
+
+using namespace colortrack;
+
+namespace {
+
+template <typename E, std::size_t N>
+void expectWellFormed(const Choice<E> (&choices)[N]) {
+  std::set<std::string> nicks;
+  for (std::size_t i = 0; i < N; ++i) {
+    SCOPED_TRACE(choices[i].nick);
+    EXPECT_EQ(static_cast<std::size_t>(choices[i].value), i);
+    const std::string nick = choices[i].nick;
+    EXPECT_FALSE(nick.empty());
+    EXPECT_EQ(nick.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-"), std::string::npos);
+    EXPECT_TRUE(nicks.insert(nick).second);
+    EXPECT_FALSE(std::string(choices[i].description).empty());
+  }
+}
+
+}  // namespace
+
+TEST(Choices, EveryTableIsInOrderWithDistinctNicks) {
+  expectWellFormed(kControllerKinds);
+  expectWellFormed(kDistanceCues);
+  expectWellFormed(kProtocols);
+  expectWellFormed(kMavlinkModes);
+  expectWellFormed(kLockOns);
+}
+
+TEST(Choices, NickOfFindsTheRow) {
+  EXPECT_STREQ(nickOf(kProtocols, Protocol::Mavlink), "mavlink");
+  EXPECT_STREQ(nickOf(kLockOns, LockOn::NearestCentre), "nearest-centre");
+  EXPECT_STREQ(toString(ControllerKind::Auto), "auto");
+  EXPECT_STREQ(nickOf(kDistanceCues, static_cast<DistanceCue>(7)), "?");
+}
