@@ -1,6 +1,7 @@
 #include "colortrack-settings.h"
 
 #include <optional>
+#include <type_traits>
 
 namespace colortrack_gst {
 
@@ -17,75 +18,14 @@ using colortrack::TrackerSettings;
 constexpr unsigned kTracker = 1u << kTrackerVersion, kTemplate = 1u << kTemplateVersion,
                    kBlobs = 1u << kBlobsVersion, kRange = 1u << kRangeVersion;
 
-// Switches without a default, so that a value added to one side and not the other is a compiler warning.
-colortrack::ColorSpace toColorSpace(gint value) {
-  switch (static_cast<GstColorTrackColorSpace>(value)) {
-    case GST_COLOR_TRACK_COLOR_SPACE_RGB:
-      return colortrack::ColorSpace::Rgb;
-    case GST_COLOR_TRACK_COLOR_SPACE_HSV:
-      break;
-  }
-  return colortrack::ColorSpace::Hsv;
+// An enum of the tracker's settings (method, colour space, verify).
+template <auto field>
+void getTrackerEnum(const Settings &s, GValue *v) {
+  g_value_set_enum(v, static_cast<gint>(s.tracker.*field));
 }
-GstColorTrackColorSpace fromColorSpace(colortrack::ColorSpace space) {
-  switch (space) {
-    case colortrack::ColorSpace::Rgb:
-      return GST_COLOR_TRACK_COLOR_SPACE_RGB;
-    case colortrack::ColorSpace::Hsv:
-      break;
-  }
-  return GST_COLOR_TRACK_COLOR_SPACE_HSV;
-}
-
-GstColorTrackMethod methodOf(colortrack::Method method) {
-  switch (method) {
-    case colortrack::Method::Indexing:
-      return GST_COLOR_TRACK_METHOD_INDEXING;
-    case colortrack::Method::Discriminative:
-      return GST_COLOR_TRACK_METHOD_DISCRIMINATIVE;
-    case colortrack::Method::Fused:
-      return GST_COLOR_TRACK_METHOD_FUSED;
-  }
-  return GST_COLOR_TRACK_METHOD_FUSED;
-}
-
-colortrack::Method toMethod(gint value) {
-  switch (static_cast<GstColorTrackMethod>(value)) {
-    case GST_COLOR_TRACK_METHOD_INDEXING:
-      return colortrack::Method::Indexing;
-    case GST_COLOR_TRACK_METHOD_DISCRIMINATIVE:
-      return colortrack::Method::Discriminative;
-    case GST_COLOR_TRACK_METHOD_FUSED:
-      return colortrack::Method::Fused;
-  }
-  return colortrack::Method::Fused;
-}
-
-colortrack::VerifyMode toVerifyMode(gint value) {
-  switch (static_cast<GstColorTrackVerify>(value)) {
-    case GST_COLOR_TRACK_VERIFY_NONE:
-      return colortrack::VerifyMode::None;
-    case GST_COLOR_TRACK_VERIFY_EDGE_DENSITY:
-      return colortrack::VerifyMode::EdgeDensity;
-    case GST_COLOR_TRACK_VERIFY_EDGE_ENERGY:
-      return colortrack::VerifyMode::EdgeEnergy;
-    case GST_COLOR_TRACK_VERIFY_BOTH:
-      break;
-  }
-  return colortrack::VerifyMode::Both;
-}
-GstColorTrackVerify fromVerifyMode(colortrack::VerifyMode mode) {
-  switch (mode) {
-    case colortrack::VerifyMode::None:
-      return GST_COLOR_TRACK_VERIFY_NONE;
-    case colortrack::VerifyMode::EdgeDensity:
-      return GST_COLOR_TRACK_VERIFY_EDGE_DENSITY;
-    case colortrack::VerifyMode::EdgeEnergy:
-      return GST_COLOR_TRACK_VERIFY_EDGE_ENERGY;
-    case colortrack::VerifyMode::Both:
-      break;
-  }
-  return GST_COLOR_TRACK_VERIFY_BOTH;
+template <auto field>
+void setTrackerEnum(Settings &s, const GValue *v) {
+  s.tracker.*field = static_cast<std::remove_reference_t<decltype(s.tracker.*field)>>(g_value_get_enum(v));
 }
 
 // Accessors of a field of one of Settings' parts, by type (text fields: gstglue's).
@@ -189,10 +129,9 @@ const Def kProperties[] = {
            "mode", "Mode",
            "How the object is defined: 'template' follows one object like a template; 'threshold' "
            "follows every blob of pixels inside an HSV range, each with its own id; fixed while started",
-           GST_TYPE_COLOR_TRACK_MODE, GST_COLOR_TRACK_MODE_TEMPLATE, f);
+           GST_TYPE_COLOR_TRACK_MODE, static_cast<gint>(Settings{}.mode), f);
      },
-     [](const Settings &s, GValue *v) { g_value_set_enum(v, s.mode); },
-     [](Settings &s, const GValue *v) { s.mode = static_cast<GstColorTrackMode>(g_value_get_enum(v)); }},
+     gstglue::getValue<&Settings::mode>, gstglue::setValue<&Settings::mode>},
     {Apply::Live, kTemplate,
      [](GParamFlags f) {
        return g_param_spec_string(
@@ -220,10 +159,9 @@ const Def kProperties[] = {
            "How frames are searched: 'indexing' is the paper's colour indexing; 'discriminative' "
            "also learns which colours tell the object from its surroundings; 'fused' adds a shape cue (a "
            "correlation filter), a scale filter, a confidence that gates learning, and re-detection",
-           GST_TYPE_COLOR_TRACK_METHOD, methodOf(TrackerSettings{}.method), f);
+           GST_TYPE_COLOR_TRACK_METHOD, static_cast<gint>(TrackerSettings{}.method), f);
      },
-     [](const Settings &s, GValue *v) { g_value_set_enum(v, methodOf(s.tracker.method)); },
-     [](Settings &s, const GValue *v) { s.tracker.method = toMethod(g_value_get_enum(v)); }},
+     getTrackerEnum<&TrackerSettings::method>, setTrackerEnum<&TrackerSettings::method>},
     {Apply::Live, kTracker,
      [](GParamFlags f) {
        return g_param_spec_double(
@@ -257,10 +195,9 @@ const Def kProperties[] = {
      [](GParamFlags f) {
        return g_param_spec_enum("color-space", "Colour space", "Colour space of the histograms",
                                 GST_TYPE_COLOR_TRACK_COLOR_SPACE,
-                                fromColorSpace(TrackerSettings{}.colorSpace), f);
+                                static_cast<gint>(TrackerSettings{}.colorSpace), f);
      },
-     [](const Settings &s, GValue *v) { g_value_set_enum(v, fromColorSpace(s.tracker.colorSpace)); },
-     [](Settings &s, const GValue *v) { s.tracker.colorSpace = toColorSpace(g_value_get_enum(v)); }},
+     getTrackerEnum<&TrackerSettings::colorSpace>, setTrackerEnum<&TrackerSettings::colorSpace>},
     {Apply::Live, kTracker,
      [](GParamFlags f) {
        return g_param_spec_string("bins", "Bins", "Histogram bins per channel, \"c1,c2,c3\", each 1-256",
@@ -373,10 +310,9 @@ const Def kProperties[] = {
      [](GParamFlags f) {
        return g_param_spec_enum("verify", "Verify",
                                 "Edge check that tells the object from same-coloured look-alikes",
-                                GST_TYPE_COLOR_TRACK_VERIFY, fromVerifyMode(TrackerSettings{}.verify), f);
+                                GST_TYPE_COLOR_TRACK_VERIFY, static_cast<gint>(TrackerSettings{}.verify), f);
      },
-     [](const Settings &s, GValue *v) { g_value_set_enum(v, fromVerifyMode(s.tracker.verify)); },
-     [](Settings &s, const GValue *v) { s.tracker.verify = toVerifyMode(g_value_get_enum(v)); }},
+     getTrackerEnum<&TrackerSettings::verify>, setTrackerEnum<&TrackerSettings::verify>},
     {Apply::Live, kTracker,
      [](GParamFlags f) {
        return g_param_spec_double(

@@ -5,6 +5,7 @@
 
 #include "colortrack-requests.h"
 #include "colortrack/blobs.hpp"
+#include "colortrack/frame_tracker.hpp"
 #include "colortrack/settings.hpp"
 #include "colortrack/tracker.hpp"
 #include "gstcolortrack.h"
@@ -15,7 +16,7 @@ namespace colortrack_gst {
 // Read by the streaming thread as a snapshot, under the object lock. Text properties keep what the user
 // wrote, also a value refused before start (the error comes at start).
 struct Settings {
-  GstColorTrackMode mode = GST_COLOR_TRACK_MODE_TEMPLATE;
+  colortrack::TrackingMode mode = colortrack::TrackingMode::Template;
   colortrack::TrackerSettings tracker;
   std::string bins = colortrack::formatBins(tracker.bins);
   std::string weights = colortrack::formatWeights(tracker.weights);

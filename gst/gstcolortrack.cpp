@@ -59,6 +59,9 @@
 #include <opencv2/core.hpp>
 
 #include "colortrack/blobs.hpp"
+#include "colortrack/detection_method.hpp"
+#include "colortrack/edges.hpp"
+#include "colortrack/frame_tracker.hpp"
 #include "colortrack/tracker.hpp"
 #include "colortrack-meta.h"
 #include "colortrack-modes.h"
@@ -101,34 +104,13 @@ GST_ELEMENT_REGISTER_DEFINE(colortrack, "colortrack", GST_RANK_NONE, GST_TYPE_CO
 // ---------------------------------------------------------------------------------------------------------
 // Enum and flags types
 
-COLORTRACK_DEFINE_ENUM_TYPE(
-    gst_color_track_mode_get_type, "GstColorTrackMode",
-    {GST_COLOR_TRACK_MODE_TEMPLATE, "Track the object of a template (template-location or init-box)",
-     "template"},
-    {GST_COLOR_TRACK_MODE_THRESHOLD,
-     "Track every blob inside an HSV range (hsv-lower/hsv-upper, or learnt from init-box), each with an id",
-     "threshold"})
-COLORTRACK_DEFINE_ENUM_TYPE(gst_color_track_color_space_get_type, "GstColorTrackColorSpace",
-                            {GST_COLOR_TRACK_COLOR_SPACE_RGB, "RGB histograms (original colour indexing)",
-                             "rgb"},
-                            {GST_COLOR_TRACK_COLOR_SPACE_HSV,
-                             "HSV histograms (modified colour indexing, lighting-robust)", "hsv"})
-COLORTRACK_DEFINE_ENUM_TYPE(
-    gst_color_track_verify_get_type, "GstColorTrackVerify",
-    {GST_COLOR_TRACK_VERIFY_NONE, "No check: every colour match is verified", "none"},
-    {GST_COLOR_TRACK_VERIFY_EDGE_DENSITY, "Edge density close to the template's", "edge-density"},
-    {GST_COLOR_TRACK_VERIFY_EDGE_ENERGY, "Edge energy close to the template's", "edge-energy"},
-    {GST_COLOR_TRACK_VERIFY_BOTH, "Edge density and energy both close to the template's", "both"})
-COLORTRACK_DEFINE_ENUM_TYPE(
-    gst_color_track_method_get_type, "GstColorTrackMethod",
-    {GST_COLOR_TRACK_METHOD_INDEXING, "Modified colour indexing: template histograms by intersection",
-     "indexing"},
-    {GST_COLOR_TRACK_METHOD_DISCRIMINATIVE,
-     "Colour only: object-versus-surroundings colour likelihood with a motion prior (fastest)",
-     "discriminative"},
-    {GST_COLOR_TRACK_METHOD_FUSED,
-     "Shape (correlation filter) and colour fused, with confidence and re-detection (most accurate)",
-     "fused"})
+COLORTRACK_DEFINE_CHOICE_TYPE(gst_color_track_mode_get_type, "GstColorTrackMode", colortrack::kTrackingModes)
+COLORTRACK_DEFINE_CHOICE_TYPE(gst_color_track_color_space_get_type, "GstColorTrackColorSpace",
+                              colortrack::kColorSpaces)
+COLORTRACK_DEFINE_CHOICE_TYPE(gst_color_track_verify_get_type, "GstColorTrackVerify",
+                              colortrack::kVerifyModes)
+COLORTRACK_DEFINE_CHOICE_TYPE(gst_color_track_method_get_type, "GstColorTrackMethod",
+                              colortrack::methodDescriptors())
 COLORTRACK_DEFINE_FLAGS_TYPE(
     gst_color_track_draw_get_type, "GstColorTrackDraw",
     {GST_COLOR_TRACK_DRAW_NONE, "No overlay: frames are only read (no copy behind a tee)", "none"},
@@ -248,7 +230,7 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
     state.appliedBlobsGeneration = snapshot.blobsGeneration;
     state.appliedRangeGeneration = snapshot.rangeGeneration;
     // Threshold mode has no template: a template-location is not even read.
-    if (snapshot.mode == GST_COLOR_TRACK_MODE_TEMPLATE && !snapshot.templateLocation.empty()) {
+    if (snapshot.mode == colortrack::TrackingMode::Template && !snapshot.templateLocation.empty()) {
       cv::Mat bgr, mask;
       std::string why;
       bool missing = false;
@@ -420,7 +402,7 @@ static GstFlowReturn track_frame(GstColorTrack *self, GstVideoFrame *frame, cons
                                  const colortrack_gst::Requests &requests, guint64 frameNumber, double dt) {
   State &state = stateOf(self);
   const colortrack_gst::FrameView view(frame, &state.frameCache);
-  const bool threshold = snapshot.mode == GST_COLOR_TRACK_MODE_THRESHOLD;
+  const bool threshold = snapshot.mode == colortrack::TrackingMode::Threshold;
   const bool prepared = threshold ? colortrack_gst::prepareThresholdFrame(self, snapshot, requests, view)
                                   : colortrack_gst::prepareTemplateFrame(self, snapshot, requests, view);
   if (!prepared) return GST_FLOW_ERROR;

@@ -16,59 +16,10 @@ G_BEGIN_DECLS
 typedef struct _GstColorTrack GstColorTrack;
 typedef struct _GstColorTrackClass GstColorTrackClass;
 
-/**
- * GstColorTrackMode:
- * @GST_COLOR_TRACK_MODE_TEMPLATE: track the object described by a template (a file or a box of a frame)
- * @GST_COLOR_TRACK_MODE_THRESHOLD: track every blob of pixels inside an HSV range (#GstColorTrack:hsv-lower,
- *     #GstColorTrack:hsv-upper, or learnt from #GstColorTrack:init-box), each with its own id
- *
- * How the object to track is defined.
- */
-typedef enum {
-  GST_COLOR_TRACK_MODE_TEMPLATE = 0,
-  GST_COLOR_TRACK_MODE_THRESHOLD = 1,
-} GstColorTrackMode;
-
-/**
- * GstColorTrackColorSpace:
- * @GST_COLOR_TRACK_COLOR_SPACE_RGB: histograms of R, G and B (original colour indexing)
- * @GST_COLOR_TRACK_COLOR_SPACE_HSV: histograms of H, S and V (modified colour indexing)
- */
-typedef enum {
-  GST_COLOR_TRACK_COLOR_SPACE_RGB = 0,
-  GST_COLOR_TRACK_COLOR_SPACE_HSV = 1,
-} GstColorTrackColorSpace;
-
-/**
- * GstColorTrackMethod:
- * @GST_COLOR_TRACK_METHOD_INDEXING: the paper's modified colour indexing (template histograms, histogram
- *     intersection, window-versus-ring scale)
- * @GST_COLOR_TRACK_METHOD_DISCRIMINATIVE: object-versus-surroundings colour likelihood learnt from the
- *     target and the ring around it, with a motion prior and adaptive aspect; detections are still accepted
- *     by the template's colour-indexing match value
- * @GST_COLOR_TRACK_METHOD_FUSED: a correlation filter over gradient-orientation cells and intensity (shape)
- *     fused with the colour likelihood, a scale filter, a confidence that decides tracking / coasting / lost
- *     and gates learning, and re-detection over the whole frame once lost (the default)
- */
-typedef enum {
-  GST_COLOR_TRACK_METHOD_INDEXING = 0,
-  GST_COLOR_TRACK_METHOD_DISCRIMINATIVE = 1,
-  GST_COLOR_TRACK_METHOD_FUSED = 2,
-} GstColorTrackMethod;
-
-/**
- * GstColorTrackVerify:
- * @GST_COLOR_TRACK_VERIFY_NONE: accept every colour match
- * @GST_COLOR_TRACK_VERIFY_EDGE_DENSITY: compare the edge density with the template's
- * @GST_COLOR_TRACK_VERIFY_EDGE_ENERGY: compare the edge energy with the template's
- * @GST_COLOR_TRACK_VERIFY_BOTH: both must agree
- */
-typedef enum {
-  GST_COLOR_TRACK_VERIFY_NONE = 0,
-  GST_COLOR_TRACK_VERIFY_EDGE_DENSITY = 1,
-  GST_COLOR_TRACK_VERIFY_EDGE_ENERGY = 2,
-  GST_COLOR_TRACK_VERIFY_BOTH = 3,
-} GstColorTrackVerify;
+/* The enum types of mode, color-space, method and verify are generated from the core tables that declare
+ * their values (kTrackingModes in colortrack/frame_tracker.hpp, kColorSpaces in color.hpp, the method
+ * registry's methodDescriptors() in detection_method.hpp, kVerifyModes in edges.hpp); the values are those
+ * enums', in their order. */
 
 /**
  * GstColorTrackDraw:

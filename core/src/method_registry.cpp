@@ -1,5 +1,5 @@
-// The registry of detection methods: which factory makes the method for each `Method` value. Adding a method
-// is a line in each of the two lists below (its factory, defined in its own file, and its case).
+// The registry of detection methods: adding a method is its file (with its factory) and a row below (the
+// factory's declaration and the descriptor).
 #include <stdexcept>
 #include <string>
 
@@ -12,16 +12,23 @@ std::unique_ptr<DetectionMethod> makeDiscriminativeMethod(
     const MethodContext &context);                                               // method_discriminative.cpp
 std::unique_ptr<DetectionMethod> makeFusedMethod(const MethodContext &context);  // method_fused.cpp
 
+const std::vector<MethodDescriptor> &methodDescriptors() {
+  static const std::vector<MethodDescriptor> methods = {
+      {Method::Indexing, "indexing", "Modified colour indexing: template histograms by intersection",
+       makeIndexingMethod},
+      {Method::Discriminative, "discriminative",
+       "Colour only: object-versus-surroundings colour likelihood with a motion prior (fastest)",
+       makeDiscriminativeMethod},
+      {Method::Fused, "fused",
+       "Shape (correlation filter) and colour fused, with confidence and re-detection (most accurate)",
+       makeFusedMethod},
+  };
+  return methods;
+}
+
 std::unique_ptr<DetectionMethod> createDetectionMethod(Method method, const MethodContext &context) {
-  // A switch without default: -Wswitch names a Method value added without its registration.
-  switch (method) {
-    case Method::Indexing:
-      return makeIndexingMethod(context);
-    case Method::Discriminative:
-      return makeDiscriminativeMethod(context);
-    case Method::Fused:
-      return makeFusedMethod(context);
-  }
+  for (const MethodDescriptor &d : methodDescriptors())
+    if (d.value == method) return d.make(context);
   throw std::logic_error("no detection method registered for Method value " +
                          std::to_string(static_cast<int>(method)));
 }

@@ -1,12 +1,17 @@
-// The core's choice tables (colortrack/choice.hpp), from which the elements' enum types are generated: each
-// row's value is its position (so a property's number never changes when a row is added at the end), and
-// each nick is a distinct, non-empty name gst-launch-1.0 can take.
+// The core's choice tables (colortrack/choice.hpp) and the method registry, from which the elements' enum
+// types are generated: each row's value is its position (so a property's number never changes when a row is
+// added at the end), and each nick is a distinct, non-empty name gst-launch-1.0 can take.
 #include <gtest/gtest.h>
 
+#include <iterator>
 #include <set>
 #include <string>
 
+#include "colortrack/color.hpp"
 #include "colortrack/controller.hpp"
+#include "colortrack/detection_method.hpp"
+#include "colortrack/edges.hpp"
+#include "colortrack/frame_tracker.hpp"
 #include "colortrack/protocol.hpp"
 #include "colortrack/target_lock.hpp"
 
@@ -14,10 +19,11 @@ using namespace colortrack;
 
 namespace {
 
-template <typename E, std::size_t N>
-void expectWellFormed(const Choice<E> (&choices)[N]) {
+template <typename Rows>
+void expectWellFormed(const Rows &choices) {
   std::set<std::string> nicks;
-  for (std::size_t i = 0; i < N; ++i) {
+  const std::size_t n = static_cast<std::size_t>(std::end(choices) - std::begin(choices));
+  for (std::size_t i = 0; i < n; ++i) {
     SCOPED_TRACE(choices[i].nick);
     EXPECT_EQ(static_cast<std::size_t>(choices[i].value), i);
     const std::string nick = choices[i].nick;
@@ -36,6 +42,11 @@ TEST(Choices, EveryTableIsInOrderWithDistinctNicks) {
   expectWellFormed(kProtocols);
   expectWellFormed(kMavlinkModes);
   expectWellFormed(kLockOns);
+  expectWellFormed(kTrackingModes);
+  expectWellFormed(kColorSpaces);
+  expectWellFormed(kVerifyModes);
+  expectWellFormed(methodDescriptors());
+  for (const MethodDescriptor &d : methodDescriptors()) EXPECT_NE(d.make, nullptr) << d.nick;
 }
 
 TEST(Choices, NickOfFindsTheRow) {

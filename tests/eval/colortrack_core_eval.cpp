@@ -68,6 +68,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "colortrack/image_source.hpp"
+#include "colortrack/detection_method.hpp"
 #include "colortrack/tracker.hpp"
 #include "metrics.hpp"
 #include "robustness.hpp"
@@ -175,14 +176,15 @@ std::pair<std::string, std::string> splitAssignment(const std::string &option, c
 
 void applySetting(TrackerSettings &s, const std::string &key, const std::string &value) {
   if (key == "method") {
-    if (value == "indexing")
-      s.method = Method::Indexing;
-    else if (value == "discriminative")
-      s.method = Method::Discriminative;
-    else if (value == "fused")
-      s.method = Method::Fused;
-    else
-      throw UsageError("--set method: '" + value + "' is not indexing, discriminative or fused");
+    std::string names;
+    for (const MethodDescriptor &d : methodDescriptors()) {
+      if (value == d.nick) {
+        s.method = d.value;
+        return;
+      }
+      names += std::string(names.empty() ? "" : ", ") + d.nick;
+    }
+    throw UsageError("--set method: '" + value + "' is not one of " + names);
   } else if (key == "match-threshold") {
     s.matchThreshold = parseNumber(key, value);
   } else if (key == "likelihood-threshold") {

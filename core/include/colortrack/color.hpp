@@ -6,11 +6,17 @@
 
 #include <opencv2/core.hpp>
 
+#include "colortrack/choice.hpp"
+
 namespace colortrack {
 
 // rgb: the original colour indexing (Swain & Ballard); hsv: the modified method (default), where the
 // V channel can be weighted down for robustness to lighting.
 enum class ColorSpace { Rgb, Hsv };
+inline constexpr Choice<ColorSpace> kColorSpaces[] = {
+    {ColorSpace::Rgb, "rgb", "RGB histograms (original colour indexing)"},
+    {ColorSpace::Hsv, "hsv", "HSV histograms (modified colour indexing, lighting-robust)"},
+};
 
 // Standard RGB -> HSV. h in degrees [0, 360), s and v in [0, 1]; h = 0 when max == min, s = 0 when max == 0.
 struct Hsv {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -46,5 +47,16 @@ class DetectionMethod {
 
 // The method registered for `method`; throws std::logic_error for a value without a registration.
 std::unique_ptr<DetectionMethod> createDetectionMethod(Method method, const MethodContext &context);
+
+// One tracking method: its value, the name a user types, what it does, and its factory. The registry's table
+// (method_registry.cpp) is the one list of the methods; the element's enum type is made from it.
+struct MethodDescriptor {
+  Method value;
+  const char *nick;
+  const char *description;
+  std::unique_ptr<DetectionMethod> (*make)(const MethodContext &context);
+};
+// In Method's order (each row's value is its position).
+const std::vector<MethodDescriptor> &methodDescriptors();
 
 }  // namespace colortrack

@@ -3,9 +3,17 @@
 
 #include <opencv2/core.hpp>
 
+#include "colortrack/choice.hpp"
+
 namespace colortrack {
 
 enum class VerifyMode { None, EdgeDensity, EdgeEnergy, Both };
+inline constexpr Choice<VerifyMode> kVerifyModes[] = {
+    {VerifyMode::None, "none", "No check: every colour match is verified"},
+    {VerifyMode::EdgeDensity, "edge-density", "Edge density close to the template's"},
+    {VerifyMode::EdgeEnergy, "edge-energy", "Edge energy close to the template's"},
+    {VerifyMode::Both, "both", "Edge density and energy both close to the template's"},
+};
 
 // Edges are computed on a patch resized to the template's size, capped at 96 px a side (so values compare
 // across scales, and the check stays cheap), after stretching its contrast (so they hold under lighting

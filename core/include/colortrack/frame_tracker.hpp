@@ -8,10 +8,19 @@
 
 #include <opencv2/core.hpp>
 
+#include "colortrack/choice.hpp"
 #include "colortrack/image_source.hpp"
 #include "colortrack/track.hpp"
 
 namespace colortrack {
+
+// Which FrameTracker follows the stream: how the object to track is defined.
+enum class TrackingMode { Template, Threshold };
+inline constexpr Choice<TrackingMode> kTrackingModes[] = {
+    {TrackingMode::Template, "template", "Track the object of a template (template-location or init-box)"},
+    {TrackingMode::Threshold, "threshold",
+     "Track every blob inside an HSV range (hsv-lower/hsv-upper, or learnt from init-box), each with an id"},
+};
 
 // One tracked object as reported.
 struct TrackReport {
