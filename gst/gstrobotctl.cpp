@@ -141,7 +141,8 @@ GST_ELEMENT_REGISTER_DEFINE(robotctl, "robotctl", GST_RANK_NONE, GST_TYPE_ROBOT_
 // ---------------------------------------------------------------------------------------------------------
 // Enum types
 
-COLORTRACK_DEFINE_CHOICE_TYPE(gst_robot_ctl_protocol_get_type, "GstRobotCtlProtocol", colortrack::kProtocols)
+COLORTRACK_DEFINE_CHOICE_TYPE(gst_robot_ctl_protocol_get_type, "GstRobotCtlProtocol",
+                              colortrack::protocolDescriptors())
 COLORTRACK_DEFINE_CHOICE_TYPE(gst_robot_ctl_mavlink_mode_get_type, "GstRobotCtlMavlinkMode",
                               colortrack::kMavlinkModes)
 COLORTRACK_DEFINE_CHOICE_TYPE(gst_robot_ctl_controller_get_type, "GstRobotCtlController",

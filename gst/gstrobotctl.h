@@ -11,9 +11,9 @@ G_BEGIN_DECLS
 #define GST_IS_ROBOT_CTL(obj) (G_TYPE_CHECK_INSTANCE_TYPE((obj), GST_TYPE_ROBOT_CTL))
 
 /* The enum types of the properties (protocol, mavlink-mode, controller, distance-cue, parity, flow-control,
- * lock-on) are generated from the core tables that declare their values (colortrack/choice.hpp: kProtocols,
- * kMavlinkModes, kControllerKinds, kDistanceCues, kLockOns; robot-port.h: kParities, kFlowControls); the
- * values are those tables' enums, in their order. */
+ * lock-on) are generated from the core tables that declare their values (the protocol registry's
+ * protocolDescriptors(); colortrack::Choice tables kMavlinkModes, kControllerKinds, kDistanceCues, kLockOns;
+ * robot-port.h: kParities, kFlowControls); the values are those tables' enums, in their order. */
 GType gst_robot_ctl_protocol_get_type(void);
 GType gst_robot_ctl_mavlink_mode_get_type(void);
 GType gst_robot_ctl_controller_get_type(void);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <set>
+#include <stdexcept>
 
 namespace colortrack {
 
@@ -87,95 +88,23 @@ SentSpeeds sentSpeeds(const DriveOutput &output, int scale) {
   return SentSpeeds{scaledSpeed(output.left, scale), scaledSpeed(output.right, scale)};
 }
 
-namespace {
-
-// `value` within +-`limit`; 0 for anything not finite (a command that cannot be trusted is no motion).
-float bounded(double value, double limit) {
-  return std::isfinite(value) ? static_cast<float>(std::clamp(value, -limit, limit)) : 0.0f;
-}
-
-}  // namespace
-
 double mavlinkRateScale(double hfovDegrees) {
   return std::tan(hfovDegrees * M_PI / 360.0);
 }
 
-std::vector<std::uint8_t> ProtocolEncoder::heartbeat() {
-  if (!hasHeartbeat()) return {};
-  mavlink::Sender sender{settings_.mavlink.systemId, settings_.mavlink.componentId, sequence_};
-  std::vector<std::uint8_t> bytes = mavlink::encode(mavlink::Heartbeat(), sender);
-  sequence_ = sender.sequence;
-  return bytes;
+ProtocolEncoder::ProtocolEncoder(const ProtocolSettings &settings) {
+  setSettings(settings);
 }
 
-MavlinkCommand mavlinkCommand(const DriveOutput &output, const MavlinkSettings &m) {
-  MavlinkCommand c;
-  if (isStill(output)) return c;  // exactly zero
-  c.pitchRate = bounded(output.tilt * m.rateScale, m.maxRate);
-  c.yawRate = bounded(-output.angular * m.rateScale, m.maxRate);
-  c.forwardSpeed = bounded(output.linear * m.speedScale, m.maxSpeed);
-  return c;
-}
-
-std::vector<std::uint8_t> ProtocolEncoder::encodeMavlink(const DriveOutput &output) {
-  const MavlinkSettings &m = settings_.mavlink;
-  mavlink::Sender sender{m.systemId, m.componentId, sequence_};
-  const MavlinkCommand command = mavlinkCommand(output, m);
-  std::vector<std::uint8_t> bytes;
-  if (m.mode == MavlinkMode::Gimbal) {
-    mavlink::GimbalManagerSetPitchyaw message;
-    message.targetSystem = m.targetSystem;
-    message.targetComponent = m.targetComponent;
-    message.pitchRate = command.pitchRate;
-    message.yawRate = command.yawRate;
-    bytes = mavlink::encode(message, sender);
-  } else {
-    mavlink::SetPositionTargetLocalNed message;
-    message.targetSystem = m.targetSystem;
-    message.targetComponent = m.targetComponent;
-    message.vx = command.forwardSpeed;
-    message.yawRate = command.yawRate;
-    bytes = mavlink::encode(message, sender);
-  }
-  sequence_ = sender.sequence;
-  return bytes;
-}
-
-std::vector<std::uint8_t> ProtocolEncoder::encode(const DriveOutput &output) {
-  if (settings_.protocol == Protocol::Mavlink) return encodeMavlink(output);
-  const auto [left, right] = sentSpeeds(output, settings_.outputScale);
-
-  switch (settings_.protocol) {
-    case Protocol::ZoneChar:
-      return {static_cast<std::uint8_t>(settings_.zoneChars.of(output.command))};
-    case Protocol::Text: {
-      char line[32];
-      const int n = std::snprintf(line, sizeof line, "L=%d R=%d\n", left, right);
-      return std::vector<std::uint8_t>(line, line + n);
-    }
-    case Protocol::Binary:
-    case Protocol::Mavlink:  // encodeMavlink()
-      break;
-  }
-
-  const auto le16 = [](int v, int byte) {
-    return static_cast<std::uint8_t>(
-        (static_cast<std::uint16_t>(static_cast<std::int16_t>(v)) >> (8 * byte)) & 0xFF);
-  };
-  std::vector<std::uint8_t> packet = {
-      binary::kStart,
-      sequence_++,
-      binary::kPayloadLength,
-      binary::commandCode(output.command),
-      static_cast<std::uint8_t>(output.targetVisible ? binary::kFlagTargetVisible : 0),
-      le16(left, 0),
-      le16(left, 1),
-      le16(right, 0),
-      le16(right, 1),
-  };
-  // The CRC covers everything after the start byte, so a receiver can resynchronise on 0xA5.
-  packet.push_back(crc8(packet.data() + 1, packet.size() - 1));
-  return packet;
+void ProtocolEncoder::setSettings(const ProtocolSettings &settings) {
+  std::unique_ptr<CommandEncoder> made;
+  for (const ProtocolDescriptor &d : protocolDescriptors())
+    if (d.value == settings.protocol) made = d.make(settings);
+  if (!made)
+    throw std::logic_error("no encoder registered for Protocol value " +
+                           std::to_string(static_cast<int>(settings.protocol)));
+  settings_ = settings;
+  encoder_ = std::move(made);
 }
 
 }  // namespace colortrack

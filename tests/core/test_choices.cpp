@@ -39,7 +39,7 @@ void expectWellFormed(const Rows &choices) {
 TEST(Choices, EveryTableIsInOrderWithDistinctNicks) {
   expectWellFormed(kControllerKinds);
   expectWellFormed(kDistanceCues);
-  expectWellFormed(kProtocols);
+  expectWellFormed(protocolDescriptors());
   expectWellFormed(kMavlinkModes);
   expectWellFormed(kLockOns);
   expectWellFormed(kTrackingModes);
@@ -50,7 +50,7 @@ TEST(Choices, EveryTableIsInOrderWithDistinctNicks) {
 }
 
 TEST(Choices, NickOfFindsTheRow) {
-  EXPECT_STREQ(nickOf(kProtocols, Protocol::Mavlink), "mavlink");
+  EXPECT_STREQ(nickOf(kMavlinkModes, MavlinkMode::Follow), "follow");
   EXPECT_STREQ(nickOf(kLockOns, LockOn::NearestCentre), "nearest-centre");
   EXPECT_STREQ(toString(ControllerKind::Auto), "auto");
   EXPECT_STREQ(nickOf(kDistanceCues, static_cast<DistanceCue>(7)), "?");

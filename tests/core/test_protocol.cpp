@@ -1,6 +1,8 @@
 // Wire formats: exact bytes of every protocol.
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+
 #include <string>
 #include <vector>
 
@@ -99,6 +101,30 @@ TEST(Protocol, BinarySequenceWrapsAndCrcCoversPacket) {
     Bytes corrupt = last;
     corrupt[byte] ^= 0x10;
     EXPECT_NE(crc8(corrupt.data() + 1, corrupt.size() - 2), last.back()) << byte;
+  }
+}
+
+// Each protocol's encoder comes from the registry (protocolDescriptors()); a new setting keeps the packet
+// numbering, and a value without a registration is refused, keeping the encoder it had.
+TEST(Protocol, EncodersComeFromTheRegistry) {
+  ProtocolSettings s;
+  s.protocol = Protocol::Binary;
+  ProtocolEncoder encoder(s);
+  encoder.encode(command(DriveCommand::Stop, 0, 0));
+  encoder.encode(command(DriveCommand::Stop, 0, 0));
+  s.outputScale = 100;
+  encoder.setSettings(s);
+  EXPECT_EQ(encoder.encode(command(DriveCommand::Stop, 0, 0))[1], 2);  // the third packet
+  ProtocolSettings bad = s;
+  bad.protocol = static_cast<Protocol>(99);
+  EXPECT_THROW(encoder.setSettings(bad), std::logic_error);
+  EXPECT_EQ(encoder.settings().protocol, Protocol::Binary);
+  EXPECT_EQ(encoder.encode(command(DriveCommand::Stop, 0, 0)).size(), binary::kPacketLength);
+  EXPECT_THROW(ProtocolEncoder{bad}, std::logic_error);
+  for (const ProtocolDescriptor &d : protocolDescriptors()) {
+    s.protocol = d.value;
+    EXPECT_FALSE(ProtocolEncoder(s).encode(command(DriveCommand::Forward, 0.5, 0.5)).empty()) << d.nick;
+    EXPECT_EQ(ProtocolEncoder(s).hasHeartbeat(), d.value == Protocol::Mavlink) << d.nick;
   }
 }
 

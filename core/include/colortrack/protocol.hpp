@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -18,12 +19,6 @@ enum class Protocol {
   Text,      // "L=<int> R=<int>\n", wheel speeds scaled by outputScale
   Binary,    // framed packet: start byte, sequence, length, payload, CRC-8
   Mavlink,   // MAVLink 2 (see MavlinkSettings), with a heartbeat
-};
-inline constexpr Choice<Protocol> kProtocols[] = {
-    {Protocol::ZoneChar, "zone-char", "One character per command (zone-chars)"},
-    {Protocol::Text, "text", "One line \"L=<int> R=<int>\" per command"},
-    {Protocol::Binary, "binary", "Framed packet with sequence number and CRC-8"},
-    {Protocol::Mavlink, "mavlink", "MAVLink 2 (mavlink-mode), with a 1 Hz heartbeat"},
 };
 
 // What the MAVLink commands drive.
@@ -99,23 +94,48 @@ struct SentSpeeds {
 };
 SentSpeeds sentSpeeds(const DriveOutput &output, int scale);
 
+// One protocol's wire format: the bytes of one command, and of what the protocol sends once a second
+// whatever the commands (MAVLink's HEARTBEAT). `sequence` is the number the protocol's packets carry (binary
+// packets, MAVLink frames), kept by the caller so that it runs on across a change of settings.
+class CommandEncoder {
+ public:
+  virtual ~CommandEncoder() = default;
+  virtual std::vector<std::uint8_t> encode(const DriveOutput &output, std::uint8_t &sequence) = 0;
+  virtual bool hasHeartbeat() const { return false; }
+  virtual std::vector<std::uint8_t> heartbeat(std::uint8_t & /*sequence*/) { return {}; }
+};
+
+// One protocol: its value, the name a user types, what it sends, and its encoder's factory. The registry's
+// table (core/src/protocol_registry.cpp) is the one list of protocols; robotctl's enum type is made from it.
+// Adding a protocol is a value of Protocol, its encoder's file (core/src/encoder_<name>.cpp) and a row.
+struct ProtocolDescriptor {
+  Protocol value;
+  const char *nick;
+  const char *description;
+  std::unique_ptr<CommandEncoder> (*make)(const ProtocolSettings &settings);
+};
+// In Protocol's order (each row's value is its position).
+const std::vector<ProtocolDescriptor> &protocolDescriptors();
+
+// The encoder of settings.protocol (whose settings it keeps), numbering its packets.
 class ProtocolEncoder {
  public:
-  explicit ProtocolEncoder(const ProtocolSettings &settings = ProtocolSettings()) : settings_(settings) {}
-  void setSettings(const ProtocolSettings &settings) { settings_ = settings; }
+  explicit ProtocolEncoder(const ProtocolSettings &settings = ProtocolSettings());
+  // A new protocol or new settings; the packet numbering runs on.
+  void setSettings(const ProtocolSettings &settings);
   const ProtocolSettings &settings() const { return settings_; }
 
   // The bytes of one command. The binary protocol numbers its packets (wrapping at 256) so a receiver can
   // tell lost packets; every call is one packet (MAVLink: one frame, numbered with the heartbeats).
-  std::vector<std::uint8_t> encode(const DriveOutput &output);
+  std::vector<std::uint8_t> encode(const DriveOutput &output) { return encoder_->encode(output, sequence_); }
   // What the protocol sends once a second whatever the commands (MAVLink's HEARTBEAT); empty for the others.
-  std::vector<std::uint8_t> heartbeat();
-  bool hasHeartbeat() const { return settings_.protocol == Protocol::Mavlink; }
+  std::vector<std::uint8_t> heartbeat() { return encoder_->heartbeat(sequence_); }
+  bool hasHeartbeat() const { return encoder_->hasHeartbeat(); }
   std::uint8_t nextSequence() const { return sequence_; }
 
  private:
-  std::vector<std::uint8_t> encodeMavlink(const DriveOutput &output);
   ProtocolSettings settings_;
+  std::unique_ptr<CommandEncoder> encoder_;
   std::uint8_t sequence_ = 0;
 };
 
