@@ -15,7 +15,8 @@
  * "state", "score", "verified", "vx", "vy" (those colortrack attaches), and "detection" {"bounding_box"
  * {"x_min", "y_min", "x_max", "y_max"} normalised to the frame, "confidence", "label", "label_id"}.
  *
- * MQTT never holds up the stream: documents go into a queue that a worker thread delivers in order. While
+ * Neither output holds up the stream: documents go into a queue that a worker thread delivers in order (a
+ * file that a slow reader holds back keeps up to #GstTrackPublish:max-queued too). While
  * the broker is unreachable they stay queued, up to #GstTrackPublish:max-queued (the oldest are then dropped
  * and counted in a warning), and the queue drains in order after reconnecting. A broker unreachable at start
  * is a warning and the element keeps retrying, or an error with #GstTrackPublish:fail-on-connect. With QoS 1
@@ -37,102 +38,30 @@
 #include "property-table.h"
 
 #include <gst/video/video.h>
-#include <fcntl.h>
-#include <unistd.h>
 
-#include <atomic>
-#include <cerrno>
 #include <chrono>
-#include <cstdio>
 #include <memory>
+#include <vector>
 #include <string>
 
-#include "document-file.h"
-#include "mqtt-publisher.h"
-#include "output-file.h"
 #include "track-document.h"
+#include "trackpublish-output.h"
 #include "trackpublish-settings.h"
 
-GST_DEBUG_CATEGORY_STATIC(gst_track_publish_debug);
+GST_DEBUG_CATEGORY(gst_track_publish_debug);
 #define GST_CAT_DEFAULT gst_track_publish_debug
 
 namespace {
 
 using std::chrono::milliseconds;
 
-// The publisher's news as the element's warnings and log.
-class ElementMqttListener : public trackpublish::MqttListener {
- public:
-  ElementMqttListener(GstElement *element, guint maxQueued) : element_(element), maxQueued_(maxQueued) {}
-
-  void connected(const std::string &address, bool again) override {
-    GST_INFO_OBJECT(element_, "%s MQTT broker %s", again ? "reconnected to" : "connected to",
-                    address.c_str());
-  }
-  void connectFailed(const std::string &address, const std::string &why, bool first,
-                     milliseconds retryIn) override {
-    GST_DEBUG_OBJECT(element_, "cannot reach %s: %s; retrying in %lld ms", address.c_str(), why.c_str(),
-                     static_cast<long long>(retryIn.count()));
-    if (!first) return;
-    // Over TLS a CA that does not sign the broker's certificate, or a certificate that does not match its
-    // key, fails the same way as a wrong address: the message names every property that may be at fault.
-    const char *suspects = trackpublish::usesTls(address)
-                               ? "property 'address', or the TLS settings 'tls-ca-file', 'tls-cert-file', "
-                                 "'tls-key-file', 'tls-verify'"
-                               : "property 'address'";
-    GST_ELEMENT_WARNING(element_, RESOURCE, OPEN_WRITE,
-                        ("Cannot reach MQTT broker %s (%s): %s. Retrying; documents are queued (up to "
-                         "max-queued=%u).",
-                         gstglue::validUtf8(address).c_str(), suspects, why.c_str(), maxQueued_),
-                        (nullptr));
-  }
-  void connectionLost(const std::string &address, const std::string &why, std::size_t queued,
-                      bool first) override {
-    GST_DEBUG_OBJECT(element_, "lost %s: %s", address.c_str(), why.c_str());
-    if (!first) return;
-    GST_ELEMENT_WARNING(element_, RESOURCE, WRITE,
-                        ("Lost the connection to MQTT broker %s: %s. Reconnecting; %zu documents queued.",
-                         gstglue::validUtf8(address).c_str(), why.c_str(), queued),
-                        (nullptr));
-  }
-  void dropped(std::uint64_t total, std::size_t maxQueued) override {
-    // One warning a second at most: the count says how many so far.
-    const gint64 now = g_get_monotonic_time();
-    gint64 last = lastDropWarning_.load();
-    if (total > 1 && now - last < G_USEC_PER_SEC) return;
-    if (!lastDropWarning_.compare_exchange_strong(last, now)) return;
-    GST_ELEMENT_WARNING(element_, RESOURCE, WRITE,
-                        ("MQTT queue full (max-queued=%zu): %" G_GUINT64_FORMAT
-                         " documents dropped so far, the oldest first.",
-                         maxQueued, total),
-                        (nullptr));
-  }
-
- private:
-  GstElement *element_;
-  const guint maxQueued_;
-  std::atomic<gint64> lastDropWarning_{0};
-};
-
 // What start() opens and the streaming thread uses; reset at stop().
 struct State {
-  std::unique_ptr<trackpublish::DocumentFile> file;  // stdout or a file of ours
-  std::string location;
-  std::uint64_t fileDropsReported = 0;
-  gint64 fileDropWarning = 0;                     // monotonic µs of the last warning about them
-  std::unique_ptr<ElementMqttListener> listener;  // outlives the publisher
-  std::unique_ptr<trackpublish::MqttPublisher> mqtt;
-  std::string topic;
+  std::vector<std::unique_ptr<trackpublish::DocumentOutput>> outputs;
   milliseconds drain{0};
   GQuark roiType = 0;
   trackpublish::FrameFacts facts;
 };
-
-std::string replaceAll(std::string text, const std::string &what, const std::string &with) {
-  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + with.size()))
-    text.replace(at, what.size(), with);
-  return text;
-}
 
 }  // namespace
 
@@ -171,189 +100,9 @@ static void gst_track_publish_finalize(GObject *object) {
 
 namespace {
 
-bool openFile(GstTrackPublish *self, State &state, const std::string &location, std::size_t maxQueued) {
-  if (location == "-") {
-    state.location = "stdout";
-    state.file = std::make_unique<trackpublish::DocumentFile>(STDOUT_FILENO, false, maxQueued);
-    return true;
-  }
-  state.location = location;
-  // Opened without waiting: a FIFO nobody reads is refused at once instead of holding the state change in
-  // open(). It stays non-blocking: the writer thread waits for a slow reader, never the stream.
-  std::string why;
-  mode_t kind = 0;
-  const int fd = colortrack_gst::openOutputFile(location, O_CREAT | O_APPEND, kind, why);
-  if (fd < 0) {
-    GST_ELEMENT_ERROR(self, RESOURCE, OPEN_WRITE,
-                      ("Could not open '%s' (property 'location') for writing: %s",
-                       gstglue::validUtf8(location).c_str(), gstglue::validUtf8(why).c_str()),
-                      (nullptr));
-    return false;
-  }
-  state.file = std::make_unique<trackpublish::DocumentFile>(fd, true, maxQueued);
-  return true;
-}
-
-// A write that failed is an error (once the writer thread has seen it: a document or a few later); drops
-// (the file did not keep up with max-queued documents waiting) a warning at most once a second.
-GstFlowReturn checkFile(GstTrackPublish *self, State &state) {
-  const std::string failure = state.file->failure();
-  if (!failure.empty()) {
-    GST_ELEMENT_ERROR(self, RESOURCE, WRITE,
-                      ("Could not write to '%s' (property 'location'): %s",
-                       gstglue::validUtf8(state.location).c_str(), failure.c_str()),
-                      (nullptr));
-    return GST_FLOW_ERROR;
-  }
-  const std::uint64_t dropped = state.file->droppedCount();
-  const gint64 now = g_get_monotonic_time();
-  if (dropped > state.fileDropsReported && now - state.fileDropWarning >= G_USEC_PER_SEC) {
-    GST_ELEMENT_WARNING(
-        self, RESOURCE, WRITE,
-        ("'%s' (property 'location') does not keep up: documents dropped so far: %" G_GUINT64_FORMAT
-         ", the oldest first (max-queued waiting).",
-         gstglue::validUtf8(state.location).c_str(), dropped),
-        (nullptr));
-    state.fileDropsReported = dropped;
-    state.fileDropWarning = now;
-  }
-  return GST_FLOW_OK;
-}
-
-// What MQTT will carry, checked before connecting: the topic after {source} is put in, the client id, and
-// TLS files only where TLS is used (with tcp:// they would be ignored, and the link not encrypted).
-bool checkMqttSettings(GstTrackPublish *self, const trackpublish::Settings &s,
-                       const trackpublish::MqttConfig &config, const std::string &topic,
-                       const std::string &source) {
-  const std::string badTopic = trackpublish::checkTopic(topic);
-  if (!badTopic.empty()) {
-    // Text too long to show is cut; `badTopic` gives the topic's length.
-    const auto shown = [](const std::string &text) {
-      return text.size() > 200 ? text.substr(0, 200) + "..." : text;
-    };
-    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                      ("Invalid topic '%s' (property 'topic', with source '%s'): %s.",
-                       gstglue::validUtf8(shown(topic)).c_str(), gstglue::validUtf8(shown(source)).c_str(),
-                       badTopic.c_str()),
-                      (nullptr));
-    return false;
-  }
-  const std::string badClientId = trackpublish::checkClientId(config.clientId);
-  if (!badClientId.empty()) {
-    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("Invalid property 'client-id': %s.", badClientId.c_str()),
-                      (nullptr));
-    return false;
-  }
-  const bool tls = trackpublish::usesTls(s.address);
-  for (const auto &[property, file] :
-       {std::pair<const char *, const std::string &>{"tls-ca-file", s.tlsCaFile},
-        {"tls-cert-file", s.tlsCertFile},
-        {"tls-key-file", s.tlsKeyFile}}) {
-    if (tls || file.empty()) continue;
-    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                      ("TLS file '%s' (property '%s') is set but address '%s' does not use TLS: use "
-                       "ssl://HOST:PORT, or unset '%s'.",
-                       gstglue::validUtf8(file).c_str(), property,
-                       gstglue::validUtf8(trackpublish::redactedAddress(s.address)).c_str(), property),
-                      (nullptr));
-    return false;
-  }
-  if (!tls && !s.tlsVerify) {
-    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                      ("TLS verification is off (property 'tls-verify') but address '%s' does not use TLS: "
-                       "use ssl://HOST:PORT, "
-                       "or leave 'tls-verify' alone.",
-                       gstglue::validUtf8(trackpublish::redactedAddress(s.address)).c_str()),
-                      (nullptr));
-    return false;
-  }
-  // MQTT 3.1.1 (3.1.2.9): a password is only sent with a user name.
-  if (!s.password.empty() && s.username.empty()) {
-    GST_ELEMENT_ERROR(
-        self, RESOURCE, SETTINGS,
-        ("Property 'password' is set without 'username': MQTT sends a password only with a user "
-         "name."),
-        (nullptr));
-    return false;
-  }
-  return true;
-}
-
-// The default client id: colortrack-<source>-<process id>, the source's characters outside [A-Za-z0-9_-]
-// replaced by '_' (some brokers refuse a client id with other characters, and the refusal would be blamed on
-// the address).
-std::string defaultClientId(const std::string &source) {
-  std::string safe = source;
-  for (char &c : safe)
-    if (!g_ascii_isalnum(c) && c != '_' && c != '-') c = '_';
-  return "colortrack-" + safe + "-" + std::to_string(getpid());
-}
-
-bool openMqtt(GstTrackPublish *self, State &state, const trackpublish::Settings &s,
-              const std::string &source) {
-  trackpublish::MqttConfig config;
-  config.address = trackpublish::brokerUri(s.address);
-  config.clientId = s.clientId.empty() ? defaultClientId(source) : s.clientId;
-  config.username = s.username;
-  config.password = s.password;
-  config.caFile = s.tlsCaFile;
-  config.certFile = s.tlsCertFile;
-  config.keyFile = s.tlsKeyFile;
-  config.verifyServer = s.tlsVerify;
-  config.qos = s.qos;
-  config.maxQueued = s.maxQueued;
-  state.topic = replaceAll(s.topic, "{source}", source);
-  if (!checkMqttSettings(self, s, config, state.topic, source)) return false;
-  state.listener = std::make_unique<ElementMqttListener>(GST_ELEMENT(self), s.maxQueued);
-  state.mqtt = std::make_unique<trackpublish::MqttPublisher>(config, *state.listener);
-  std::string why;
-  if (!state.mqtt->start(why)) {
-    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                      ("Invalid MQTT address '%s' (property 'address'): %s.",
-                       gstglue::validUtf8(trackpublish::redactedAddress(s.address)).c_str(), why.c_str()),
-                      (nullptr));
-    return false;
-  }
-  // The client's own connect timeout is 5 s; a little more so its answer arrives first.
-  if (s.failOnConnect && !state.mqtt->waitFirstAttempt(milliseconds(6000), why)) {
-    GST_ELEMENT_ERROR(self, RESOURCE, OPEN_WRITE,
-                      ("Cannot reach MQTT broker %s (property 'address', fail-on-connect=true): %s.",
-                       gstglue::validUtf8(trackpublish::redactedAddress(s.address)).c_str(), why.c_str()),
-                      (nullptr));
-    return false;
-  }
-  return true;
-}
-
-// What was lost, said once at the end of the stream (EOS) or, in the log, at stop.
-void reportLosses(GstTrackPublish *self, trackpublish::MqttPublisher &mqtt, const char *when, bool post) {
-  const std::uint64_t dropped = mqtt.droppedCount();
-  const std::size_t undelivered = mqtt.queued();
-  if (dropped == 0 && undelivered == 0) return;
-  const std::string text = "MQTT: " + std::to_string(dropped) + " documents dropped in all (queue full), " +
-                           std::to_string(undelivered) + " not delivered " + when + "; " +
-                           std::to_string(mqtt.delivered()) + " delivered.";
-  if (post)
-    GST_ELEMENT_WARNING(self, RESOURCE, WRITE, ("%s", text.c_str()), (nullptr));
-  else
-    GST_WARNING_OBJECT(self, "%s", text.c_str());
-}
-
-void closeOutputs(GstTrackPublish *self, State &state) {
-  if (state.mqtt) {
-    state.mqtt->stop(state.drain);
-    // The bus is flushing by now: the log is where this can still be read.
-    reportLosses(self, *state.mqtt, "when stopping", false);
-  }
-  state.mqtt.reset();
-  state.listener.reset();
-  if (state.file) {
-    state.file->stop(state.drain);
-    if (const std::size_t left = state.file->queued())
-      GST_WARNING_OBJECT(self, "%zu documents not written to '%s' when stopping (drain-timeout)", left,
-                         state.location.c_str());
-  }
-  state.file.reset();
+void closeOutputs(State &state) {
+  for (const auto &output : state.outputs) output->close(state.drain);
+  state.outputs.clear();
 }
 
 }  // namespace
@@ -393,10 +142,15 @@ static gboolean gst_track_publish_start(GstBaseTransform *trans) {
   state.facts.addEmptyResults = s.addEmptyResults;
   state.roiType = g_quark_from_string(s.roiType.c_str());
   state.drain = milliseconds(s.drainTimeoutMs);
-  if (!s.location.empty() && !openFile(self, state, s.location, s.maxQueued)) return FALSE;
-  if (!s.address.empty() && !openMqtt(self, state, s, source)) {
-    closeOutputs(self, state);
-    return FALSE;
+  for (const trackpublish::OutputKind &kind : trackpublish::outputKinds()) {
+    if (!kind.wanted(s)) continue;
+    std::unique_ptr<trackpublish::DocumentOutput> output =
+        kind.open(trackpublish::OutputContext{GST_ELEMENT(self), s, source});
+    if (!output) {
+      closeOutputs(state);
+      return FALSE;
+    }
+    state.outputs.push_back(std::move(output));
   }
   GST_OBJECT_LOCK(self);
   store.running = true;
@@ -409,7 +163,7 @@ static gboolean gst_track_publish_stop(GstBaseTransform *trans) {
   GST_OBJECT_LOCK(self);
   self->priv->properties.running = false;
   GST_OBJECT_UNLOCK(self);
-  closeOutputs(self, self->priv->state);
+  closeOutputs(self->priv->state);
   return TRUE;
 }
 
@@ -427,17 +181,8 @@ static gboolean gst_track_publish_sink_event(GstBaseTransform *trans, GstEvent *
   GstTrackPublish *self = GST_TRACK_PUBLISH(trans);
   State &state = self->priv->state;
   // Whoever waits for EOS may take it that every document is out, or is told what is not.
-  if (GST_EVENT_TYPE(event) == GST_EVENT_EOS && (state.mqtt || state.file)) {
-    if (state.file && !state.file->waitWritten(state.drain))
-      GST_ELEMENT_WARNING(self, RESOURCE, WRITE,
-                          ("%zu documents not yet written to '%s' (property 'location') at EOS after "
-                           "drain-timeout.",
-                           state.file->queued(), gstglue::validUtf8(state.location).c_str()),
-                          (nullptr));
-    if (state.mqtt) {
-      state.mqtt->waitDelivered(state.drain);
-      reportLosses(self, *state.mqtt, "at EOS after drain-timeout", true);
-    }
+  if (GST_EVENT_TYPE(event) == GST_EVENT_EOS && !state.outputs.empty()) {
+    for (const auto &output : state.outputs) output->drainAtEos(state.drain);
     // The queues had their drain-timeout: stopping after EOS does not wait for it a second time.
     state.drain = milliseconds(0);
   }
@@ -456,13 +201,10 @@ static GstFlowReturn gst_track_publish_transform_ip(GstBaseTransform *trans, Gst
   const std::string document = trackpublish::trackDocument(buffer, state.roiType, state.facts);
   ++state.facts.frame;
   if (document.empty()) return GST_FLOW_OK;  // no object, and add-empty-results=false
-  if (state.file) {
-    const GstFlowReturn fileState = checkFile(self, state);
-    if (fileState != GST_FLOW_OK) return fileState;
-    // One line per document, written whole by the writer thread.
-    state.file->write(document);
+  for (const auto &output : state.outputs) {
+    const GstFlowReturn ret = output->publish(document);
+    if (ret != GST_FLOW_OK) return ret;
   }
-  if (state.mqtt) state.mqtt->publish(state.topic, document);
   return GST_FLOW_OK;
 }
 
