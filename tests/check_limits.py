@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The size limits of the developers' guide, kept by the suite: a source file under 600 lines, a function
-under 80 lines (120 in tests/). Function extents come from Universal Ctags (Debian: universal-ctags); without
-it the check says SKIPPED (exit code 77).
+under 80 lines (120 in tests/), and no GStreamer or GLib include in core/. Function extents come from
+Universal Ctags (Debian: universal-ctags); without it the check says SKIPPED (exit code 77).
 
     check_limits.py SOURCE_ROOT
 
@@ -9,6 +9,7 @@ Anything listed in KNOWN with its size may stay over a limit while it does not g
 anything else over a limit is a breach. Exit code 1 with one line per breach.
 """
 import json
+import re
 import os
 import shutil
 import subprocess
@@ -48,6 +49,23 @@ def measurements(root, paths):
         yield f"{relative}:{tag['name']}", tag["end"] - tag["line"] + 1, limit
 
 
+# The tracking core knows nothing of GStreamer (nor of GLib, which the elements' glue uses).
+GSTREAMER_FREE = ("core",)
+FOREIGN_INCLUDE = re.compile(r'^\s*#\s*include\s*[<"](gst/|glib|gio/|glib-object)')
+
+
+def foreign_includes(root, paths):
+    """A breach for each GStreamer or GLib include in a GStreamer-free folder."""
+    for path in paths:
+        relative = os.path.relpath(path, root)
+        if not relative.startswith(tuple(folder + "/" for folder in GSTREAMER_FREE)):
+            continue
+        with open(path, encoding="utf-8", errors="replace") as f:
+            for number, line in enumerate(f, 1):
+                if FOREIGN_INCLUDE.match(line):
+                    yield f"{relative}:{number}: a GStreamer/GLib include outside gst/: {line.strip()}"
+
+
 def main():
     root = sys.argv[1] if len(sys.argv) > 1 else "."
     if not shutil.which("ctags"):
@@ -63,6 +81,7 @@ def main():
             breaches.append(f"{key}: {lines} lines, over the limit of {limit}")
         elif lines > known:
             breaches.append(f"{key}: {lines} lines, grew past the {known} it was allowed to keep")
+    breaches += list(foreign_includes(root, sources(root)))
     print(f"{over} over a limit, {len(KNOWN)} known; {len(breaches)} breach(es)")
     for breach in breaches:
         print("FAIL:", breach)
