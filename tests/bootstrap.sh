@@ -56,7 +56,7 @@ install_missing() {
 install_missing "${packages[@]}"
 
 # GStreamer 1.24 and newer (Debian 13): the analytics library's headers come with -bad's development package,
-# and the plugin then also attaches the analytics meta (gst/analytics-meta.h). Debian 12's GStreamer 1.22 has
+# and the plugin then also attaches the analytics meta (gst/colortrack/analytics-meta.h). Debian 12's GStreamer 1.22 has
 # no analytics library: nothing to add there. A build/ configured before the package came is configured again
 # so that meson finds it.
 analytics_added=false

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The project's tests (tests/run-tests.sh) on Debian 13 (trixie, GStreamer 1.26: the analytics meta is built
-# and tested there, see gst/analytics-meta.h), in a chroot, from any Debian machine where we are root:
+# and tested there, see gst/colortrack/analytics-meta.h), in a chroot, from any Debian machine where we are root:
 #   1. debootstrap --variant=minbase trixie into the chroot if it has no Debian 13 yet (debootstrap is
 #      installed if missing);
 #   2. copies this work tree (git's tracked and untracked files, not ignored ones such as build directories)
