@@ -109,7 +109,7 @@ std::string redactedAddress(const std::string &address) {
 
 struct MqttPublisher::SendContext {
   MqttPublisher *publisher;
-  std::uint64_t sequence;
+  std::uint64_t sequence, attempt;
 };
 
 // Paho's C callbacks, which reach the publisher's private members.
@@ -128,11 +128,11 @@ struct MqttPublisher::Callback {
   }
   static void sent(void *context, MQTTAsync_successData *) {
     const Send send = take(context);
-    send.publisher->sent(send.sequence);
+    send.publisher->sent(send.sequence, send.attempt);
   }
   static void sendFailed(void *context, MQTTAsync_failureData *) {
     const Send send = take(context);
-    send.publisher->sendFailed(send.sequence);
+    send.publisher->sendFailed(send.sequence, send.attempt);
   }
 
   static Send take(void *context) {
@@ -293,9 +293,10 @@ void MqttPublisher::send(std::unique_lock<std::mutex> &lock) {
     inFlight_.push_back(std::move(queue_.front()));
     queue_.pop_front();
     inFlight_.back().sentAt = Clock::now();
+    inFlight_.back().attempt = ++sendsMade_;
     // Copies: a callback may change inFlight_ while the lock is released (Paho copies the payload too).
     const Document document = inFlight_.back();
-    auto *context = new SendContext{this, document.sequence};
+    auto *context = new SendContext{this, document.sequence, document.attempt};
     sends_.insert(context);
     lock.unlock();
     MQTTAsync_message message = MQTTAsync_message_initializer;
@@ -327,11 +328,12 @@ void MqttPublisher::requeueInFlight() {
   }
 }
 
-void MqttPublisher::sent(std::uint64_t sequence) {
+void MqttPublisher::sent(std::uint64_t sequence, std::uint64_t attempt) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    const auto it = std::find_if(inFlight_.begin(), inFlight_.end(),
-                                 [&](const Document &d) { return d.sequence == sequence; });
+    const auto it = std::find_if(inFlight_.begin(), inFlight_.end(), [&](const Document &d) {
+      return d.sequence == sequence && d.attempt == attempt;
+    });
     if (it != inFlight_.end()) {
       inFlight_.erase(it);
       ++delivered_;
@@ -340,11 +342,13 @@ void MqttPublisher::sent(std::uint64_t sequence) {
   wake_.notify_all();
 }
 
-void MqttPublisher::sendFailed(std::uint64_t sequence) {
+void MqttPublisher::sendFailed(std::uint64_t sequence, std::uint64_t attempt) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    const auto it = std::find_if(inFlight_.begin(), inFlight_.end(),
-                                 [&](const Document &d) { return d.sequence == sequence; });
+    // An answer to an earlier send of a document sent again since is stale: the new send stands.
+    const auto it = std::find_if(inFlight_.begin(), inFlight_.end(), [&](const Document &d) {
+      return d.sequence == sequence && d.attempt == attempt;
+    });
     if (it == inFlight_.end()) return;
     // Back in the queue before every later document, so the order holds when it is sent again.
     Document document = std::move(*it);

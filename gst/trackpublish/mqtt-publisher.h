@@ -90,6 +90,9 @@ class MqttPublisher {
     std::uint64_t sequence;
     std::string topic, payload;
     std::chrono::steady_clock::time_point sentAt{};  // in flight since
+    // Which send this is (every send has its own number): Paho may answer an earlier send of a document
+    // after it has been requeued and sent again, and that answer must not move the new send.
+    std::uint64_t attempt = 0;
   };
   struct Callback;     // Paho's C callbacks, which call the members below
   struct SendContext;  // one document's send, until Paho answers it
@@ -98,8 +101,8 @@ class MqttPublisher {
   void connect(std::unique_lock<std::mutex> &lock);
   void send(std::unique_lock<std::mutex> &lock);
   void requeueInFlight();
-  void sent(std::uint64_t sequence);
-  void sendFailed(std::uint64_t sequence);
+  void sent(std::uint64_t sequence, std::uint64_t attempt);
+  void sendFailed(std::uint64_t sequence, std::uint64_t attempt);
   void connectDone(bool ok, const std::string &why);
   void lost(const std::string &why);
   void abandonUnanswered(std::unique_lock<std::mutex> &lock);
@@ -112,7 +115,7 @@ class MqttPublisher {
   std::condition_variable wake_;
   std::deque<Document> queue_;     // not yet sent, oldest first
   std::deque<Document> inFlight_;  // sent, not yet acknowledged, oldest first
-  std::uint64_t nextSequence_ = 0, delivered_ = 0, dropped_ = 0;
+  std::uint64_t nextSequence_ = 0, delivered_ = 0, dropped_ = 0, sendsMade_ = 0;
   bool connected_ = false, connecting_ = false, everConnected_ = false, stopping_ = false;
   bool attempted_ = false;  // the first connection attempt has ended
   std::string lastError_;
