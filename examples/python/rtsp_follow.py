@@ -6,7 +6,7 @@
 
 rtspsrc does not reconnect once the camera is gone (a reboot, a network cut). This program runs the pattern of
 docs/sources.md: rtspsrc (TCP) sits outside the rest of the pipeline, and when it fails, ends, or delivers no
-frame for 2 s, only rtspsrc is set to NULL and started again with back-off (0.2 s doubling to 2 s), with the
+frame for 2 s (6 s for a session's first frame), only rtspsrc is set to NULL and started again with back-off (0.2 s doubling to 2 s), with the
 pipeline's clock and base time. colortrack, its template (also one taken from --init-box) and its track ids,
 and everything downstream keep running. With --robot, robotctl sends stop while no frame comes (its
 lost-timeout) and follows again when the stream is back.
@@ -30,6 +30,9 @@ gi.require_version("Gst", "1.0")
 from gi.repository import Gst  # noqa: E402
 
 STALL_SECONDS = 2.0  # no frame for this long: a silent failure (power cut, cable pulled)
+# A session's first frame waits for the RTSP handshake, a key frame and the decoder: a loaded machine or a
+# camera with a long key-frame interval needs longer than a stall does.
+CONNECT_SECONDS = 6.0
 FIRST_BACKOFF, MAX_BACKOFF = 0.2, 2.0
 SOURCE_ENDED = "source-ended"  # the application message the EOS probe posts
 
@@ -44,7 +47,7 @@ class Follower:
         self.sessions = 1
         self.backoff = FIRST_BACKOFF
         self.restart_at = None
-        self.frames = 0
+        self.session_frames = 0
         self.pipeline = Gst.parse_launch(self.description())
         self.source = Gst.ElementFactory.make("rtspsrc", "source")
         if self.source is None:
@@ -91,6 +94,7 @@ class Follower:
         s = message.get_structure()
         now = time.monotonic()
         self.last_frame_at = now
+        self.session_frames += 1
         self.backoff = FIRST_BACKOFF  # frames flow: the next outage starts from the first back-off
         box = [round(s.get_value(k)) for k in ("x", "y", "width", "height")] if s.get_value("id") > 0 else None
         print(json.dumps({"time": round(now - self.start, 3), "frame": s.get_value("frame"),
@@ -107,6 +111,7 @@ class Follower:
     def restart(self):
         self.restart_at = None
         self.sessions += 1
+        self.session_frames = 0
         self.stall_from = time.monotonic()  # the stall watchdog gives the new session its time
         # The pipeline's clock and base time, so the new session's timestamps continue the running time.
         self.source.set_clock(self.pipeline.get_clock())
@@ -129,6 +134,10 @@ class Follower:
                 self.schedule_restart(f"source error: {error.message}")
         return True
 
+    def patience(self):
+        """How long the source may stay silent before it is restarted."""
+        return STALL_SECONDS if self.session_frames else CONNECT_SECONDS
+
     def run(self):
         self.pipeline.set_state(Gst.State.PLAYING)
         status = 0
@@ -140,8 +149,8 @@ class Follower:
             now = time.monotonic()
             if self.restart_at is not None and now >= self.restart_at:
                 self.restart()
-            elif self.restart_at is None and now - max(self.last_frame_at, self.stall_from) > STALL_SECONDS:
-                self.schedule_restart(f"no frame for {STALL_SECONDS:.0f} s")
+            elif self.restart_at is None and now - max(self.last_frame_at, self.stall_from) > self.patience():
+                self.schedule_restart(f"no frame for {self.patience():.0f} s")
         self.pipeline.set_state(Gst.State.NULL)
         return status
 
