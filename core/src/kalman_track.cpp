@@ -68,6 +68,13 @@ void KalmanTrack::coast(int maxCoastFrames) {
   state = coastFrames > maxCoastFrames ? TrackState::Lost : TrackState::Coasting;
 }
 
+void KalmanTrack::coastAt(cv::Point2d centre, int maxCoastFrames) {
+  coast(maxCoastFrames);
+  if (!active()) return;
+  kalman.translate(centre.x - kalman.x(), centre.y - kalman.y());
+  kalman.setVelocity(0, 0);
+}
+
 void KalmanTrack::report(TrackOutput &out) const {
   out.state = state;
   out.id = id;

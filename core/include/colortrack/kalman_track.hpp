@@ -41,6 +41,9 @@ struct KalmanTrack {
   void update(const cv::Rect2d &box);
   // A frame without detection: coasting, lost after `maxCoastFrames`.
   void coast(int maxCoastFrames);
+  // A frame whose detection was not confident enough: coasting as coast() does, but the track waits at the
+  // detector's best guess `centre`, standing still, instead of running on at its last velocity.
+  void coastAt(cv::Point2d centre, int maxCoastFrames);
   // The output's track fields: state, id, and box, scale and motion when there is a track.
   void report(TrackOutput &out) const;
 
