@@ -14,4 +14,4 @@ ninja -C build-asan
 export GST_REGISTRY_FORK=no
 export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-meson test -C build-asan --print-errorlogs --suite core --suite gst --suite eval
+meson test -C build-asan --print-errorlogs --suite core --suite robot --suite gst --suite eval

@@ -75,14 +75,14 @@
 
 #include "gstrobotctl.h"
 #include "property-table.h"
-#include "command-writer.h"
+#include "colortrack/command_writer.hpp"
 #include "enum-types.h"
-#include "robot-port.h"
+#include "colortrack/robot_port.hpp"
 #include "robotctl-listener.h"
 #include "robotctl-output.h"
 #include "robotctl-settings.h"
 #include "track-params.h"
-#include "udp-port.h"
+#include "colortrack/udp_port.hpp"
 
 #include <algorithm>
 #include <atomic>

@@ -6,7 +6,7 @@
 #include <chrono>
 #include <string>
 
-#include "command-writer.h"
+#include "colortrack/command_writer.hpp"
 
 namespace robotctl {
 

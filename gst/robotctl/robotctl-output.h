@@ -3,7 +3,7 @@
 #pragma once
 
 #include "colortrack/protocol.hpp"
-#include "robot-port.h"
+#include "colortrack/robot_port.hpp"
 #include "robotctl-settings.h"
 
 namespace robotctl {

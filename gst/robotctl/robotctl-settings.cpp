@@ -1,8 +1,8 @@
 #include "robotctl-settings.h"
 
 #include "colortrack/protocol.hpp"
-#include "output-file.h"
-#include "udp-port.h"
+#include "colortrack/output_file.hpp"
+#include "colortrack/udp_port.hpp"
 
 #include <cmath>
 #include <type_traits>
@@ -33,7 +33,7 @@ std::string checkLocationValue(const PropertyStore &, const GValue *v, std::stri
   const std::string location = textOf(v);
   const std::string why = checkLocation(location);
   if (!why.empty() || location.empty() || location == "-" || isUdpLocation(location)) return why;
-  return colortrack_gst::checkOutputPath(location);
+  return colortrack::checkOutputPath(location);
 }
 
 // While running (protocol and mavlink-mode are fixed then); before start, start() judges the pair once every

@@ -8,7 +8,7 @@
 #include "colortrack/target_lock.hpp"
 #include "gstrobotctl.h"
 #include "property-table.h"
-#include "robot-port.h"
+#include "colortrack/robot_port.hpp"
 
 namespace robotctl {
 

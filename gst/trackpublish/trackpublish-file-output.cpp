@@ -6,7 +6,7 @@
 #include <cstdint>
 
 #include "document-file.h"
-#include "output-file.h"
+#include "colortrack/output_file.hpp"
 #include "trackpublish-output.h"
 
 #define GST_CAT_DEFAULT gst_track_publish_debug
@@ -87,7 +87,7 @@ std::unique_ptr<DocumentOutput> openFileOutput(const OutputContext &c) {
   // open(). It stays non-blocking: the writer thread waits for a slow reader, never the stream.
   std::string why;
   mode_t kind = 0;
-  const int fd = colortrack_gst::openOutputFile(location, O_CREAT | O_APPEND, kind, why);
+  const int fd = colortrack::openOutputFile(location, O_CREAT | O_APPEND, kind, why);
   if (fd < 0) {
     GST_ELEMENT_ERROR(c.element, RESOURCE, OPEN_WRITE,
                       ("Could not open '%s' (property 'location') for writing: %s",

@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "colortrack/regular_file.hpp"
-#include "output-file.h"
+#include "colortrack/output_file.hpp"
 #include "track-document.h"
 
 namespace trackpublish {
@@ -26,11 +26,11 @@ constexpr Apply kAtStart = Apply::AtStart;
 std::string checkLocationValue(const PropertyStore &, const GValue *v, std::string *) {
   const std::string location = textOf(v);
   if (location.empty() || location == "-") return "";
-  if (colortrack_gst::looksLikeUrl(location))
+  if (colortrack::looksLikeUrl(location))
     return "it looks like a URL (or a drive letter), but location names a file (an MQTT broker goes in "
            "'address'); a file whose name has a colon is written ./" +
            location;
-  return colortrack_gst::checkOutputPath(location);
+  return colortrack::checkOutputPath(location);
 }
 
 std::string checkAddressValue(const PropertyStore &, const GValue *v, std::string *) {

@@ -1,8 +1,8 @@
-#include "udp-port.h"
+#include "colortrack/udp_port.hpp"
 
 #include <gio/gio.h>
 
-#include "output-file.h"
+#include "colortrack/output_file.hpp"
 
 #include <cstdlib>
 
@@ -25,7 +25,7 @@ bool isUdpLocation(const std::string &location) {
 std::string checkLocation(const std::string &location) {
   std::string why;
   if (isUdpLocation(location)) return parseUdpLocation(location, why) ? "" : why;
-  if (!colortrack_gst::looksLikeUrl(location)) return "";
+  if (!colortrack::looksLikeUrl(location)) return "";
   return "it looks like a URL (or a drive letter), but the only address robotctl sends to is udp://HOST:PORT "
          "(e.g. udp://127.0.0.1:14550); a file whose name has a colon is written ./" +
          location;

@@ -1,6 +1,6 @@
-#include "robot-port.h"
+#include "colortrack/robot_port.hpp"
 
-#include "output-file.h"
+#include "colortrack/output_file.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -12,20 +12,20 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <system_error>
 
-#include <glib.h>
 #include <libserialport.h>
 
 namespace robotctl {
 
 namespace {
 
-using colortrack_gst::fileKindName;
+using colortrack::fileKindName;
 
 using Clock = std::chrono::steady_clock;
 
 bool fail(std::string &why) {
-  why = g_strerror(errno);
+  why = std::generic_category().message(errno);  // strerror without its shared buffer
   return false;
 }
 
@@ -71,7 +71,7 @@ bool FilePort::open(std::string &why) {
     if (S_ISREG(st.st_mode)) flags |= O_APPEND;  // a regular file reopened is appended to
   }
   mode_t opened = 0;
-  fd_ = colortrack_gst::openOutputFile(path_, flags, opened, why);
+  fd_ = colortrack::openOutputFile(path_, flags, opened, why);
   if (fd_ < 0) return false;
   // Checked again on the descriptor: the path may have changed between stat() and open().
   if (openedBefore_ && opened != kind_) {

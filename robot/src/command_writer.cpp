@@ -1,4 +1,4 @@
-#include "command-writer.h"
+#include "colortrack/command_writer.hpp"
 
 #include <signal.h>
 

@@ -16,8 +16,8 @@
 
 #include "colortrack/controller.hpp"
 #include "colortrack/protocol.hpp"
-#include "heartbeat-watch.h"
-#include "robot-port.h"
+#include "colortrack/heartbeat_watch.hpp"
+#include "colortrack/robot_port.hpp"
 
 namespace robotctl {
 

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "colortrack/mavlink.hpp"
-#include "command-writer.h"
+#include "colortrack/command_writer.hpp"
 
 namespace robotctl {
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "robot-port.h"
+#include "colortrack/robot_port.hpp"
 
 typedef struct _GSocket GSocket;
 

@@ -1,4 +1,4 @@
-#include "heartbeat-watch.h"
+#include "colortrack/heartbeat_watch.hpp"
 
 #include "colortrack/mavlink.hpp"
 

@@ -8,8 +8,8 @@
 
 #include <string>
 
-#include "output-file.h"
-#include "udp-port.h"
+#include "colortrack/output_file.hpp"
+#include "colortrack/udp_port.hpp"
 
 namespace robotctl {
 namespace {
@@ -43,11 +43,11 @@ TEST(UdpLocation, RefusesWhatIsNotHostAndPort) {
 TEST(Location, UrlLikeAndDriveLettersAreNeverFiles) {
   for (const char *typo : {"udp:127.0.0.1:14550", "udp:/127.0.0.1:1", "tcp://127.0.0.1:5760",
                            "serial:/dev/tty", "C:robot.txt", "c:\\robot.txt", "mqtt+ssl://x:1"}) {
-    EXPECT_TRUE(colortrack_gst::looksLikeUrl(typo)) << typo;
+    EXPECT_TRUE(colortrack::looksLikeUrl(typo)) << typo;
     EXPECT_FALSE(checkLocation(typo).empty()) << typo;
   }
   for (const char *file : {"./udp:x", "/tmp/a:b", "commands.txt", "-", "1:2", ":x", "dir/udp:x"}) {
-    EXPECT_FALSE(colortrack_gst::looksLikeUrl(file)) << file;
+    EXPECT_FALSE(colortrack::looksLikeUrl(file)) << file;
     EXPECT_TRUE(checkLocation(file).empty()) << file << ": " << checkLocation(file);
   }
 }
@@ -58,17 +58,17 @@ TEST(OutputPath, JudgedWithoutOpening) {
   const std::string fifo = std::string(dir) + "/fifo", file = std::string(dir) + "/file";
   ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
   ASSERT_TRUE(g_file_set_contents(file.c_str(), "x", 1, nullptr));
-  EXPECT_EQ(colortrack_gst::checkOutputPath(file), "");
-  EXPECT_EQ(colortrack_gst::checkOutputPath(fifo), "");  // a reader may come before the start
-  EXPECT_EQ(colortrack_gst::checkOutputPath(std::string(dir) + "/new"), "");
-  EXPECT_EQ(colortrack_gst::checkOutputPath("/dev/null"), "");
-  EXPECT_NE(colortrack_gst::checkOutputPath(dir), "");  // a directory
-  EXPECT_NE(colortrack_gst::checkOutputPath("/nonexistent-folder/x"), "");
-  EXPECT_NE(colortrack_gst::checkOutputPath(""), "");
+  EXPECT_EQ(colortrack::checkOutputPath(file), "");
+  EXPECT_EQ(colortrack::checkOutputPath(fifo), "");  // a reader may come before the start
+  EXPECT_EQ(colortrack::checkOutputPath(std::string(dir) + "/new"), "");
+  EXPECT_EQ(colortrack::checkOutputPath("/dev/null"), "");
+  EXPECT_NE(colortrack::checkOutputPath(dir), "");  // a directory
+  EXPECT_NE(colortrack::checkOutputPath("/nonexistent-folder/x"), "");
+  EXPECT_NE(colortrack::checkOutputPath(""), "");
   // Opening the FIFO without a reader fails at once instead of waiting in open().
   mode_t kind = 0;
   std::string why;
-  EXPECT_EQ(colortrack_gst::openOutputFile(fifo, 0, kind, why), -1);
+  EXPECT_EQ(colortrack::openOutputFile(fifo, 0, kind, why), -1);
   EXPECT_NE(why.find("reading"), std::string::npos) << why;
   g_unlink(fifo.c_str());
   g_unlink(file.c_str());

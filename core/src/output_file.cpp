@@ -1,14 +1,31 @@
-#include "output-file.h"
+#include "colortrack/output_file.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <filesystem>
+#include <system_error>
 
-#include <glib.h>
+namespace colortrack {
 
-namespace colortrack_gst {
+namespace {
+
+// strerror's text without its static buffer: output files are opened from several threads.
+std::string errnoText(int error) {
+  return std::generic_category().message(error);
+}
+
+// Letters and digits as in the C locale, whatever the process's locale is.
+bool asciiAlpha(char c) {
+  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
+}
+bool asciiAlnum(char c) {
+  return asciiAlpha(c) || (c >= '0' && c <= '9');
+}
+
+}  // namespace
 
 std::string fileKindName(mode_t kind) {
   switch (kind) {
@@ -35,12 +52,12 @@ int openOutputFile(const std::string &path, int extraFlags, mode_t &kind, std::s
     // POSIX: a non-blocking open of a FIFO for writing fails with ENXIO while nobody reads it (a socket
     // file gives the same).
     why = errno == ENXIO ? "no process has it open for reading (a FIFO without a reader, or a socket)"
-                         : g_strerror(errno);
+                         : errnoText(errno);
     return -1;
   }
   struct stat st;
   if (fstat(fd, &st) != 0) {
-    why = g_strerror(errno);
+    why = errnoText(errno);
     ::close(fd);
     return -1;
   }
@@ -56,10 +73,10 @@ int openOutputFile(const std::string &path, int extraFlags, mode_t &kind, std::s
 bool looksLikeUrl(const std::string &location) {
   const std::size_t colon = location.find(':');
   if (colon == std::string::npos || colon == 0) return false;
-  if (!g_ascii_isalpha(location[0])) return false;
+  if (!asciiAlpha(location[0])) return false;
   for (std::size_t i = 1; i < colon; ++i) {
     const char c = location[i];
-    if (!g_ascii_isalnum(c) && c != '+' && c != '-' && c != '.') return false;
+    if (!asciiAlnum(c) && c != '+' && c != '-' && c != '.') return false;
   }
   return true;
 }
@@ -72,12 +89,12 @@ std::string checkOutputPath(const std::string &path) {
     if (kind == S_IFREG || kind == S_IFCHR || kind == S_IFIFO) return "";
     return "it is a " + fileKindName(kind) + ", not a regular file, character device or FIFO";
   }
-  if (errno != ENOENT) return g_strerror(errno);
-  gchar *folder = g_path_get_dirname(path.c_str());
-  const bool folderExists = g_file_test(folder, G_FILE_TEST_IS_DIR);
-  std::string why = folderExists ? "" : std::string("its folder '") + folder + "' does not exist";
-  g_free(folder);
-  return why;
+  if (errno != ENOENT) return errnoText(errno);
+  std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  if (folder.empty()) folder = ".";
+  std::error_code error;
+  return std::filesystem::is_directory(folder, error) ? ""
+                                                      : "its folder '" + folder.string() + "' does not exist";
 }
 
-}  // namespace colortrack_gst
+}  // namespace colortrack

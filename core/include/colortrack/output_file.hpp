@@ -6,7 +6,7 @@
 
 #include <string>
 
-namespace colortrack_gst {
+namespace colortrack {
 
 // "regular file", "FIFO", "character device", ... for the S_IFMT bits of a mode.
 std::string fileKindName(mode_t kind);
@@ -29,4 +29,4 @@ bool looksLikeUrl(const std::string &location);
 // can be written, is known only when it is opened.
 std::string checkOutputPath(const std::string &path);
 
-}  // namespace colortrack_gst
+}  // namespace colortrack

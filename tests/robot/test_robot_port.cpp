@@ -1,0 +1,138 @@
+// The ports robotctl writes through (robot/src/robot_port.cpp), without the element: a regular file, a FIFO
+// with and without a reader, a file that changes kind between opens, a directory, and a serial port that is
+// not there.
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <stdlib.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdint>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "colortrack/robot_port.hpp"
+
+namespace {
+
+using robotctl::FilePort;
+using robotctl::SerialConfig;
+using robotctl::SerialPort;
+using robotctl::WriteResult;
+
+// A folder of its own, removed with what the test left in it.
+struct TempDir {
+  std::string path;
+  TempDir() {
+    char name[] = "/tmp/robot-port-XXXXXX";
+    path = mkdtemp(name);
+  }
+  ~TempDir() { std::system(("rm -rf '" + path + "'").c_str()); }
+};
+
+std::string contents(const std::string &path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+std::vector<std::uint8_t> bytesOf(const std::string &text) {
+  return {text.begin(), text.end()};
+}
+
+WriteResult write(FilePort &port, const std::string &text, std::size_t &written, std::string &why) {
+  return port.write(bytesOf(text), 100, written, why);
+}
+
+TEST(FilePort, FirstOpenEmptiesAFileAndAReopenAppends) {
+  TempDir dir;
+  const std::string path = dir.path + "/robot.txt";
+  std::ofstream(path) << "old commands\n";
+  FilePort port(path);
+  std::string why;
+  std::size_t written = 0;
+  ASSERT_TRUE(port.open(why)) << why;
+  ASSERT_EQ(write(port, "F\n", written, why), WriteResult::Written) << why;
+  EXPECT_EQ(written, 2u);
+  port.close();
+  ASSERT_TRUE(port.open(why)) << why;
+  ASSERT_EQ(write(port, "S\n", written, why), WriteResult::Written) << why;
+  port.close();
+  EXPECT_EQ(contents(path), "F\nS\n");
+}
+
+TEST(FilePort, AFifoWithoutAReaderIsRefusedAtOnce) {
+  TempDir dir;
+  const std::string path = dir.path + "/fifo";
+  ASSERT_EQ(mkfifo(path.c_str(), 0600), 0);
+  FilePort port(path);
+  std::string why;
+  EXPECT_FALSE(port.open(why));
+  EXPECT_NE(why.find("no process has it open for reading"), std::string::npos) << why;
+}
+
+// A reader that never reads: the pipe fills, and the write says Busy with how much went out instead of
+// waiting past its timeout.
+TEST(FilePort, AFullFifoIsBusyNotBlocking) {
+  TempDir dir;
+  const std::string path = dir.path + "/fifo";
+  ASSERT_EQ(mkfifo(path.c_str(), 0600), 0);
+  const int reader = ::open(path.c_str(), O_RDONLY | O_NONBLOCK);
+  ASSERT_GE(reader, 0);
+  FilePort port(path);
+  std::string why;
+  ASSERT_TRUE(port.open(why)) << why;
+  const std::vector<std::uint8_t> block(1 << 20, 'x');  // more than any pipe buffer holds
+  std::size_t written = 0;
+  EXPECT_EQ(port.write(block, 50, written, why), WriteResult::Busy);
+  EXPECT_GT(written, 0u);
+  EXPECT_LT(written, block.size());
+  port.close();
+  ::close(reader);
+}
+
+// A FIFO whose reader removed it must never become a regular file that swallows the robot's commands.
+TEST(FilePort, AReopenWaitsForTheKindOfFileItLost) {
+  TempDir dir;
+  const std::string path = dir.path + "/fifo";
+  ASSERT_EQ(mkfifo(path.c_str(), 0600), 0);
+  const int reader = ::open(path.c_str(), O_RDONLY | O_NONBLOCK);
+  FilePort port(path);
+  std::string why;
+  ASSERT_TRUE(port.open(why)) << why;
+  port.close();
+  ::close(reader);
+  unlink(path.c_str());
+  EXPECT_FALSE(port.open(why));
+  EXPECT_NE(why.find("it is gone"), std::string::npos) << why;
+  std::ofstream(path) << "";
+  EXPECT_FALSE(port.open(why));
+  EXPECT_NE(why.find("regular file"), std::string::npos) << why;
+  EXPECT_EQ(contents(path), "");
+}
+
+TEST(FilePort, ADirectoryIsRefused) {
+  TempDir dir;
+  FilePort port(dir.path);
+  std::string why;
+  EXPECT_FALSE(port.open(why));
+  EXPECT_FALSE(why.empty());
+}
+
+// SerialPort cannot be opened on a pseudo-terminal (libserialport looks a port up in sysfs and answers "no
+// such serial port" for /dev/pts/N), so only its refusal is tested here; a pty is written through FilePort
+// (location=), which tests/gst/test_robotctl.cpp covers end to end.
+TEST(SerialPort, AMissingDeviceIsNamedInTheError) {
+  SerialConfig config;
+  config.device = "/dev/ttyNO-SUCH-ADAPTER";
+  SerialPort port(config);
+  std::string why;
+  EXPECT_FALSE(port.open(why));
+  EXPECT_EQ(why, "no such serial port");
+  EXPECT_FALSE(port.isOpen());
+  EXPECT_NE(port.describe().find("/dev/ttyNO-SUCH-ADAPTER"), std::string::npos);
+}
+
+}  // namespace
