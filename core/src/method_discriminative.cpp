@@ -164,28 +164,8 @@ void LikelihoodCue::learnLikelihood(const ImageSource &frame, const cv::Rect2d &
   context_.model.likelihood().learn(learnBins_, objectL, cv::Rect(cv::Point(), learnBins_.bins.size()), rate);
 }
 
-namespace {
-
-class DiscriminativeMethod : public DetectionMethod {
- public:
-  explicit DiscriminativeMethod(const MethodContext &context) : cue_(context), search_(context, cue_) {}
-
-  void start(const ImageSource &frame, const cv::Rect2d &box) override { cue_.learn(frame, box); }
-  void process(const ImageSource &frame, double dt, TrackOutput &out) override {
-    search_.process(frame, dt, out);
-  }
-  // The likelihood belongs to the template model, which forgets it itself.
-  void forget() override {}
-
- private:
-  LikelihoodCue cue_;
-  ColorSearch search_;
-};
-
-}  // namespace
-
 std::unique_ptr<DetectionMethod> makeDiscriminativeMethod(const MethodContext &context) {
-  return std::make_unique<DiscriminativeMethod>(context);
+  return std::make_unique<ColorSearchMethod<LikelihoodCue>>(context);
 }
 
 }  // namespace colortrack

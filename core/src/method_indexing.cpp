@@ -40,27 +40,8 @@ std::optional<cv::Point> HistogramCue::bestCoarseWindow(const BinImage &coarse, 
   return found.box.tl();
 }
 
-namespace {
-
-class IndexingMethod : public DetectionMethod {
- public:
-  explicit IndexingMethod(const MethodContext &context) : cue_(context), search_(context, cue_) {}
-
-  void start(const ImageSource &, const cv::Rect2d &) override {}
-  void process(const ImageSource &frame, double dt, TrackOutput &out) override {
-    search_.process(frame, dt, out);
-  }
-  void forget() override {}
-
- private:
-  HistogramCue cue_;
-  ColorSearch search_;
-};
-
-}  // namespace
-
 std::unique_ptr<DetectionMethod> makeIndexingMethod(const MethodContext &context) {
-  return std::make_unique<IndexingMethod>(context);
+  return std::make_unique<ColorSearchMethod<HistogramCue>>(context);
 }
 
 }  // namespace colortrack

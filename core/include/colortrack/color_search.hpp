@@ -54,4 +54,22 @@ class ColorSearch {
   BinImage coarseBins_;
 };
 
+// A method that is the colour search over one cue (the indexing and discriminative methods): the cue learns
+// from the box a track starts at, and what it learns belongs to the template model, which forgets it itself.
+template <class Cue>
+class ColorSearchMethod final : public DetectionMethod {
+ public:
+  explicit ColorSearchMethod(const MethodContext &context) : cue_(context), search_(context, cue_) {}
+
+  void start(const ImageSource &frame, const cv::Rect2d &box) override { cue_.learn(frame, box); }
+  void process(const ImageSource &frame, double dt, TrackOutput &out) override {
+    search_.process(frame, dt, out);
+  }
+  void forget() override {}
+
+ private:
+  Cue cue_;
+  ColorSearch search_;
+};
+
 }  // namespace colortrack
