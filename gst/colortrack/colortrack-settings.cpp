@@ -10,57 +10,15 @@ namespace {
 using gstglue::Apply;
 using gstglue::getText;
 using gstglue::getTextOrNull;
+using gstglue::getValue;
 using gstglue::setText;
+using gstglue::setValue;
 using gstglue::textOf;
 using Def = gstglue::PropertyDef<Settings, Shared>;
 using colortrack::TrackerSettings;
 
 constexpr unsigned kTracker = 1u << kTrackerVersion, kTemplate = 1u << kTemplateVersion,
                    kBlobs = 1u << kBlobsVersion, kRange = 1u << kRangeVersion;
-
-// An enum of the tracker's settings (method, colour space, verify).
-template <auto field>
-void getTrackerEnum(const Settings &s, GValue *v) {
-  g_value_set_enum(v, static_cast<gint>(s.tracker.*field));
-}
-template <auto field>
-void setTrackerEnum(Settings &s, const GValue *v) {
-  s.tracker.*field = static_cast<std::remove_reference_t<decltype(s.tracker.*field)>>(g_value_get_enum(v));
-}
-
-// Accessors of a field of one of Settings' parts, by type (text fields: gstglue's).
-template <auto field>
-void getTrackerDouble(const Settings &s, GValue *v) {
-  g_value_set_double(v, s.tracker.*field);
-}
-template <auto field>
-void setTrackerDouble(Settings &s, const GValue *v) {
-  s.tracker.*field = g_value_get_double(v);
-}
-template <auto field>
-void getKalman(const Settings &s, GValue *v) {
-  g_value_set_double(v, s.tracker.kalman.*field);
-}
-template <auto field>
-void setKalman(Settings &s, const GValue *v) {
-  s.tracker.kalman.*field = g_value_get_double(v);
-}
-template <auto field>
-void getScale(const Settings &s, GValue *v) {
-  g_value_set_double(v, s.tracker.scale.*field);
-}
-template <auto field>
-void setScale(Settings &s, const GValue *v) {
-  s.tracker.scale.*field = g_value_get_double(v);
-}
-template <auto field>
-void getBlobInt(const Settings &s, GValue *v) {
-  g_value_set_int(v, s.blobs.*field);
-}
-template <auto field>
-void setBlobInt(Settings &s, const GValue *v) {
-  s.blobs.*field = g_value_get_int(v);
-}
 
 // A text property's check: the parser's error text, or empty when it parses.
 template <typename Parse>
@@ -131,7 +89,7 @@ const Def kProperties[] = {
            "follows every blob of pixels inside an HSV range, each with its own id; fixed while started",
            GST_TYPE_COLOR_TRACK_MODE, static_cast<gint>(Settings{}.mode), f);
      },
-     gstglue::getValue<&Settings::mode>, gstglue::setValue<&Settings::mode>},
+     getValue<&Settings::mode>, setValue<&Settings::mode>},
     {Apply::Live, kTemplate,
      [](GParamFlags f) {
        return g_param_spec_string(
@@ -161,7 +119,8 @@ const Def kProperties[] = {
            "correlation filter), a scale filter, a confidence that gates learning, and re-detection",
            GST_TYPE_COLOR_TRACK_METHOD, static_cast<gint>(TrackerSettings{}.method), f);
      },
-     getTrackerEnum<&TrackerSettings::method>, setTrackerEnum<&TrackerSettings::method>},
+     getValue<&Settings::tracker, &TrackerSettings::method>,
+     setValue<&Settings::tracker, &TrackerSettings::method>},
     {Apply::Live, kTracker,
      [](GParamFlags f) {
        return g_param_spec_double(
@@ -170,8 +129,8 @@ const Def kProperties[] = {
            "likelihood (0-1) in the box for a detection",
            0.0, 1.0, TrackerSettings{}.likelihoodThreshold, f);
      },
-     getTrackerDouble<&TrackerSettings::likelihoodThreshold>,
-     setTrackerDouble<&TrackerSettings::likelihoodThreshold>},
+     getValue<&Settings::tracker, &TrackerSettings::likelihoodThreshold>,
+     setValue<&Settings::tracker, &TrackerSettings::likelihoodThreshold>},
     {Apply::Live, kTracker,
      [](GParamFlags f) {
        return g_param_spec_double(
@@ -180,8 +139,8 @@ const Def kProperties[] = {
            "per frame (0 = learn once)",
            0.0, 1.0, TrackerSettings{}.modelUpdateRate, f);
      },
-     getTrackerDouble<&TrackerSettings::modelUpdateRate>,
-     setTrackerDouble<&TrackerSettings::modelUpdateRate>},
+     getValue<&Settings::tracker, &TrackerSettings::modelUpdateRate>,
+     setValue<&Settings::tracker, &TrackerSettings::modelUpdateRate>},
     {Apply::Live, kTracker,
      [](GParamFlags f) {
        return g_param_spec_boolean(
@@ -197,7 +156,8 @@ const Def kProperties[] = {
                                 GST_TYPE_COLOR_TRACK_COLOR_SPACE,
                                 static_cast<gint>(TrackerSettings{}.colorSpace), f);
      },
-     getTrackerEnum<&TrackerSettings::colorSpace>, setTrackerEnum<&TrackerSettings::colorSpace>},
+     getValue<&Settings::tracker, &TrackerSettings::colorSpace>,
+     setValue<&Settings::tracker, &TrackerSettings::colorSpace>},
     {Apply::Live, kTracker,
      [](GParamFlags f) {
        return g_param_spec_string("bins", "Bins", "Histogram bins per channel, \"c1,c2,c3\", each 1-256",
@@ -240,27 +200,31 @@ const Def kProperties[] = {
            "its confidence, discriminative likelihood-threshold)",
            0.0, 1.0, TrackerSettings{}.matchThreshold, f);
      },
-     getTrackerDouble<&TrackerSettings::matchThreshold>, setTrackerDouble<&TrackerSettings::matchThreshold>},
+     getValue<&Settings::tracker, &TrackerSettings::matchThreshold>,
+     setValue<&Settings::tracker, &TrackerSettings::matchThreshold>},
     {Apply::Live, kTracker,
      [](GParamFlags f) {
        return g_param_spec_double("scale-min", "Minimum scale step",
                                   "Smallest box size tried per frame, relative to the current box", 0.5, 1.0,
                                   TrackerSettings{}.scale.minFactor, f);
      },
-     getScale<&colortrack::ScaleParams::minFactor>, setScale<&colortrack::ScaleParams::minFactor>},
+     getValue<&Settings::tracker, &TrackerSettings::scale, &colortrack::ScaleParams::minFactor>,
+     setValue<&Settings::tracker, &TrackerSettings::scale, &colortrack::ScaleParams::minFactor>},
     {Apply::Live, kTracker,
      [](GParamFlags f) {
        return g_param_spec_double("scale-max", "Maximum scale step",
                                   "Largest box size tried per frame, relative to the current box", 1.0, 2.0,
                                   TrackerSettings{}.scale.maxFactor, f);
      },
-     getScale<&colortrack::ScaleParams::maxFactor>, setScale<&colortrack::ScaleParams::maxFactor>},
+     getValue<&Settings::tracker, &TrackerSettings::scale, &colortrack::ScaleParams::maxFactor>,
+     setValue<&Settings::tracker, &TrackerSettings::scale, &colortrack::ScaleParams::maxFactor>},
     {Apply::Live, kTracker,
      [](GParamFlags f) {
        return g_param_spec_double("scale-step", "Scale step", "Step between the box sizes tried", 0.001, 0.5,
                                   TrackerSettings{}.scale.step, f);
      },
-     getScale<&colortrack::ScaleParams::step>, setScale<&colortrack::ScaleParams::step>},
+     getValue<&Settings::tracker, &TrackerSettings::scale, &colortrack::ScaleParams::step>,
+     setValue<&Settings::tracker, &TrackerSettings::scale, &colortrack::ScaleParams::step>},
     {Apply::Live, kTracker,
      [](GParamFlags f) {
        return g_param_spec_double("search-margin", "Search margin",
@@ -269,7 +233,8 @@ const Def kProperties[] = {
                                   "sigma of the predicted position",
                                   0.0, 20.0, TrackerSettings{}.searchMargin, f);
      },
-     getTrackerDouble<&TrackerSettings::searchMargin>, setTrackerDouble<&TrackerSettings::searchMargin>},
+     getValue<&Settings::tracker, &TrackerSettings::searchMargin>,
+     setValue<&Settings::tracker, &TrackerSettings::searchMargin>},
     {Apply::Live, kTracker,
      [](GParamFlags f) {
        return g_param_spec_double(
@@ -278,15 +243,16 @@ const Def kProperties[] = {
            "sudden motion faster, lower smooths more",
            0.0, 1e6, TrackerSettings{}.kalman.processNoise, f);
      },
-     getKalman<&colortrack::KalmanParams::processNoise>, setKalman<&colortrack::KalmanParams::processNoise>},
+     getValue<&Settings::tracker, &TrackerSettings::kalman, &colortrack::KalmanParams::processNoise>,
+     setValue<&Settings::tracker, &TrackerSettings::kalman, &colortrack::KalmanParams::processNoise>},
     {Apply::Live, kTracker,
      [](GParamFlags f) {
        return g_param_spec_double("measurement-noise", "Measurement noise",
                                   "Kalman measurement noise (variance of a detection's position, px^2)", 1e-6,
                                   1e6, TrackerSettings{}.kalman.measurementNoise, f);
      },
-     getKalman<&colortrack::KalmanParams::measurementNoise>,
-     setKalman<&colortrack::KalmanParams::measurementNoise>},
+     getValue<&Settings::tracker, &TrackerSettings::kalman, &colortrack::KalmanParams::measurementNoise>,
+     setValue<&Settings::tracker, &TrackerSettings::kalman, &colortrack::KalmanParams::measurementNoise>},
     {Apply::Live, kTracker,
      [](GParamFlags f) {
        return g_param_spec_int("max-coast-frames", "Maximum coasting frames",
@@ -312,7 +278,8 @@ const Def kProperties[] = {
                                 "Edge check that tells the object from same-coloured look-alikes",
                                 GST_TYPE_COLOR_TRACK_VERIFY, static_cast<gint>(TrackerSettings{}.verify), f);
      },
-     getTrackerEnum<&TrackerSettings::verify>, setTrackerEnum<&TrackerSettings::verify>},
+     getValue<&Settings::tracker, &TrackerSettings::verify>,
+     setValue<&Settings::tracker, &TrackerSettings::verify>},
     {Apply::Live, kTracker,
      [](GParamFlags f) {
        return g_param_spec_double(
@@ -321,8 +288,8 @@ const Def kProperties[] = {
            "a verified match",
            0.0, 100.0, TrackerSettings{}.verifyTolerance, f);
      },
-     getTrackerDouble<&TrackerSettings::verifyTolerance>,
-     setTrackerDouble<&TrackerSettings::verifyTolerance>},
+     getValue<&Settings::tracker, &TrackerSettings::verifyTolerance>,
+     setValue<&Settings::tracker, &TrackerSettings::verifyTolerance>},
     {Apply::Live, 0,
      [](GParamFlags f) {
        return g_param_spec_flags("draw", "Draw", "What the overlay shows", GST_TYPE_COLOR_TRACK_DRAW,
@@ -364,7 +331,8 @@ const Def kProperties[] = {
            "small holes) applied to the colour mask; 0 disables",
            0, 255, colortrack::BlobSettings{}.morphSize, f);
      },
-     getBlobInt<&colortrack::BlobSettings::morphSize>, setBlobInt<&colortrack::BlobSettings::morphSize>},
+     getValue<&Settings::blobs, &colortrack::BlobSettings::morphSize>,
+     setValue<&Settings::blobs, &colortrack::BlobSettings::morphSize>},
     {Apply::Live, kBlobs,
      [](GParamFlags f) {
        return g_param_spec_int(
@@ -373,15 +341,16 @@ const Def kProperties[] = {
            "frame's pixel count)",
            1, G_MAXINT, colortrack::BlobSettings{}.minArea, f);
      },
-     getBlobInt<&colortrack::BlobSettings::minArea>, setBlobInt<&colortrack::BlobSettings::minArea>, nullptr,
-     checkMinArea},
+     getValue<&Settings::blobs, &colortrack::BlobSettings::minArea>,
+     setValue<&Settings::blobs, &colortrack::BlobSettings::minArea>, nullptr, checkMinArea},
     {Apply::Live, kBlobs,
      [](GParamFlags f) {
        return g_param_spec_int("max-objects", "Maximum objects",
                                "mode=threshold: at most this many blobs (the largest) are tracked per frame",
                                1, 64, colortrack::BlobSettings{}.maxObjects, f);
      },
-     getBlobInt<&colortrack::BlobSettings::maxObjects>, setBlobInt<&colortrack::BlobSettings::maxObjects>},
+     getValue<&Settings::blobs, &colortrack::BlobSettings::maxObjects>,
+     setValue<&Settings::blobs, &colortrack::BlobSettings::maxObjects>},
     {Apply::Live, 0,
      [](GParamFlags f) {
        return g_param_spec_boolean(

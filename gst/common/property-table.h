@@ -92,34 +92,53 @@ void setText(ClassOf<field> &s, const GValue *v) {
   s.*field = textOf(v);
 }
 
-// Table accessors of a bool, gint, guint, double or enum field of an element's settings, by the field's type.
-template <auto field>
-void getValue(const ClassOf<field> &s, GValue *v) {
-  using T = std::remove_cv_t<std::remove_reference_t<decltype(s.*field)>>;
-  if constexpr (std::is_same_v<T, bool>)
-    g_value_set_boolean(v, s.*field);
-  else if constexpr (std::is_same_v<T, gint>)
-    g_value_set_int(v, s.*field);
-  else if constexpr (std::is_same_v<T, guint>)
-    g_value_set_uint(v, s.*field);
-  else if constexpr (std::is_same_v<T, double>)
-    g_value_set_double(v, s.*field);
+// The settings class a path of members starts from, and the field the path leads to: s.*a.*b... (a field of
+// a part of the settings, such as &Settings::tracker, &TrackerSettings::method).
+template <auto first, auto...>
+struct Root {
+  using type = ClassOf<first>;
+};
+template <auto... path>
+using RootOf = typename Root<path...>::type;
+template <auto first, auto... rest, typename S>
+decltype(auto) fieldAt(S &s) {
+  if constexpr (sizeof...(rest) == 0)
+    return (s.*first);
   else
-    g_value_set_enum(v, static_cast<gint>(s.*field));
+    return fieldAt<rest...>(s.*first);
 }
-template <auto field>
-void setValue(ClassOf<field> &s, const GValue *v) {
-  using T = std::remove_cv_t<std::remove_reference_t<decltype(s.*field)>>;
+
+// Table accessors of a bool, gint, guint, double or enum field of an element's settings (or of one of its
+// parts, through a path of members), by the field's type.
+template <auto... path>
+void getValue(const RootOf<path...> &s, GValue *v) {
+  const auto &field = fieldAt<path...>(s);
+  using T = std::remove_cv_t<std::remove_reference_t<decltype(field)>>;
   if constexpr (std::is_same_v<T, bool>)
-    s.*field = g_value_get_boolean(v);
+    g_value_set_boolean(v, field);
   else if constexpr (std::is_same_v<T, gint>)
-    s.*field = g_value_get_int(v);
+    g_value_set_int(v, field);
   else if constexpr (std::is_same_v<T, guint>)
-    s.*field = g_value_get_uint(v);
+    g_value_set_uint(v, field);
   else if constexpr (std::is_same_v<T, double>)
-    s.*field = g_value_get_double(v);
+    g_value_set_double(v, field);
   else
-    s.*field = static_cast<T>(g_value_get_enum(v));
+    g_value_set_enum(v, static_cast<gint>(field));
+}
+template <auto... path>
+void setValue(RootOf<path...> &s, const GValue *v) {
+  auto &field = fieldAt<path...>(s);
+  using T = std::remove_cv_t<std::remove_reference_t<decltype(field)>>;
+  if constexpr (std::is_same_v<T, bool>)
+    field = g_value_get_boolean(v);
+  else if constexpr (std::is_same_v<T, gint>)
+    field = g_value_get_int(v);
+  else if constexpr (std::is_same_v<T, guint>)
+    field = g_value_get_uint(v);
+  else if constexpr (std::is_same_v<T, double>)
+    field = g_value_get_double(v);
+  else
+    field = static_cast<T>(g_value_get_enum(v));
 }
 
 // The helpers the table's templates share; in property-table.cpp.

@@ -40,33 +40,6 @@ std::string checkLocationValue(const PropertyStore &, const GValue *v, std::stri
 // property has been set, whatever their order.
 std::string checkControllerValue(const PropertyStore &store, const GValue *v, std::string *);
 
-// An enum of the controller's settings (the controller, the distance cue).
-template <auto field>
-void getController(const Settings &s, GValue *v) {
-  g_value_set_enum(v, static_cast<gint>(s.controller.*field));
-}
-template <auto field>
-void setController(Settings &s, const GValue *v) {
-  s.controller.*field =
-      static_cast<std::remove_reference_t<decltype(s.controller.*field)>>(g_value_get_enum(v));
-}
-
-// A double of the controller's or the failsafe's settings.
-template <auto field>
-void getControl(const Settings &s, GValue *v) {
-  if constexpr (std::is_same_v<decltype(field), double ControllerSettings::*>)
-    g_value_set_double(v, s.controller.*field);
-  else
-    g_value_set_double(v, s.failsafe.*field);
-}
-template <auto field>
-void setControl(Settings &s, const GValue *v) {
-  if constexpr (std::is_same_v<decltype(field), double ControllerSettings::*>)
-    s.controller.*field = g_value_get_double(v);
-  else
-    s.failsafe.*field = g_value_get_double(v);
-}
-
 // Each numeric property's declared range is the range it accepts (gst-inspect tells the truth), and GLib
 // refuses values outside it. GLib's check refuses NaN too (its clamp leaves NaN, which never equals itself);
 // this is for a GLib that would not, so that NaN never reaches the controller.
@@ -250,15 +223,16 @@ const Def kProperties[] = {
                                 GST_TYPE_ROBOT_CTL_CONTROLLER, static_cast<gint>(Settings{}.controller.kind),
                                 f);
      },
-     getController<&ControllerSettings::kind>, setController<&ControllerSettings::kind>, nullptr,
-     checkControllerValue},
+     getValue<&Settings::controller, &ControllerSettings::kind>,
+     setValue<&Settings::controller, &ControllerSettings::kind>, nullptr, checkControllerValue},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_enum("distance-cue", "Distance cue", "What tells how far the target is",
                                 GST_TYPE_ROBOT_CTL_DISTANCE_CUE,
                                 static_cast<gint>(Settings{}.controller.distanceCue), f);
      },
-     getController<&ControllerSettings::distanceCue>, setController<&ControllerSettings::distanceCue>},
+     getValue<&Settings::controller, &ControllerSettings::distanceCue>,
+     setValue<&Settings::controller, &ControllerSettings::distanceCue>},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_double("set-point", "Set-point",
@@ -266,7 +240,8 @@ const Def kProperties[] = {
                                   "frame height",
                                   0.01, 1.0, ControllerSettings{}.setPoint, f);
      },
-     getControl<&ControllerSettings::setPoint>, setControl<&ControllerSettings::setPoint>},
+     getValue<&Settings::controller, &ControllerSettings::setPoint>,
+     setValue<&Settings::controller, &ControllerSettings::setPoint>},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_double("turn-deadband", "Turn deadband",
@@ -274,14 +249,16 @@ const Def kProperties[] = {
                                   "which the target counts as centred",
                                   0.0, 1.0, ControllerSettings{}.turnDeadband, f);
      },
-     getControl<&ControllerSettings::turnDeadband>, setControl<&ControllerSettings::turnDeadband>},
+     getValue<&Settings::controller, &ControllerSettings::turnDeadband>,
+     setValue<&Settings::controller, &ControllerSettings::turnDeadband>},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_double("distance-deadband", "Distance deadband",
                                   "Relative distance error within which the distance counts as right", 0.0,
                                   1.0, ControllerSettings{}.distanceDeadband, f);
      },
-     getControl<&ControllerSettings::distanceDeadband>, setControl<&ControllerSettings::distanceDeadband>},
+     getValue<&Settings::controller, &ControllerSettings::distanceDeadband>,
+     setValue<&Settings::controller, &ControllerSettings::distanceDeadband>},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_double("hysteresis", "Hysteresis",
@@ -289,14 +266,16 @@ const Def kProperties[] = {
                                   "back before a turn or drive ends",
                                   0.0, 1.0, ControllerSettings{}.hysteresis, f);
      },
-     getControl<&ControllerSettings::hysteresis>, setControl<&ControllerSettings::hysteresis>},
+     getValue<&Settings::controller, &ControllerSettings::hysteresis>,
+     setValue<&Settings::controller, &ControllerSettings::hysteresis>},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_double("turn-gain", "Turn gain",
                                   "Proportional controller: angular speed per unit horizontal offset, 0-100",
                                   0.0, 100.0, ControllerSettings{}.turnGain, f);
      },
-     getControl<&ControllerSettings::turnGain>, setControl<&ControllerSettings::turnGain>, refuseNotFinite},
+     getValue<&Settings::controller, &ControllerSettings::turnGain>,
+     setValue<&Settings::controller, &ControllerSettings::turnGain>, refuseNotFinite},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_double("drive-gain", "Drive gain",
@@ -304,7 +283,8 @@ const Def kProperties[] = {
                                   "error, 0-100",
                                   0.0, 100.0, ControllerSettings{}.driveGain, f);
      },
-     getControl<&ControllerSettings::driveGain>, setControl<&ControllerSettings::driveGain>, refuseNotFinite},
+     getValue<&Settings::controller, &ControllerSettings::driveGain>,
+     setValue<&Settings::controller, &ControllerSettings::driveGain>, refuseNotFinite},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_double(
@@ -314,8 +294,8 @@ const Def kProperties[] = {
            "the lag behind a target moving sideways; frozen while the turn is limited)",
            0.0, 100.0, ControllerSettings{}.turnIntegralGain, f);
      },
-     getControl<&ControllerSettings::turnIntegralGain>, setControl<&ControllerSettings::turnIntegralGain>,
-     refuseNotFinite},
+     getValue<&Settings::controller, &ControllerSettings::turnIntegralGain>,
+     setValue<&Settings::controller, &ControllerSettings::turnIntegralGain>, refuseNotFinite},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_double(
@@ -324,8 +304,8 @@ const Def kProperties[] = {
            "(removes the lag behind a target moving away or closer; frozen while the speed is limited)",
            0.0, 100.0, ControllerSettings{}.driveIntegralGain, f);
      },
-     getControl<&ControllerSettings::driveIntegralGain>, setControl<&ControllerSettings::driveIntegralGain>,
-     refuseNotFinite},
+     getValue<&Settings::controller, &ControllerSettings::driveIntegralGain>,
+     setValue<&Settings::controller, &ControllerSettings::driveIntegralGain>, refuseNotFinite},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_double(
@@ -334,8 +314,8 @@ const Def kProperties[] = {
            "(reacts to the target's sideways motion; damps the turn)",
            0.0, 100.0, ControllerSettings{}.turnRateGain, f);
      },
-     getControl<&ControllerSettings::turnRateGain>, setControl<&ControllerSettings::turnRateGain>,
-     refuseNotFinite},
+     getValue<&Settings::controller, &ControllerSettings::turnRateGain>,
+     setValue<&Settings::controller, &ControllerSettings::turnRateGain>, refuseNotFinite},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_double(
@@ -344,8 +324,8 @@ const Def kProperties[] = {
            "0-100 (reacts to the target moving away or closer; damps the approach)",
            0.0, 100.0, ControllerSettings{}.driveRateGain, f);
      },
-     getControl<&ControllerSettings::driveRateGain>, setControl<&ControllerSettings::driveRateGain>,
-     refuseNotFinite},
+     getValue<&Settings::controller, &ControllerSettings::driveRateGain>,
+     setValue<&Settings::controller, &ControllerSettings::driveRateGain>, refuseNotFinite},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_double(
@@ -356,7 +336,8 @@ const Def kProperties[] = {
            "centre. 0: no such rule (the paper's controller)",
            0.0, 2.0, ControllerSettings{}.latency, f);
      },
-     getControl<&ControllerSettings::latency>, setControl<&ControllerSettings::latency>},
+     getValue<&Settings::controller, &ControllerSettings::latency>,
+     setValue<&Settings::controller, &ControllerSettings::latency>},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_double("max-linear", "Maximum linear speed",
@@ -364,7 +345,8 @@ const Def kProperties[] = {
                                   "controller's driving speed",
                                   0.0, 1.0, ControllerSettings{}.maxLinear, f);
      },
-     getControl<&ControllerSettings::maxLinear>, setControl<&ControllerSettings::maxLinear>},
+     getValue<&Settings::controller, &ControllerSettings::maxLinear>,
+     setValue<&Settings::controller, &ControllerSettings::maxLinear>},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_double("max-angular", "Maximum angular speed",
@@ -372,7 +354,8 @@ const Def kProperties[] = {
                                   "controller's turning speed",
                                   0.0, 1.0, ControllerSettings{}.maxAngular, f);
      },
-     getControl<&ControllerSettings::maxAngular>, setControl<&ControllerSettings::maxAngular>},
+     getValue<&Settings::controller, &ControllerSettings::maxAngular>,
+     setValue<&Settings::controller, &ControllerSettings::maxAngular>},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_double("max-linear-accel", "Maximum linear acceleration",
@@ -380,7 +363,8 @@ const Def kProperties[] = {
                                   "per second (0 = unlimited)",
                                   0.0, 1000.0, ControllerSettings{}.maxLinearAccel, f);
      },
-     getControl<&ControllerSettings::maxLinearAccel>, setControl<&ControllerSettings::maxLinearAccel>},
+     getValue<&Settings::controller, &ControllerSettings::maxLinearAccel>,
+     setValue<&Settings::controller, &ControllerSettings::maxLinearAccel>},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_double("max-angular-accel", "Maximum angular acceleration",
@@ -388,7 +372,8 @@ const Def kProperties[] = {
                                   "speed per second (0 = unlimited)",
                                   0.0, 1000.0, ControllerSettings{}.maxAngularAccel, f);
      },
-     getControl<&ControllerSettings::maxAngularAccel>, setControl<&ControllerSettings::maxAngularAccel>},
+     getValue<&Settings::controller, &ControllerSettings::maxAngularAccel>,
+     setValue<&Settings::controller, &ControllerSettings::maxAngularAccel>},
 
     // The failsafe, which target to follow and the messages.
     {Apply::Live, kVersioned,
@@ -409,7 +394,8 @@ const Def kProperties[] = {
                                   "A target with a lower score counts as not seen", 0.0, 1.0,
                                   FailsafeSettings{}.minScore, f);
      },
-     getControl<&FailsafeSettings::minScore>, setControl<&FailsafeSettings::minScore>},
+     getValue<&Settings::failsafe, &FailsafeSettings::minScore>,
+     setValue<&Settings::failsafe, &FailsafeSettings::minScore>},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
        return g_param_spec_boolean("search-turn", "Search turn",
@@ -426,7 +412,8 @@ const Def kProperties[] = {
            "Angular speed of the search turn (fraction of full wheel speed); only used with search-turn=true",
            0.0, 1.0, FailsafeSettings{}.searchSpeed, f);
      },
-     getControl<&FailsafeSettings::searchSpeed>, setControl<&FailsafeSettings::searchSpeed>},
+     getValue<&Settings::failsafe, &FailsafeSettings::searchSpeed>,
+     setValue<&Settings::failsafe, &FailsafeSettings::searchSpeed>},
     {Apply::Live, false,
      [](GParamFlags f) {
        return g_param_spec_string("roi-type", "ROI type",
