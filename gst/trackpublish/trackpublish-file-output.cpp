@@ -5,8 +5,8 @@
 
 #include <cstdint>
 
-#include "document-file.h"
 #include "colortrack/output_file.hpp"
+#include "document-file.h"
 #include "trackpublish-output.h"
 
 #define GST_CAT_DEFAULT gst_track_publish_debug
@@ -20,7 +20,7 @@ using std::chrono::milliseconds;
 class FileOutput : public DocumentOutput {
  public:
   FileOutput(GstElement *element, std::string location, int fd, bool owned, std::size_t maxQueued)
-      : element_(element), location_(std::move(location)), file_(fd, owned, maxQueued) {}
+      : element_(element), shown_(gstglue::validUtf8(location)), file_(fd, owned, maxQueued) {}
 
   // A write that failed is an error (once the writer thread has seen it: a document or a few later); drops
   // (the file did not keep up with max-queued documents waiting) a warning at most once a second.
@@ -65,13 +65,10 @@ class FileOutput : public DocumentOutput {
   }
 
  private:
-  const char *shownLocation() {
-    shown_ = gstglue::validUtf8(location_);
-    return shown_.c_str();
-  }
+  const char *shownLocation() const { return shown_.c_str(); }
 
   GstElement *element_;
-  std::string location_, shown_;
+  const std::string shown_;  // the location as messages show it (valid UTF-8)
   DocumentFile file_;
   std::uint64_t dropsReported_ = 0;
   gint64 dropWarning_ = 0;  // monotonic µs of the last warning about drops
