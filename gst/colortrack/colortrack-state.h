@@ -9,9 +9,8 @@
 #include <gst/gst.h>
 
 #include "colortrack/scratch_image.hpp"
-#include "colortrack/threshold_tracker.hpp"
-#include "colortrack/tracker.hpp"
 #include "analytics-meta.h"
+#include "colortrack-mode.h"
 #include "colortrack-settings.h"
 #include "gstcolortrack.h"
 #include "track-overlay.h"
@@ -20,26 +19,14 @@ GST_DEBUG_CATEGORY_EXTERN(gst_color_track_debug);
 
 namespace colortrack_gst {
 
-// The settings as one frame sees them, with the store's counters at that moment.
-struct Snapshot : Settings {
-  guint64 trackerGeneration = 0, templateGeneration = 0, blobsGeneration = 0, rangeGeneration = 0;
-};
-
 // What the streaming thread owns (and start()/stop(), which never run concurrently with it).
 struct State {
-  std::unique_ptr<colortrack::Tracker> templateTracker;
+  // Both modes live from start to stop (mode may change while streaming); each frame uses the one asked for.
+  std::unique_ptr<Mode> templateMode, thresholdMode;
   colortrack::ScratchImage frameCache;  // the frame view's converted pixels, kept from frame to frame
-  std::unique_ptr<colortrack::ThresholdTracker> thresholdTracker;
-  guint64 appliedTrackerGeneration = 0;
-  guint64 appliedTemplateGeneration = 0;
-  guint64 appliedBlobsGeneration = 0;
-  guint64 appliedRangeGeneration = 0;
-  std::string templateOrigin;    // "template-location 'x.png'" or "init-box '1,2,3,4'", for error messages
-  std::string templateLocation;  // the template-location last loaded (what a refused one reads back as)
   Trails trails;
   AnalyticsTracks analytics;  // GStreamer >= 1.24: the tracks in the analytics meta (first seen, gone)
   guint64 frameCount = 0;
-  bool warnedNoTemplate = false;
   bool capsChanged = false;
   // After a right click: nothing is tracked (no meta, no overlay) until a left click, init-box,
   // template-location (template mode) or hsv-lower/hsv-upper (threshold mode) gives a new target.

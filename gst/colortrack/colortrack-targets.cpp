@@ -3,25 +3,20 @@
 #include <cmath>
 #include <cstdio>
 
-#include "colortrack-modes.h"
+#include "colortrack-mode.h"
 #include "property-table.h"
-
-#define GST_CAT_DEFAULT gst_color_track_debug
 
 namespace colortrack_gst {
 
-void resetIfRequested(GstColorTrack *self, colortrack::FrameTracker &tracker) {
-  State &state = self->priv->state;
-  if (!state.capsChanged && !self->priv->resetRequested.exchange(false)) return;
-  state.capsChanged = false;
+void resetIfRequested(ElementSink &sink, colortrack::FrameTracker &tracker) {
+  if (!sink.takeResetRequest()) return;
   tracker.reset();
-  state.trails.clear();
+  sink.tracksReset();
 }
 
-void stopTracking(State &state, colortrack::FrameTracker &tracker) {
+void stopTracking(ElementSink &sink, colortrack::FrameTracker &tracker) {
   tracker.reset();
-  state.trails.clear();
-  state.idle = true;
+  sink.stopped();
 }
 
 // Clipped rather than moved, so it stays centred on what was clicked, only smaller, near an edge. A click on
@@ -41,20 +36,23 @@ std::string describeClick(const ClickRequest &click, const cv::Rect &box) {
   return text;
 }
 
-InitBoxFit checkInitBox(GstColorTrack *self, const cv::Rect &box, cv::Size frame, bool whileStreaming,
+void ignoreClickOutside(ElementSink &sink, const ClickRequest &click, cv::Size frame) {
+  char text[128];
+  std::snprintf(text, sizeof text, "click at %.1f,%.1f lies outside the %dx%d frame: ignored", click.point.x,
+                click.point.y, frame.width, frame.height);
+  sink.info(text);
+}
+
+InitBoxFit checkInitBox(ElementSink &sink, const cv::Rect &box, cv::Size frame, bool whileStreaming,
                         const std::string &text) {
   if ((box & cv::Rect(cv::Point(), frame)) == box) return InitBoxFit::Fits;
+  const std::string what = "Property 'init-box' '" + gstglue::validUtf8(text) + "' does not fit in the " +
+                           std::to_string(frame.width) + "x" + std::to_string(frame.height) + " frame";
   if (whileStreaming) {
-    GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS,
-                        ("Property 'init-box' '%s' does not fit in the %dx%d frame: ignored.", text.c_str(),
-                         frame.width, frame.height),
-                        (nullptr));
+    sink.warning(GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_SETTINGS, what + ": ignored.");
     return InitBoxFit::Ignored;
   }
-  GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                    ("Property 'init-box' '%s' does not fit in the %dx%d frame.",
-                     gstglue::validUtf8(text).c_str(), frame.width, frame.height),
-                    (nullptr));
+  sink.error(GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_SETTINGS, what + ".");
   return InitBoxFit::Error;
 }
 

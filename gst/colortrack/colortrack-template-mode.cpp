@@ -1,16 +1,19 @@
-// Template mode's preparation of a frame: the template tracker brought up to date with the properties and
-// the requests before it tracks.
+// Template mode: the template tracker, brought up to date with the properties and the requests before it
+// tracks a frame; the template file read at start and again when template-location changes.
 #include <exception>
+#include <optional>
 
 #include <gst/gst.h>
 
-#include "colortrack-modes.h"
+#include "colortrack/tracker.hpp"
+#include "colortrack-mode.h"
 #include "property-table.h"
-
-#define GST_CAT_DEFAULT gst_color_track_debug
 
 namespace colortrack_gst {
 
+namespace {
+
+// Reads a template file; on failure fills `why` and says whether the file exists at all.
 bool loadTemplateFile(const std::string &path, cv::Mat &bgr, cv::Mat &mask, std::string &why, bool &missing) {
   missing = !g_file_test(path.c_str(), G_FILE_TEST_EXISTS);
   // Said here, before OpenCV is asked: it would log its own "can't open/read file" warning first.
@@ -27,16 +30,6 @@ bool loadTemplateFile(const std::string &path, cv::Mat &bgr, cv::Mat &mask, std:
   }
 }
 
-namespace {
-
-// A new target: its trail starts over and the element leaves the idle state.
-void targetChanged(State &state, const std::string &origin) {
-  state.templateOrigin = origin;
-  state.trails.clear();
-  state.warnedNoTemplate = false;
-  state.idle = false;
-}
-
 // Why `image` cannot be the template of `frame`-sized video, or empty.
 std::string templateFitProblem(cv::Size image, cv::Size frame) {
   if (std::string problem = colortrack::templateSizeProblem(image); !problem.empty()) return problem;
@@ -46,20 +39,116 @@ std::string templateFitProblem(cv::Size image, cv::Size frame) {
          " frame";
 }
 
-// The property reads back as the template in use when the value set could not be used (unless it was set
-// again meanwhile).
-void restoreTemplateLocation(GstColorTrack *self, const std::string &refused, const std::string &inUse) {
-  GST_OBJECT_LOCK(self);
-  std::string &location = self->priv->store.settings.templateLocation;
-  const bool unchanged = location == refused;
-  if (unchanged) location = inUse;
-  GST_OBJECT_UNLOCK(self);
-  if (unchanged) g_object_notify(G_OBJECT(self), "template-location");
+std::string fromFile(const std::string &location) {
+  return "the image '" + location + "' (property 'template-location')";
+}
+
+class TemplateMode : public Mode {
+ public:
+  explicit TemplateMode(ElementSink sink) : sink_(sink) {}
+
+  bool start(const Snapshot &snapshot) override;
+  bool prepare(const Snapshot &snapshot, const Requests &requests, const FrameView &view) override;
+  Readiness readiness(cv::Size frame) override;
+  colortrack::FrameTracker &tracker() override { return *tracker_; }
+  bool listsTracks() const override { return false; }
+
+ private:
+  void targetChanged(const std::string &origin);
+  void reloadTemplate(const std::string &location, cv::Size frame);
+  void applyClick(const ClickRequest &click, int boxSize, const FrameView &view);
+
+  ElementSink sink_;
+  std::optional<colortrack::Tracker> tracker_;
+  guint64 appliedTrackerGeneration_ = 0, appliedTemplateGeneration_ = 0;
+  std::string templateOrigin_;    // "the image 'x.png' (...)" or "the box '1,2,3,4' (...)", for messages
+  std::string templateLocation_;  // the template-location last loaded (what a refused one reads back as)
+  bool warnedNoTemplate_ = false;
+};
+
+bool TemplateMode::start(const Snapshot &snapshot) {
+  tracker_.emplace(snapshot.tracker);
+  appliedTrackerGeneration_ = snapshot.trackerGeneration;
+  appliedTemplateGeneration_ = snapshot.templateGeneration;
+  // In threshold mode a template-location is not even read.
+  if (snapshot.mode != colortrack::TrackingMode::Template || snapshot.templateLocation.empty()) return true;
+  const std::string shown = gstglue::validUtf8(snapshot.templateLocation);
+  cv::Mat bgr, mask;
+  std::string why;
+  bool missing = false;
+  if (!loadTemplateFile(snapshot.templateLocation, bgr, mask, why, missing)) {
+    if (missing)
+      sink_.error(GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_NOT_FOUND,
+                  "Template file '" + shown + "' (property 'template-location') does not exist.",
+                  why.c_str());
+    else
+      sink_.error(GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_OPEN_READ,
+                  "Could not read the template image '" + shown + "' (property 'template-location'): " + why);
+    return false;
+  }
+  if (const std::string problem = colortrack::templateSizeProblem(bgr.size()); !problem.empty()) {
+    sink_.error(
+        GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_SETTINGS,
+        "Cannot use the template image '" + shown + "' (property 'template-location'): " + problem + ".");
+    return false;
+  }
+  tracker_->setTemplate(bgr, mask);
+  templateOrigin_ = fromFile(snapshot.templateLocation);
+  templateLocation_ = snapshot.templateLocation;
+  return true;
+}
+
+bool TemplateMode::prepare(const Snapshot &snapshot, const Requests &requests, const FrameView &view) {
+  if (snapshot.trackerGeneration != appliedTrackerGeneration_) {
+    tracker_->setSettings(snapshot.tracker);
+    appliedTrackerGeneration_ = snapshot.trackerGeneration;
+  }
+  if (snapshot.templateGeneration != appliedTemplateGeneration_) {
+    appliedTemplateGeneration_ = snapshot.templateGeneration;
+    if (!snapshot.templateLocation.empty()) reloadTemplate(snapshot.templateLocation, view.size());
+  }
+  resetIfRequested(sink_, *tracker_);
+  if (requests.initBox) {
+    const InitBoxFit fit =
+        checkInitBox(sink_, *requests.initBox, view.size(), requests.initBoxWhileStreaming, snapshot.initBox);
+    if (fit == InitBoxFit::Error) return false;
+    if (fit == InitBoxFit::Fits) {
+      tracker_->setTemplateFromBox(view, *requests.initBox);
+      targetChanged("the box '" + snapshot.initBox + "' (property 'init-box')");
+    }
+  }
+  if (requests.click) applyClick(*requests.click, snapshot.clickBoxSize, view);
+  return true;
+}
+
+Mode::Readiness TemplateMode::readiness(cv::Size frame) {
+  if (!tracker_->hasTemplate()) {
+    if (!warnedNoTemplate_) {
+      warnedNoTemplate_ = true;
+      sink_.warning(GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_SETTINGS,
+                    "No template: set 'template-location' or 'init-box', or click the object in the video "
+                    "window. Passing video through.");
+    }
+    return Readiness::Waiting;
+  }
+  const cv::Size size = tracker_->templateSize();
+  if (size.width <= frame.width && size.height <= frame.height) return Readiness::Ready;
+  sink_.error(GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_SETTINGS,
+              "The template from " + gstglue::validUtf8(templateOrigin_) + " (" + std::to_string(size.width) +
+                  "x" + std::to_string(size.height) + ") is larger than the " + std::to_string(frame.width) +
+                  "x" + std::to_string(frame.height) + " frame.");
+  return Readiness::Error;
+}
+
+void TemplateMode::targetChanged(const std::string &origin) {
+  templateOrigin_ = origin;
+  warnedNoTemplate_ = false;
+  sink_.targetChanged();
 }
 
 // A template-location set while streaming: read now; a file that cannot be read, or an image that cannot be
 // the template of this video, keeps the previous template and the previous value.
-void reloadTemplate(GstColorTrack *self, State &state, const std::string &location, cv::Size frame) {
+void TemplateMode::reloadTemplate(const std::string &location, cv::Size frame) {
   cv::Mat bgr, mask;
   std::string why;
   bool missing = false;
@@ -67,92 +156,38 @@ void reloadTemplate(GstColorTrack *self, State &state, const std::string &locati
     why = templateFitProblem(bgr.size(), frame);
     if (why.empty()) {
       try {
-        state.templateTracker->setTemplate(bgr, mask);
-        state.templateLocation = location;
-        targetChanged(state, "the image '" + location + "' (property 'template-location')");
+        tracker_->setTemplate(bgr, mask);
+        templateLocation_ = location;
+        targetChanged(fromFile(location));
         return;
       } catch (const std::exception &e) {
         why = e.what();
       }
     }
   }
-  GST_ELEMENT_WARNING(self, RESOURCE, OPEN_READ,
-                      ("Could not use the template image '%s' (property 'template-location'): %s. "
-                       "Keeping the previous template.",
-                       gstglue::validUtf8(location).c_str(), gstglue::validUtf8(why).c_str()),
-                      (missing ? "the file does not exist" : nullptr));
-  restoreTemplateLocation(self, location, state.templateLocation);
+  sink_.warning(GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_OPEN_READ,
+                "Could not use the template image '" + gstglue::validUtf8(location) +
+                    "' (property 'template-location'): " + gstglue::validUtf8(why) +
+                    ". Keeping the previous template.",
+                missing ? "the file does not exist" : nullptr);
+  sink_.restoreTemplateLocation(location, templateLocation_);
 }
 
 // A left click takes the template from the box around it and starts tracking there, exactly as init-box
 // does; a right click stops until a new target is given.
-void applyClick(GstColorTrack *self, State &state, const ClickRequest &click, int boxSize,
-                const colortrack_gst::FrameView &view) {
-  if (click.kind == ClickRequest::Kind::Stop) return stopTracking(state, *state.templateTracker);
+void TemplateMode::applyClick(const ClickRequest &click, int boxSize, const FrameView &view) {
+  if (click.kind == ClickRequest::Kind::Stop) return stopTracking(sink_, *tracker_);
   const cv::Rect box = boxAround(click.point, boxSize, view.size());
-  if (box.empty()) {
-    GST_INFO_OBJECT(self, "click at %.1f,%.1f lies outside the %dx%d frame: ignored", click.point.x,
-                    click.point.y, view.size().width, view.size().height);
-    return;
-  }
-  state.templateTracker->setTemplateFromBox(view, box);
-  targetChanged(state, describeClick(click, box));
-  GST_INFO_OBJECT(self, "template from %s", state.templateOrigin.c_str());
+  if (box.empty()) return ignoreClickOutside(sink_, click, view.size());
+  tracker_->setTemplateFromBox(view, box);
+  targetChanged(describeClick(click, box));
+  sink_.info("template from " + templateOrigin_);
 }
 
 }  // namespace
 
-bool prepareTemplateFrame(GstColorTrack *self, const Snapshot &snapshot, const Requests &requests,
-                          const colortrack_gst::FrameView &view) {
-  State &state = self->priv->state;
-  colortrack::Tracker &tracker = *state.templateTracker;
-
-  if (snapshot.trackerGeneration != state.appliedTrackerGeneration) {
-    tracker.setSettings(snapshot.tracker);
-    state.appliedTrackerGeneration = snapshot.trackerGeneration;
-  }
-  if (snapshot.templateGeneration != state.appliedTemplateGeneration) {
-    state.appliedTemplateGeneration = snapshot.templateGeneration;
-    if (!snapshot.templateLocation.empty())
-      reloadTemplate(self, state, snapshot.templateLocation, view.size());
-  }
-  resetIfRequested(self, tracker);
-  if (requests.initBox) {
-    const InitBoxFit fit =
-        checkInitBox(self, *requests.initBox, view.size(), requests.initBoxWhileStreaming, snapshot.initBox);
-    if (fit == InitBoxFit::Error) return false;
-    if (fit == InitBoxFit::Fits) {
-      tracker.setTemplateFromBox(view, *requests.initBox);
-      targetChanged(state, "the box '" + snapshot.initBox + "' (property 'init-box')");
-    }
-  }
-  if (requests.click) applyClick(self, state, *requests.click, snapshot.clickBoxSize, view);
-  return true;
-}
-
-TemplateReadiness templateReadiness(GstColorTrack *self, cv::Size frame) {
-  State &state = self->priv->state;
-  const colortrack::Tracker &tracker = *state.templateTracker;
-  if (!tracker.hasTemplate()) {
-    if (!state.warnedNoTemplate) {
-      state.warnedNoTemplate = true;
-      GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS,
-                          ("No template: set 'template-location' or 'init-box', or click the object in the "
-                           "video window. Passing video through."),
-                          (nullptr));
-    }
-    return TemplateReadiness::NoTemplate;
-  }
-  const cv::Size size = tracker.templateSize();
-  if (size.width > frame.width || size.height > frame.height) {
-    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                      ("The template from %s (%dx%d) is larger than the %dx%d frame.",
-                       gstglue::validUtf8(state.templateOrigin).c_str(), size.width, size.height, frame.width,
-                       frame.height),
-                      (nullptr));
-    return TemplateReadiness::Error;
-  }
-  return TemplateReadiness::Ready;
+std::unique_ptr<Mode> makeTemplateMode(ElementSink sink) {
+  return std::make_unique<TemplateMode>(sink);
 }
 
 }  // namespace colortrack_gst

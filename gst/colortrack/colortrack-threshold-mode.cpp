@@ -1,13 +1,12 @@
-// Threshold mode's preparation of a frame: the threshold tracker brought up to date with the properties, and
+// Threshold mode: the threshold tracker, brought up to date with the properties before it tracks a frame, and
 // a colour range learnt from an init-box or a click.
 #include <algorithm>
+#include <optional>
 
 #include <gst/gst.h>
 
 #include "colortrack/blobs.hpp"
-#include "colortrack-modes.h"
-
-#define GST_CAT_DEFAULT gst_color_track_debug
+#include "colortrack-mode.h"
 
 namespace colortrack_gst {
 
@@ -21,80 +20,87 @@ colortrack::MultiTrackerSettings multiTrackerSettings(const Settings &settings) 
   return m;
 }
 
+class ThresholdMode : public Mode {
+ public:
+  explicit ThresholdMode(ElementSink sink) : sink_(sink) {}
+
+  bool start(const Snapshot &snapshot) override {
+    tracker_.emplace(snapshot.blobs);
+    appliedBlobsGeneration_ = snapshot.blobsGeneration;
+    appliedRangeGeneration_ = snapshot.rangeGeneration;
+    return true;
+  }
+  bool prepare(const Snapshot &snapshot, const Requests &requests, const FrameView &view) override;
+  Readiness readiness(cv::Size) override { return Readiness::Ready; }
+  colortrack::FrameTracker &tracker() override { return *tracker_; }
+  bool listsTracks() const override { return true; }
+
+ private:
+  void learnRange(const FrameView &view, const cv::Rect &box, const std::string &origin);
+  void applyClick(const ClickRequest &click, int boxSize, const FrameView &view);
+
+  ElementSink sink_;
+  std::optional<colortrack::ThresholdTracker> tracker_;
+  guint64 appliedBlobsGeneration_ = 0, appliedRangeGeneration_ = 0;
+};
+
+bool ThresholdMode::prepare(const Snapshot &snapshot, const Requests &requests, const FrameView &view) {
+  const cv::Size size = view.size();
+  if (snapshot.blobs.minArea > size.area()) {
+    sink_.error(GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_SETTINGS,
+                "Property 'min-area' " + std::to_string(snapshot.blobs.minArea) + " is larger than the " +
+                    std::to_string(size.width) + "x" + std::to_string(size.height) + " frame (" +
+                    std::to_string(size.area()) + " pixels): nothing can be found.");
+    return false;
+  }
+  if (snapshot.blobsGeneration != appliedBlobsGeneration_) {
+    tracker_->setBlobSettings(snapshot.blobs);
+    appliedBlobsGeneration_ = snapshot.blobsGeneration;
+  }
+  if (snapshot.rangeGeneration != appliedRangeGeneration_) {
+    appliedRangeGeneration_ = snapshot.rangeGeneration;
+    sink_.resumed();  // a new range is a new target for the tracks there are
+  }
+  tracker_->setTrackSettings(multiTrackerSettings(snapshot));
+  resetIfRequested(sink_, *tracker_);
+  if (requests.initBox) {
+    const InitBoxFit fit =
+        checkInitBox(sink_, *requests.initBox, size, requests.initBoxWhileStreaming, snapshot.initBox);
+    if (fit == InitBoxFit::Error) return false;
+    if (fit == InitBoxFit::Fits) learnRange(view, *requests.initBox, "init-box " + snapshot.initBox);
+  }
+  if (requests.click) applyClick(*requests.click, snapshot.clickBoxSize, view);
+  return true;
+}
+
 // Learns hsv-lower/hsv-upper from the pixels of `box` and starts over with that range. This is the one place
 // the streaming thread writes a property: the properties then report the range, so it can be reused in a
 // launch line.
-void learnRange(GstColorTrack *self, const colortrack_gst::FrameView &view, const cv::Rect &box,
-                const std::string &origin) {
-  State &state = self->priv->state;
+void ThresholdMode::learnRange(const FrameView &view, const cv::Rect &box, const std::string &origin) {
   const colortrack::HsvRange learnt = colortrack::learnRange(view, box);
-  GST_OBJECT_LOCK(self);
-  PropertyStore &store = self->priv->store;
-  store.settings.blobs.range = learnt;
-  store.settings.hsvLower = colortrack::formatHsv(learnt.lower);
-  store.settings.hsvUpper = colortrack::formatHsv(learnt.upper);
-  const colortrack::BlobSettings blobs = store.settings.blobs;
-  state.appliedBlobsGeneration = ++store.versions[kBlobsVersion];
-  GST_OBJECT_UNLOCK(self);
-  state.thresholdTracker->setBlobSettings(blobs);
-  state.thresholdTracker->reset();
-  state.trails.clear();
-  state.idle = false;
-  GST_INFO_OBJECT(self, "learnt hsv-lower %s hsv-upper %s from %s",
-                  colortrack::formatHsv(learnt.lower).c_str(), colortrack::formatHsv(learnt.upper).c_str(),
-                  origin.c_str());
-  g_object_notify(G_OBJECT(self), "hsv-lower");
-  g_object_notify(G_OBJECT(self), "hsv-upper");
+  tracker_->setBlobSettings(sink_.writeLearntRange(learnt, appliedBlobsGeneration_));
+  tracker_->reset();
+  sink_.targetChanged();
+  sink_.info("learnt hsv-lower " + colortrack::formatHsv(learnt.lower) + " hsv-upper " +
+             colortrack::formatHsv(learnt.upper) + " from " + origin);
 }
 
 // A left click learns the colour around it; a right click stops until a new target is given.
-void applyClick(GstColorTrack *self, State &state, const ClickRequest &click, int boxSize,
-                const colortrack_gst::FrameView &view) {
-  if (click.kind == ClickRequest::Kind::Stop) return stopTracking(state, *state.thresholdTracker);
+void ThresholdMode::applyClick(const ClickRequest &click, int boxSize, const FrameView &view) {
+  if (click.kind == ClickRequest::Kind::Stop) return stopTracking(sink_, *tracker_);
   // The colour is sampled from the middle half of the box: a click lands near an object's centre, and a
   // sample that reached past a small object's edge would learn the background's colours too.
   const cv::Rect sample = boxAround(click.point, std::max(1, boxSize / 2), view.size());
   if (sample.empty())
-    GST_INFO_OBJECT(self, "click at %.1f,%.1f lies outside the %dx%d frame: ignored", click.point.x,
-                    click.point.y, view.size().width, view.size().height);
+    ignoreClickOutside(sink_, click, view.size());
   else
-    learnRange(self, view, sample, describeClick(click, sample));
+    learnRange(view, sample, describeClick(click, sample));
 }
 
 }  // namespace
 
-bool prepareThresholdFrame(GstColorTrack *self, const Snapshot &snapshot, const Requests &requests,
-                           const colortrack_gst::FrameView &view) {
-  State &state = self->priv->state;
-  colortrack::ThresholdTracker &tracker = *state.thresholdTracker;
-  const cv::Size size = view.size();
-
-  if (snapshot.blobs.minArea > size.area()) {
-    GST_ELEMENT_ERROR(
-        self, RESOURCE, SETTINGS,
-        ("Property 'min-area' %d is larger than the %dx%d frame (%d pixels): nothing can be found.",
-         snapshot.blobs.minArea, size.width, size.height, size.area()),
-        (nullptr));
-    return false;
-  }
-  if (snapshot.blobsGeneration != state.appliedBlobsGeneration) {
-    tracker.setBlobSettings(snapshot.blobs);
-    state.appliedBlobsGeneration = snapshot.blobsGeneration;
-  }
-  if (snapshot.rangeGeneration != state.appliedRangeGeneration) {
-    state.appliedRangeGeneration = snapshot.rangeGeneration;
-    state.idle = false;  // a new range is a new target
-  }
-  tracker.setTrackSettings(multiTrackerSettings(snapshot));
-  resetIfRequested(self, tracker);
-  if (requests.initBox) {
-    const InitBoxFit fit =
-        checkInitBox(self, *requests.initBox, size, requests.initBoxWhileStreaming, snapshot.initBox);
-    if (fit == InitBoxFit::Error) return false;
-    if (fit == InitBoxFit::Fits) learnRange(self, view, *requests.initBox, "init-box " + snapshot.initBox);
-  }
-  if (requests.click) applyClick(self, state, *requests.click, snapshot.clickBoxSize, view);
-  return true;
+std::unique_ptr<Mode> makeThresholdMode(ElementSink sink) {
+  return std::make_unique<ThresholdMode>(sink);
 }
 
 }  // namespace colortrack_gst

@@ -64,7 +64,7 @@
 #include "colortrack/frame_tracker.hpp"
 #include "colortrack/tracker.hpp"
 #include "colortrack-meta.h"
-#include "colortrack-modes.h"
+#include "colortrack-mode.h"
 #include "colortrack-settings.h"
 #include "colortrack-state.h"
 #include "enum-types.h"
@@ -223,42 +223,11 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
   try {
     state = State{};
     colortrack::startWorkerThreads();  // here rather than on the first frame
-    state.templateTracker = std::make_unique<colortrack::Tracker>(snapshot.tracker);
-    state.appliedTrackerGeneration = snapshot.trackerGeneration;
-    state.appliedTemplateGeneration = snapshot.templateGeneration;
-    state.thresholdTracker = std::make_unique<colortrack::ThresholdTracker>(snapshot.blobs);
-    state.appliedBlobsGeneration = snapshot.blobsGeneration;
-    state.appliedRangeGeneration = snapshot.rangeGeneration;
-    // Threshold mode has no template: a template-location is not even read.
-    if (snapshot.mode == colortrack::TrackingMode::Template && !snapshot.templateLocation.empty()) {
-      cv::Mat bgr, mask;
-      std::string why;
-      bool missing = false;
-      if (!colortrack_gst::loadTemplateFile(snapshot.templateLocation, bgr, mask, why, missing)) {
-        if (missing)
-          GST_ELEMENT_ERROR(self, RESOURCE, NOT_FOUND,
-                            ("Template file '%s' (property 'template-location') does not exist.",
-                             gstglue::validUtf8(snapshot.templateLocation).c_str()),
-                            ("%s", why.c_str()));
-        else
-          GST_ELEMENT_ERROR(self, RESOURCE, OPEN_READ,
-                            ("Could not read the template image '%s' (property 'template-location'): %s",
-                             gstglue::validUtf8(snapshot.templateLocation).c_str(), why.c_str()),
-                            (nullptr));
-        state = State{};
-        return FALSE;
-      }
-      if (const std::string problem = colortrack::templateSizeProblem(bgr.size()); !problem.empty()) {
-        GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                          ("Cannot use the template image '%s' (property 'template-location'): %s.",
-                           gstglue::validUtf8(snapshot.templateLocation).c_str(), problem.c_str()),
-                          (nullptr));
-        state = State{};
-        return FALSE;
-      }
-      state.templateTracker->setTemplate(bgr, mask);
-      state.templateOrigin = "the image '" + snapshot.templateLocation + "' (property 'template-location')";
-      state.templateLocation = snapshot.templateLocation;
+    state.templateMode = colortrack_gst::makeTemplateMode(colortrack_gst::ElementSink(self));
+    state.thresholdMode = colortrack_gst::makeThresholdMode(colortrack_gst::ElementSink(self));
+    if (!state.templateMode->start(snapshot) || !state.thresholdMode->start(snapshot)) {
+      state = State{};
+      return FALSE;
     }
   } catch (const std::exception &e) {
     GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("Could not set up the tracker: %s", e.what()), (nullptr));
@@ -402,14 +371,13 @@ static GstFlowReturn track_frame(GstColorTrack *self, GstVideoFrame *frame, cons
                                  const colortrack_gst::Requests &requests, guint64 frameNumber, double dt) {
   State &state = stateOf(self);
   const colortrack_gst::FrameView view(frame, &state.frameCache);
-  const bool threshold = snapshot.mode == colortrack::TrackingMode::Threshold;
-  const bool prepared = threshold ? colortrack_gst::prepareThresholdFrame(self, snapshot, requests, view)
-                                  : colortrack_gst::prepareTemplateFrame(self, snapshot, requests, view);
-  if (!prepared) return GST_FLOW_ERROR;
+  colortrack_gst::Mode &mode =
+      snapshot.mode == colortrack::TrackingMode::Threshold ? *state.thresholdMode : *state.templateMode;
+  if (!mode.prepare(snapshot, requests, view)) return GST_FLOW_ERROR;
 
   // No track, but messages still come for every frame (an application waiting for a click sees why).
   colortrack::FrameReport empty;
-  empty.listsTracks = threshold;
+  empty.listsTracks = mode.listsTracks();
   if (state.idle) {
     state.analytics.attach(frame->buffer, empty, view.size());  // the tracks stopped by the click: lost
     if (snapshot.postMessages)
@@ -417,22 +385,18 @@ static GstFlowReturn track_frame(GstColorTrack *self, GstVideoFrame *frame, cons
                                        frameNumber, empty, COLORTRACK_STATE_IDLE);
     return GST_FLOW_OK;
   }
-  if (!threshold) {
-    switch (colortrack_gst::templateReadiness(self, view.size())) {
-      case colortrack_gst::TemplateReadiness::Ready:
-        break;
-      case colortrack_gst::TemplateReadiness::NoTemplate:
-        if (snapshot.postMessages)
-          colortrack_gst::postTrackMessage(GST_ELEMENT(self), GST_BASE_TRANSFORM(self)->segment,
-                                           frame->buffer, frameNumber, empty);
-        return GST_FLOW_OK;
-      case colortrack_gst::TemplateReadiness::Error:
-        return GST_FLOW_ERROR;
-    }
+  switch (mode.readiness(view.size())) {
+    case colortrack_gst::Mode::Readiness::Ready:
+      break;
+    case colortrack_gst::Mode::Readiness::Waiting:
+      if (snapshot.postMessages)
+        colortrack_gst::postTrackMessage(GST_ELEMENT(self), GST_BASE_TRANSFORM(self)->segment, frame->buffer,
+                                         frameNumber, empty);
+      return GST_FLOW_OK;
+    case colortrack_gst::Mode::Readiness::Error:
+      return GST_FLOW_ERROR;
   }
-  colortrack::FrameTracker &tracker =
-      threshold ? static_cast<colortrack::FrameTracker &>(*state.thresholdTracker) : *state.templateTracker;
-  report_frame(self, frame, snapshot, frameNumber, tracker.track(view, dt));
+  report_frame(self, frame, snapshot, frameNumber, mode.tracker().track(view, dt));
   return GST_FLOW_OK;
 }
 
@@ -442,7 +406,7 @@ static GstFlowReturn track_mapped_frame(GstColorTrack *self, GstVideoFrame *fram
   const guint64 frameNumber = state.frameCount++;
   const double dt = frame_step(self, GST_VIDEO_FILTER(self), frame->buffer);
   try {
-    if (!state.templateTracker || !state.thresholdTracker) {
+    if (!state.templateMode || !state.thresholdMode) {
       GST_ELEMENT_ERROR(self, CORE, FAILED, ("colortrack was not started."), (nullptr));
       return GST_FLOW_ERROR;
     }

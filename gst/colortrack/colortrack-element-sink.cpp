@@ -1,0 +1,83 @@
+// ElementSink: the modes' one way into the element's private data.
+#include "colortrack-element-sink.h"
+
+#include "colortrack-state.h"
+
+#define GST_CAT_DEFAULT gst_color_track_debug
+
+namespace colortrack_gst {
+
+namespace {
+
+void post(GstColorTrack *element, GstMessageType type, GQuark domain, gint code, const std::string &text,
+          const char *debug) {
+  gst_element_message_full(GST_ELEMENT(element), type, domain, code, g_strdup(text.c_str()),
+                           debug ? g_strdup(debug) : nullptr, __FILE__, GST_FUNCTION, __LINE__);
+}
+
+}  // namespace
+
+void ElementSink::error(GQuark domain, gint code, const std::string &text, const char *debug) const {
+  post(element_, GST_MESSAGE_ERROR, domain, code, text, debug);
+}
+
+void ElementSink::warning(GQuark domain, gint code, const std::string &text, const char *debug) const {
+  post(element_, GST_MESSAGE_WARNING, domain, code, text, debug);
+}
+
+void ElementSink::info(const std::string &text) const {
+  GST_INFO_OBJECT(element_, "%s", text.c_str());
+}
+
+void ElementSink::targetChanged() const {
+  State &state = element_->priv->state;
+  state.trails.clear();
+  state.idle = false;
+}
+
+void ElementSink::resumed() const {
+  element_->priv->state.idle = false;
+}
+
+void ElementSink::stopped() const {
+  State &state = element_->priv->state;
+  state.trails.clear();
+  state.idle = true;
+}
+
+void ElementSink::tracksReset() const {
+  element_->priv->state.trails.clear();
+}
+
+bool ElementSink::takeResetRequest() const {
+  State &state = element_->priv->state;
+  const bool reset = element_->priv->resetRequested.exchange(false) || state.capsChanged;
+  state.capsChanged = false;
+  return reset;
+}
+
+colortrack::BlobSettings ElementSink::writeLearntRange(const colortrack::HsvRange &range,
+                                                       guint64 &generation) const {
+  GST_OBJECT_LOCK(element_);
+  PropertyStore &store = element_->priv->store;
+  store.settings.blobs.range = range;
+  store.settings.hsvLower = colortrack::formatHsv(range.lower);
+  store.settings.hsvUpper = colortrack::formatHsv(range.upper);
+  const colortrack::BlobSettings blobs = store.settings.blobs;
+  generation = ++store.versions[kBlobsVersion];
+  GST_OBJECT_UNLOCK(element_);
+  g_object_notify(G_OBJECT(element_), "hsv-lower");
+  g_object_notify(G_OBJECT(element_), "hsv-upper");
+  return blobs;
+}
+
+void ElementSink::restoreTemplateLocation(const std::string &refused, const std::string &inUse) const {
+  GST_OBJECT_LOCK(element_);
+  std::string &location = element_->priv->store.settings.templateLocation;
+  const bool unchanged = location == refused;
+  if (unchanged) location = inUse;
+  GST_OBJECT_UNLOCK(element_);
+  if (unchanged) g_object_notify(G_OBJECT(element_), "template-location");
+}
+
+}  // namespace colortrack_gst
