@@ -75,14 +75,11 @@
 
 #include "gstrobotctl.h"
 #include "property-table.h"
-#include "colortrack/command_writer.hpp"
 #include "enum-types.h"
-#include "colortrack/robot_port.hpp"
 #include "robotctl-listener.h"
 #include "robotctl-output.h"
 #include "robotctl-settings.h"
 #include "track-params.h"
-#include "colortrack/udp_port.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -92,7 +89,9 @@
 
 #include <gst/video/video.h>
 
+#include "colortrack/command_writer.hpp"
 #include "colortrack/controller.hpp"
+#include "colortrack/port_choice.hpp"
 #include "colortrack/protocol.hpp"
 
 GST_DEBUG_CATEGORY_STATIC(gst_robot_ctl_debug);
@@ -203,22 +202,16 @@ namespace {
 
 // The port the settings name, opened; null (with an error posted) when it cannot be opened.
 std::unique_ptr<robotctl::Port> openPort(GstRobotCtl *self, const robotctl::Settings &s) {
-  std::unique_ptr<robotctl::Port> port;
-  const bool udp = s.device.empty() && robotctl::isUdpLocation(s.location);
-  if (!s.device.empty())
-    port = std::make_unique<robotctl::SerialPort>(robotctl::toSerialConfig(s));
-  else if (udp)
-    port = std::make_unique<robotctl::UdpPort>(s.location);
-  else
-    port = std::make_unique<robotctl::FilePort>(s.location);
+  const robotctl::PortKind kind = robotctl::portKind(s.device, s.location);
+  std::unique_ptr<robotctl::Port> port = robotctl::makePort(s.device, robotctl::toSerialConfig(s), s.location);
   std::string why;
   if (!port->open(why)) {
-    if (udp)
+    if (kind == robotctl::PortKind::Udp)
       GST_ELEMENT_ERROR(self, RESOURCE, OPEN_WRITE,
                         ("Cannot send to '%s' (property 'location'): %s",
                          gstglue::validUtf8(s.location).c_str(), gstglue::validUtf8(why).c_str()),
                         (nullptr));
-    else if (!s.device.empty())
+    else if (kind == robotctl::PortKind::Serial)
       GST_ELEMENT_ERROR(self, RESOURCE, OPEN_WRITE,
                         ("Could not open serial port '%s' (property 'device'): %s",
                          gstglue::validUtf8(s.device).c_str(), gstglue::validUtf8(why).c_str()),

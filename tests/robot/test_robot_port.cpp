@@ -1,6 +1,6 @@
 // The ports robotctl writes through (robot/src/robot_port.cpp), without the element: a regular file, a FIFO
-// with and without a reader, a file that changes kind between opens, a directory, and a serial port that is
-// not there.
+// with and without a reader, a file that changes kind between opens, a directory, a serial port that is not
+// there, and which port the settings name.
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "colortrack/port_choice.hpp"
 #include "colortrack/robot_port.hpp"
 
 namespace {
@@ -137,6 +138,22 @@ TEST(SerialPort, AMissingDeviceIsNamedInTheError) {
   EXPECT_EQ(why, "no such serial port");
   EXPECT_FALSE(port.isOpen());
   EXPECT_NE(port.describe().find("/dev/ttyNO-SUCH-ADAPTER"), std::string::npos);
+}
+
+// The device property wins over location; a udp:// location is a UDP destination; anything else a file.
+TEST(PortChoice, DeviceThenUdpThenFile) {
+  using robotctl::PortKind;
+  EXPECT_EQ(robotctl::portKind("/dev/ttyUSB0", "udp://127.0.0.1:14550"), PortKind::Serial);
+  EXPECT_EQ(robotctl::portKind("", "udp://127.0.0.1:14550"), PortKind::Udp);
+  EXPECT_EQ(robotctl::portKind("", "/tmp/robot.txt"), PortKind::File);
+  EXPECT_EQ(robotctl::portKind("", "-"), PortKind::File);
+  const auto file = robotctl::makePort("", SerialConfig{}, "-");
+  EXPECT_NE(file->describe().find("stdout"), std::string::npos);
+  SerialConfig serial;
+  serial.device = "/dev/ttyUSB0";
+  const auto port = robotctl::makePort("/dev/ttyUSB0", serial, "");
+  EXPECT_NE(port->describe().find("serial port '/dev/ttyUSB0'"), std::string::npos);
+  EXPECT_FALSE(port->isOpen());
 }
 
 }  // namespace
