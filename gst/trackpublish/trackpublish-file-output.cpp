@@ -25,13 +25,7 @@ class FileOutput : public DocumentOutput {
   // A write that failed is an error (once the writer thread has seen it: a document or a few later); drops
   // (the file did not keep up with max-queued documents waiting) a warning at most once a second.
   GstFlowReturn publish(const std::string &document) override {
-    const std::string failure = file_.failure();
-    if (!failure.empty()) {
-      GST_ELEMENT_ERROR(
-          element_, RESOURCE, WRITE,
-          ("Could not write to '%s' (property 'location'): %s", shownLocation(), failure.c_str()), (nullptr));
-      return GST_FLOW_ERROR;
-    }
+    if (postFailure()) return GST_FLOW_ERROR;
     const std::uint64_t dropped = file_.droppedCount();
     const gint64 now = g_get_monotonic_time();
     if (dropped > dropsReported_ && now - dropWarning_ >= G_USEC_PER_SEC) {
@@ -48,8 +42,10 @@ class FileOutput : public DocumentOutput {
     return GST_FLOW_OK;
   }
 
+  // A write that failed after the last document (the stream ends before another publish() could say it) is
+  // the error here.
   void drainAtEos(milliseconds drain) override {
-    if (file_.waitWritten(drain)) return;
+    if (file_.waitWritten(drain) || postFailure()) return;
     GST_ELEMENT_WARNING(element_, RESOURCE, WRITE,
                         ("%zu documents not yet written to '%s' (property 'location') at EOS after "
                          "drain-timeout.",
@@ -67,10 +63,23 @@ class FileOutput : public DocumentOutput {
  private:
   const char *shownLocation() const { return shown_.c_str(); }
 
+  // Posts the writer thread's failure, once; true when there is one.
+  bool postFailure() {
+    const std::string failure = file_.failure();
+    if (failure.empty()) return false;
+    if (!failurePosted_)
+      GST_ELEMENT_ERROR(
+          element_, RESOURCE, WRITE,
+          ("Could not write to '%s' (property 'location'): %s", shownLocation(), failure.c_str()), (nullptr));
+    failurePosted_ = true;
+    return true;
+  }
+
   GstElement *element_;
   const std::string shown_;  // the location as messages show it (valid UTF-8)
   DocumentFile file_;
   std::uint64_t dropsReported_ = 0;
+  bool failurePosted_ = false;
   gint64 dropWarning_ = 0;  // monotonic µs of the last warning about drops
 };
 

@@ -73,7 +73,7 @@ GST_END_TEST;
 // ten times the pipe's 64 KiB) all pass and EOS arrives; with max-queued=100 the oldest are dropped, in a
 // warning naming the location, and EOS says what is not written after drain-timeout. (Written on the
 // streaming thread, the stream stopped once the pipe was full, and EOS never came.) A file that fails
-// (/dev/full) is an error naming the location.
+// (/dev/full) is an error naming the location, also when the failure comes after the last document.
 GST_START_TEST(test_slow_reader_never_holds_the_stream) {
   gchar *dir = g_dir_make_tmp("trackpublish-XXXXXX", nullptr);
   fail_unless(dir != nullptr);
@@ -99,9 +99,11 @@ GST_START_TEST(test_slow_reader_never_holds_the_stream) {
   g_rmdir(dir);
   g_free(dir);
   if (g_file_test("/dev/full", G_FILE_TEST_EXISTS)) {
+    // One document: its write fails on the writer thread after the only publish, so the error must come
+    // with EOS (it was lost there, once in a loaded run, when 20 documents had all been queued first).
     Publisher p("location=/dev/full");
     fail_unless(p.play() != GST_STATE_CHANGE_FAILURE);
-    for (int i = 0; i < 20; ++i) p.push(i);
+    p.push(0);
     p.end();
     const auto deadline = Clock::now() + std::chrono::seconds(10);
     while (p.messages(GST_MESSAGE_ERROR).empty() && Clock::now() < deadline)
