@@ -435,7 +435,11 @@ GST_START_TEST(test_trackpublish_under_property_flips) {
   g_close(fd, nullptr);
   GstElement *element = gst_element_factory_make("trackpublish", nullptr);
   fail_unless(element != nullptr);
-  g_object_set(element, "location", path, "add-empty-results", TRUE, nullptr);
+  // Frames come as fast as the harness can push them, and the flipper holds the object lock often: on a
+  // loaded machine the file's writer thread falls behind (a "does not keep up" drop failed CI once). This
+  // test is about property flips, so the queue holds every document and the stop waits for all of them.
+  g_object_set(element, "location", path, "add-empty-results", TRUE, "max-queued", 10000000u, "drain-timeout",
+               60000u, nullptr);
   GstBus *bus = gst_bus_new();
   GstHarness *h = harnessAround(element, bus, "src", videoCaps("GRAY8", {320, 240}));
   gst_object_unref(element);
