@@ -55,6 +55,11 @@ void KalmanTrack::start(const cv::Rect2d &box, const KalmanParams &params) {
   unverifiedFrames = 0;
 }
 
+void KalmanTrack::startUnconfirmed(const cv::Rect2d &box, const KalmanParams &params) {
+  start(box, params);
+  state = TrackState::Coasting;
+}
+
 void KalmanTrack::update(const cv::Rect2d &box) {
   measureShape(box, kAspectRate);
   kalman.correct(box.x + box.width / 2, box.y + box.height / 2, lastScale);

@@ -2,6 +2,7 @@
 // filter over orientation cells fused with the colour likelihood (FusedDetector), judged by its
 // peak-to-sidelobe confidence against the track's usual one, with re-detection over the whole frame.
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <vector>
 
@@ -32,10 +33,10 @@ constexpr double kConfidenceRate = 0.1;
 constexpr double kConfidentPsr = 12;
 constexpr int kConfidenceSkip = 2;
 constexpr int kConfidenceWarmUp = 5;
-// Re-detection (Redetector) runs every kRedetectPeriod frames while coasting or lost. With one size per search
-// and the colour pre-check, every frame still made lost frames 1.5x dearer and missed test_reacquisition.cpp
-// (a wrong place taken first); every third missed it too. SRE means are the same for 1 and 2 (core harness:
-// tune 0.571-0.573, confirm 0.442-0.446).
+// Re-detection (Redetector) runs every kRedetectPeriod frames while coasting or lost. With one size per
+// search and the colour pre-check, every frame still made lost frames 1.5x dearer and missed
+// test_reacquisition.cpp (a wrong place taken first); every third missed it too. SRE means are the same for 1
+// and 2 (core harness: tune 0.571-0.573, confirm 0.442-0.446).
 constexpr int kRedetectPeriod = 2;
 
 class FusedMethod : public DetectionMethod {
@@ -67,6 +68,9 @@ class FusedMethod : public DetectionMethod {
   // The edge check of `box` (clipped to the frame).
   bool verified(const ImageSource &frame, const cv::Rect2d &box);
   std::optional<FusedDetector::Estimate> redetect(const ImageSource &frame);
+  UsualDetection usual() const;
+  bool followUnconfirmed(const FusedDetector::Estimate &e, TrackOutput &out);
+  void waitAt(const FusedDetector::Estimate &e);
 
   MethodContext context_;
   LikelihoodCue colourCue_;
@@ -76,12 +80,14 @@ class FusedMethod : public DetectionMethod {
   FusedDetector fused_;
   cv::Point2d centre_;
   cv::Size2d size_;
+  cv::Size2d targetSize_;       // size_ at the last confirmed detection: re-detection seeks sizes around it
   cv::Size2d minSize_;          // the box never shrinks below this (8 px, or the start size if smaller)
   double usualConfidence_ = 0;  // running mean of the confidence of learnt frames
   int confidenceSamples_ = 0;   // how many frames the mean has seen
   int framesLearnt_ = 0;        // since the filters started
   double usualColour_ = 0;      // running mean of the colour cue at the peak of learnt frames
   Redetector redetector_;
+  bool unconfirmed_ = false;  // the track follows a re-detection that has not reached the confirmation bar
 };
 
 void FusedMethod::process(const ImageSource &frame, double dt, TrackOutput &out) {
@@ -111,20 +117,16 @@ void FusedMethod::follow(const ImageSource &frame, double dt, TrackOutput &out) 
       fused_.locate(frame, centre, size_, context_.model.mapper(), context_.model.likelihood());
   out.searchRegion = roundRect(centredBox(centre.x, centre.y, fused_.windowFor(size_))) & frameRect;
   if (!accepted(e) && track.state == TrackState::Coasting && track.coastFrames % kRedetectPeriod == 0) {
-    if (const auto found = redetect(frame)) e = *found;
+    if (const auto found = redetect(frame)) {
+      e = *found;
+      unconfirmed_ = unconfirmed_ || !Redetector::confirmed(e, usual());
+    }
     out.searchRegion = frameRect;
   }
   out.score = score(e);
+  if (unconfirmed_ && followUnconfirmed(e, out)) return;
   if (!accepted(e)) {
-    // The unconfident peak is still the best guess: the track (what is reported) and the next search wait
-    // there, learning nothing. Extrapolating the last velocity ran the box off targets that stop or turn
-    // (core harness, SRE: tune 0.571 -> 0.580, confirm 0.442 -> 0.458; no sequence down by more than 0.002).
-    if (e.confidence <= 0) {  // a flat response has no peak to wait at
-      track.coast(context_.settings.maxCoastFrames);
-      return;
-    }
-    track.coastAt(e.centre, context_.settings.maxCoastFrames);
-    centre_ = e.centre;
+    waitAt(e);
     return;
   }
   e.size = fitSize(e.size, frame.size());
@@ -148,7 +150,38 @@ void FusedMethod::follow(const ImageSource &frame, double dt, TrackOutput &out) 
   track.lastVerified = d.verified;
   centre_ = e.centre;
   size_ = e.size;
+  targetSize_ = size_;
   noteConfidence(e);
+}
+
+// A frame that is not a detection. The unconfident peak is still the best guess: the track (what is reported)
+// and the next search wait there, learning nothing. Extrapolating the last velocity ran the box off targets
+// that stop or turn (core harness, SRE: tune 0.571 -> 0.580, confirm 0.442 -> 0.458; no sequence down by more
+// than 0.002).
+void FusedMethod::waitAt(const FusedDetector::Estimate &e) {
+  KalmanTrack &track = context_.track;
+  if (e.confidence <= 0) {  // a flat response has no peak to wait at
+    track.coast(context_.settings.maxCoastFrames);
+    return;
+  }
+  track.coastAt(e.centre, context_.settings.maxCoastFrames);
+  centre_ = e.centre;
+}
+
+// A track begun from a re-detection under the confirmation bar follows its peak, coasting and learning
+// nothing but its size, until a frame reaches the bar (then it is the target again: false, and the frame is
+// learnt as usual) or max-coast-frames pass. Reported as tracking at once, such guesses put half the frames
+// whose box is off the target at `tracking` (docs/benchmarks.md).
+bool FusedMethod::followUnconfirmed(const FusedDetector::Estimate &e, TrackOutput &out) {
+  if (accepted(e) && Redetector::confirmed(e, usual())) {
+    unconfirmed_ = false;
+    return false;
+  }
+  out.score = std::min(out.score, std::nextafter(kLostRatio, 0.0));
+  waitAt(e);
+  if (accepted(e)) size_ = e.size;
+  if (!context_.track.active()) unconfirmed_ = false;
+  return true;
 }
 
 // Searching: re-detection over the whole frame every kRedetectPeriod frames.
@@ -160,11 +193,19 @@ void FusedMethod::acquire(const ImageSource &frame, TrackOutput &out) {
   if (!found) return;
   found->size = fitSize(found->size, frame.size());
   const Detection d = detectionOf(frame, *found);
-  track.start(d.box, context_.settings.kalman);
+  unconfirmed_ = !Redetector::confirmed(*found, usual());
+  if (unconfirmed_)
+    track.startUnconfirmed(d.box, context_.settings.kalman);
+  else
+    track.start(d.box, context_.settings.kalman);
   track.lastVerified = d.verified;
   centre_ = found->centre;
   size_ = found->size;
+  // A guess does not set the size re-detection starts from (guesses on a large board of the target's colours
+  // grew it by a size step each, and the target, back in view, was then sought at that size).
+  if (!unconfirmed_) targetSize_ = size_;
   out.score = score(*found);
+  if (unconfirmed_) out.score = std::min(out.score, std::nextafter(kLostRatio, 0.0));
 }
 
 // Starts the filters on a detection (a box of at least a pixel).
@@ -174,18 +215,22 @@ void FusedMethod::startFilters(const ImageSource &frame, const cv::Rect2d &box) 
   fused_.start(frame, fitted);
   centre_ = cv::Point2d(fitted.x + fitted.width / 2, fitted.y + fitted.height / 2);
   size_ = fitted.size();
+  targetSize_ = size_;
   minSize_ = cv::Size2d(std::min(8.0, size_.width), std::min(8.0, size_.height));
 }
 
 void FusedMethod::stopFilters() {
   fused_.stop();
+  unconfirmed_ = false;
   usualConfidence_ = 0;
   confidenceSamples_ = 0;
   framesLearnt_ = 0;
   usualColour_ = 0;
 }
 
-bool FusedMethod::accepted(const FusedDetector::Estimate &e) const { return score(e) >= kLostRatio; }
+bool FusedMethod::accepted(const FusedDetector::Estimate &e) const {
+  return score(e) >= kLostRatio;
+}
 
 // The weakest of the three tests, each scaled so that its bar falls at kLostRatio: the reported score is at
 // least kLostRatio exactly when the frame is a detection, so a rejected peak never looks confident.
@@ -235,14 +280,19 @@ bool FusedMethod::verified(const ImageSource &frame, const cv::Rect2d &box) {
                                context_.settings);
 }
 
-// The best re-detection over the whole frame, if it is confident enough (Redetector).
-std::optional<FusedDetector::Estimate> FusedMethod::redetect(const ImageSource &frame) {
+// What a detection of this track usually looks like, for the Redetector's bars.
+UsualDetection FusedMethod::usual() const {
   UsualDetection usual;
   usual.known = confidenceSamples_ >= kConfidenceWarmUp;
   usual.confidence = std::min(usualConfidence_, kConfidentPsr);
   usual.colour = usualColour_;
+  return usual;
+}
+
+// The best re-detection over the whole frame, if it passes the Redetector's proposal bars.
+std::optional<FusedDetector::Estimate> FusedMethod::redetect(const ImageSource &frame) {
   return redetector_.search(frame, fused_, context_.model.mapper(), context_.model.likelihood(), centre_,
-                            size_, minSize_, usual);
+                            targetSize_, minSize_, usual());
 }
 
 }  // namespace

@@ -37,6 +37,9 @@ struct KalmanTrack {
   void reset(const KalmanParams &params);
   // A new track at `box` (a new id).
   void start(const cv::Rect2d &box, const KalmanParams &params);
+  // A new track at a guess `box` (a new id), reported coasting until a detection confirms it with update();
+  // lost as coast() says if none does.
+  void startUnconfirmed(const cv::Rect2d &box, const KalmanParams &params);
   // The track measured at `box`.
   void update(const cv::Rect2d &box);
   // A frame without detection: coasting, lost after `maxCoastFrames`.

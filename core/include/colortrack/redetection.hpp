@@ -24,15 +24,18 @@ struct UsualDetection {
 class Redetector {
  public:
   // The best place over the whole frame for a target last seen at `last` with `size` (sizes are kept within
-  // [minSize, frame]), if it passes the bars against `usual`.
+  // [minSize, frame]), if it passes the proposal bars against `usual`. A place under the confirmation bar
+  // (confirmed()) is a guess to follow, not yet the target.
   std::optional<FusedDetector::Estimate> search(const ImageSource &frame, FusedDetector &detector,
                                                 const BinMapper &colors, const ColorLikelihood &likelihood,
                                                 cv::Point2d last, cv::Size2d size, cv::Size2d minSize,
                                                 const UsualDetection &usual);
+  // Whether `e` is sure enough to be the target again: a re-detection, or a frame of a track begun from one.
+  static bool confirmed(const FusedDetector::Estimate &e, const UsualDetection &usual);
 
  private:
   static bool colourLike(const FusedDetector::Estimate &e, const UsualDetection &usual);
-  static bool confident(const FusedDetector::Estimate &e, const UsualDetection &usual);
+  static bool proposed(const FusedDetector::Estimate &e, const UsualDetection &usual);
 
   int nextSize_ = 0;  // which of the relative sizes the next search tries
 };
