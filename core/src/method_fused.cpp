@@ -39,6 +39,15 @@ constexpr int kConfidenceWarmUp = 5;
 // and 2 (core harness: tune 0.571-0.573, confirm 0.442-0.446).
 constexpr int kRedetectPeriod = 2;
 
+// A frame is a detection when its score (FusedMethod::score) reaches kLostRatio.
+bool isDetection(double score) {
+  return score >= kLostRatio;
+}
+// An unconfirmed track's score stays under that bar, however well this frame matched.
+double guessScore(double score) {
+  return std::min(score, std::nextafter(kLostRatio, 0.0));
+}
+
 class FusedMethod : public DetectionMethod {
  public:
   explicit FusedMethod(const MethodContext &context)
@@ -58,7 +67,6 @@ class FusedMethod : public DetectionMethod {
   void acquire(const ImageSource &frame, TrackOutput &out);
   void startFilters(const ImageSource &frame, const cv::Rect2d &box);
   void stopFilters();
-  bool accepted(const FusedDetector::Estimate &e) const;
   double score(const FusedDetector::Estimate &e) const;
   double relativeConfidence(double confidence) const;
   double relativeColour(double colour) const;
@@ -69,7 +77,7 @@ class FusedMethod : public DetectionMethod {
   bool verified(const ImageSource &frame, const cv::Rect2d &box);
   std::optional<FusedDetector::Estimate> redetect(const ImageSource &frame);
   UsualDetection usual() const;
-  bool followUnconfirmed(const FusedDetector::Estimate &e, TrackOutput &out);
+  bool followUnconfirmed(const FusedDetector::Estimate &e, bool detection, TrackOutput &out);
   void waitAt(const FusedDetector::Estimate &e);
 
   MethodContext context_;
@@ -116,16 +124,20 @@ void FusedMethod::follow(const ImageSource &frame, double dt, TrackOutput &out) 
   FusedDetector::Estimate e =
       fused_.locate(frame, centre, size_, context_.model.mapper(), context_.model.likelihood());
   out.searchRegion = roundRect(centredBox(centre.x, centre.y, fused_.windowFor(size_))) & frameRect;
-  if (!accepted(e) && track.state == TrackState::Coasting && track.coastFrames % kRedetectPeriod == 0) {
+  double frameScore = score(e);
+  if (!isDetection(frameScore) && track.state == TrackState::Coasting &&
+      track.coastFrames % kRedetectPeriod == 0) {
     if (const auto found = redetect(frame)) {
       e = *found;
+      frameScore = score(e);
       unconfirmed_ = unconfirmed_ || !Redetector::confirmed(e, usual());
     }
     out.searchRegion = frameRect;
   }
-  out.score = score(e);
-  if (unconfirmed_ && followUnconfirmed(e, out)) return;
-  if (!accepted(e)) {
+  out.score = frameScore;
+  const bool detection = isDetection(frameScore);
+  if (unconfirmed_ && followUnconfirmed(e, detection, out)) return;
+  if (!detection) {
     waitAt(e);
     return;
   }
@@ -172,14 +184,14 @@ void FusedMethod::waitAt(const FusedDetector::Estimate &e) {
 // nothing but its size, until a frame reaches the bar (then it is the target again: false, and the frame is
 // learnt as usual) or max-coast-frames pass. Reported as tracking at once, such guesses put half the frames
 // whose box is off the target at `tracking` (docs/benchmarks.md).
-bool FusedMethod::followUnconfirmed(const FusedDetector::Estimate &e, TrackOutput &out) {
-  if (accepted(e) && Redetector::confirmed(e, usual())) {
+bool FusedMethod::followUnconfirmed(const FusedDetector::Estimate &e, bool detection, TrackOutput &out) {
+  if (detection && Redetector::confirmed(e, usual())) {
     unconfirmed_ = false;
     return false;
   }
-  out.score = std::min(out.score, std::nextafter(kLostRatio, 0.0));
+  out.score = guessScore(out.score);
   waitAt(e);
-  if (accepted(e)) size_ = e.size;
+  if (detection) size_ = e.size;
   if (!context_.track.active()) unconfirmed_ = false;
   return true;
 }
@@ -205,7 +217,7 @@ void FusedMethod::acquire(const ImageSource &frame, TrackOutput &out) {
   // grew it by a size step each, and the target, back in view, was then sought at that size).
   if (!unconfirmed_) targetSize_ = size_;
   out.score = score(*found);
-  if (unconfirmed_) out.score = std::min(out.score, std::nextafter(kLostRatio, 0.0));
+  if (unconfirmed_) out.score = guessScore(out.score);
 }
 
 // Starts the filters on a detection (a box of at least a pixel).
@@ -226,10 +238,6 @@ void FusedMethod::stopFilters() {
   confidenceSamples_ = 0;
   framesLearnt_ = 0;
   usualColour_ = 0;
-}
-
-bool FusedMethod::accepted(const FusedDetector::Estimate &e) const {
-  return score(e) >= kLostRatio;
 }
 
 // The weakest of the three tests, each scaled so that its bar falls at kLostRatio: the reported score is at

@@ -15,8 +15,9 @@ constexpr int kCandidatesPerSize = 3;
 // A re-detection is proposed at half the bars that confirm it (PSR, ratio to the usual PSR) and followed
 // unconfirmed until a frame reaches them (FusedMethod). Proposing only at the confirmation bar left 89 % of
 // the frames after a loss searching with the target in view; proposing at the lower bar and reporting it as
-// tracking at once put half the wrong frames at `tracking`. The share was chosen on the tune half (core
-// harness, SRE, proposal PSR 2.5 / 3 / 3.5 / 4: 0.582 / 0.587 / 0.583 / 0.583; docs/benchmarks.md).
+// tracking at once put half the wrong frames at `tracking`. The share was chosen on the tune half with an
+// earlier form of the rule (core harness, SRE, shares 0.42 / 0.5 / 0.58 / 0.67: 0.582 / 0.587 / 0.583 /
+// 0.583) and checked at 0.5 in this one (docs/benchmarks.md).
 constexpr double kConfidence = 6.0;
 constexpr double kConfidenceRatio = 0.6;
 constexpr double kProposal = 0.5;
@@ -68,11 +69,11 @@ bool Redetector::colourLike(const FusedDetector::Estimate &e, const UsualDetecti
   return !usual.known || e.colourPeak >= kColourRatio * usual.colour;
 }
 
-// The bars at `share` of their height.
-static bool passes(const FusedDetector::Estimate &e, const UsualDetection &usual, double share) {
+// The confidence bars at `share` of their height, and the colour bar.
+bool Redetector::passes(const FusedDetector::Estimate &e, const UsualDetection &usual, double share) {
   if (!usual.known) return e.confidence >= share * kConfidence;
   return e.confidence >= share * std::max(kConfidence, kConfidenceRatio * usual.confidence) &&
-         e.colourPeak >= kColourRatio * usual.colour;
+         colourLike(e, usual);
 }
 
 bool Redetector::proposed(const FusedDetector::Estimate &e, const UsualDetection &usual) {

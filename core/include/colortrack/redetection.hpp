@@ -36,6 +36,7 @@ class Redetector {
  private:
   static bool colourLike(const FusedDetector::Estimate &e, const UsualDetection &usual);
   static bool proposed(const FusedDetector::Estimate &e, const UsualDetection &usual);
+  static bool passes(const FusedDetector::Estimate &e, const UsualDetection &usual, double share);
 
   int nextSize_ = 0;  // which of the relative sizes the next search tries
 };
