@@ -1,5 +1,6 @@
 #include "colortrack/yuv_image.hpp"
 
+#include <cstdint>
 #include <vector>
 
 #include <opencv2/core/hal/intrin.hpp>
@@ -8,66 +9,73 @@ namespace colortrack {
 
 namespace {
 
-// The colorimetry's matrix in fixed point (14 fractional bits, as OpenCV's own YUV conversions). Every
-// Y'CbCr matrix gives B from Y and U, R from Y and V, G from all three, with one luma weight.
-struct FixedPointMatrix {
-  static constexpr int kShift = 14;
-  int luma, blueU, greenU, greenV, redV;  // weights
-  int blue0, green0, red0;                // offsets, with the rounding of the shift
+// The colorimetry's matrix applied as GStreamer's 8-bit YUV-to-RGB paths apply it (videoconvert's fast path
+// from I420, NV12 or YUY2 to any 8-bit RGB, GStreamer 1.22 to 1.26), so that a YUV frame read here is, byte
+// for byte, the image `videoconvert ! video/x-raw,format=BGRx` gives the same frame: the weights rounded to
+// 1/256, each sample centred on 128 as a signed byte and widened to 16 bits by repeating that byte, the high
+// 16 bits of each product, the sum saturated. It has no luma offset: limited-range luma reads about 2 levels
+// darker than the standard matrix says, as it does in what videoconvert delivers. Reading with OpenCV's
+// rounding instead (14-bit weights, offsets kept) gave the same frames 1-2 levels apart in BGRx and I420,
+// and the tracker's answer moved with them (docs/benchmarks.md, "Pixel formats").
+struct VideoconvertMatrix {
+  int luma, blueU, greenU, greenV, redV;  // weights, 256 = 1
 
-  explicit FixedPointMatrix(const YuvColorimetry &colorimetry) {
+  explicit VideoconvertMatrix(const YuvColorimetry &colorimetry) {
     const cv::Matx34f m = colorimetry.toBgrMatrix();
-    const auto fixed = [](double x) { return cvRound(x * (1 << kShift)); };
-    luma = fixed(m(0, 0));
-    blueU = fixed(m(0, 1));
-    greenU = fixed(m(1, 1));
-    greenV = fixed(m(1, 2));
-    redV = fixed(m(2, 2));
-    blue0 = fixed(m(0, 3)) + (1 << (kShift - 1));
-    green0 = fixed(m(1, 3)) + (1 << (kShift - 1));
-    red0 = fixed(m(2, 3)) + (1 << (kShift - 1));
+    const auto weight = [](float x) { return cvRound(double(x) * 256); };
+    luma = weight(m(0, 0));
+    blueU = weight(m(0, 1));
+    greenU = weight(m(1, 1));
+    greenV = weight(m(1, 2));
+    redV = weight(m(2, 2));
   }
+  // A sample centred on 128 as a signed byte, widened to 16 bits by repeating the byte (x * 257, and 256 more
+  // when x is negative).
+  static int widened(int sample) { return static_cast<std::int16_t>((sample ^ 0x80) * 257); }
+  // The high 16 bits of the product (rounded down).
+  static int product(int widenedSample, int weight) { return (widenedSample * weight) >> 16; }
   void pixel(int y, int u, int v, uchar *bgr) const {
-    const int l = luma * y;
-    bgr[0] = cv::saturate_cast<uchar>((l + blueU * u + blue0) >> kShift);
-    bgr[1] = cv::saturate_cast<uchar>((l + greenU * u + greenV * v + green0) >> kShift);
-    bgr[2] = cv::saturate_cast<uchar>((l + redV * v + red0) >> kShift);
+    const int l = product(widened(y), luma) + 128, wu = widened(u), wv = widened(v);
+    bgr[0] = cv::saturate_cast<uchar>(l + product(wu, blueU));
+    bgr[1] = cv::saturate_cast<uchar>(l + product(wu, greenU) + product(wv, greenV));
+    bgr[2] = cv::saturate_cast<uchar>(l + product(wv, redV));
   }
 };
 
 // n pixels from the Y, U and V samples under them to interleaved BGR: 16 at a time with OpenCV's universal
 // intrinsics (the same integer maths as pixel(), so the result does not depend on the CPU), the rest one by
 // one.
-void convertRow(const FixedPointMatrix &m, const uchar *y, const uchar *u, const uchar *v, int n,
+void convertRow(const VideoconvertMatrix &m, const uchar *y, const uchar *u, const uchar *v, int n,
                 uchar *bgr) {
   int i = 0;
 #if CV_SIMD128
-  const cv::v_int32x4 luma = cv::v_setall_s32(m.luma), blueU = cv::v_setall_s32(m.blueU),
-                      greenU = cv::v_setall_s32(m.greenU), greenV = cv::v_setall_s32(m.greenV),
-                      redV = cv::v_setall_s32(m.redV), blue0 = cv::v_setall_s32(m.blue0),
-                      green0 = cv::v_setall_s32(m.green0), red0 = cv::v_setall_s32(m.red0);
-  // The 16 bytes of a vector as four vectors of four int32.
-  const auto widen = [](const cv::v_uint8x16 &bytes, cv::v_int32x4 out[4]) {
-    cv::v_uint16x8 lo, hi;
-    cv::v_expand(bytes, lo, hi);
-    cv::v_uint32x4 q[4];
-    cv::v_expand(lo, q[0], q[1]);
-    cv::v_expand(hi, q[2], q[3]);
-    for (int k = 0; k < 4; ++k) out[k] = cv::v_reinterpret_as_s32(q[k]);
+  // Eight 16-bit lanes hold what videoconvert's 16-bit maths holds: zipping a vector of centred samples with
+  // itself repeats each byte into a lane (widened()), v_mul_hi keeps a product's high 16 bits (product()),
+  // and v_pack_u saturates to bytes.
+  const cv::v_int16x8 luma = cv::v_setall_s16(static_cast<short>(m.luma)),
+                      blueU = cv::v_setall_s16(static_cast<short>(m.blueU)),
+                      greenU = cv::v_setall_s16(static_cast<short>(m.greenU)),
+                      greenV = cv::v_setall_s16(static_cast<short>(m.greenV)),
+                      redV = cv::v_setall_s16(static_cast<short>(m.redV)), centre = cv::v_setall_s16(128);
+  const cv::v_uint8x16 signBit = cv::v_setall_u8(0x80);
+  const auto widen = [&](const uchar *samples, cv::v_int16x8 out[2]) {
+    const cv::v_uint8x16 centred = cv::v_load(samples) ^ signBit;
+    cv::v_uint8x16 lo, hi;
+    cv::v_zip(centred, centred, lo, hi);
+    out[0] = cv::v_reinterpret_as_s16(lo);
+    out[1] = cv::v_reinterpret_as_s16(hi);
   };
-  const auto narrow = [](const cv::v_int32x4 q[4]) {
-    return cv::v_pack_u(cv::v_pack(q[0], q[1]), cv::v_pack(q[2], q[3]));
-  };
+  const auto narrow = [](const cv::v_int16x8 q[2]) { return cv::v_pack_u(q[0], q[1]); };
   for (; i + 16 <= n; i += 16) {
-    cv::v_int32x4 ys[4], us[4], vs[4], b[4], g[4], r[4];
-    widen(cv::v_load(y + i), ys);
-    widen(cv::v_load(u + i), us);
-    widen(cv::v_load(v + i), vs);
-    for (int k = 0; k < 4; ++k) {
-      const cv::v_int32x4 l = luma * ys[k];
-      b[k] = cv::v_shr<FixedPointMatrix::kShift>(l + blueU * us[k] + blue0);
-      g[k] = cv::v_shr<FixedPointMatrix::kShift>(l + greenU * us[k] + greenV * vs[k] + green0);
-      r[k] = cv::v_shr<FixedPointMatrix::kShift>(l + redV * vs[k] + red0);
+    cv::v_int16x8 ys[2], us[2], vs[2], b[2], g[2], r[2];
+    widen(y + i, ys);
+    widen(u + i, us);
+    widen(v + i, vs);
+    for (int k = 0; k < 2; ++k) {
+      const cv::v_int16x8 l = cv::v_mul_hi(ys[k], luma) + centre;
+      b[k] = l + cv::v_mul_hi(us[k], blueU);
+      g[k] = l + cv::v_mul_hi(us[k], greenU) + cv::v_mul_hi(vs[k], greenV);
+      r[k] = l + cv::v_mul_hi(vs[k], redV);
     }
     cv::v_store_interleave(bgr + 3 * i, narrow(b), narrow(g), narrow(r));
   }
@@ -114,7 +122,7 @@ struct ChannelReader {
 void yuvToBgr(const SampledFrame &frame, const cv::Rect &rect, int step, cv::Mat &out) {
   CV_Assert(frame.encoding == PixelEncoding::Yuv && step >= 1 &&
             (rect & cv::Rect(cv::Point(), frame.size)) == rect && !rect.empty());
-  const FixedPointMatrix matrix(frame.colorimetry);
+  const VideoconvertMatrix matrix(frame.colorimetry);
   const ChannelReader luma(frame.channels[0]), blueDiff(frame.channels[1]), redDiff(frame.channels[2]);
   const cv::Size target = sampledSize(rect, step);
   out.create(target, CV_8UC3);

@@ -1,6 +1,7 @@
-// YUV frames read as BGR (yuvToBgr): the colorimetry's matrix against OpenCV's, every layout and siting, and
-// the promise behind it: the same frame delivered as RGB or as YUV gives the tracker the same image, the same
-// histogram and the same track.
+// YUV frames read as BGR (yuvToBgr): the colorimetry's matrix against OpenCV's, the bytes videoconvert gives,
+// every layout and siting, and the promise behind it: the same frame delivered as RGB or as YUV gives the
+// tracker the same image, the same histogram and the same track. (tests/gst/test_frame_view.cpp checks the
+// same against videoconvert itself.)
 #include <gtest/gtest.h>
 
 #include <opencv2/imgproc.hpp>
@@ -72,9 +73,9 @@ YuvLayouts makeLayouts(const cv::Mat &bgr, const YuvColorimetry &colorimetry) {
   return l;
 }
 
-// What videoconvert makes of full-range BT.601 planes (each chroma sample repeated over its block, then the
-// matrix), by another route: OpenCV's resize and its JPEG YCrCb conversion.
-cv::Mat referenceBgr(const cv::Mat &luma, const cv::Mat &u, const cv::Mat &v) {
+// The planes with each chroma sample repeated over its block, read with the standard matrix by another
+// route: OpenCV's resize and its JPEG YCrCb conversion (full-range BT.601).
+cv::Mat standardBgr(const cv::Mat &luma, const cv::Mat &u, const cv::Mat &v) {
   cv::Mat uFull, vFull, ycrcb, bgr;
   cv::resize(u, uFull, luma.size(), 0, 0, cv::INTER_NEAREST);
   cv::resize(v, vFull, luma.size(), 0, 0, cv::INTER_NEAREST);
@@ -118,23 +119,88 @@ TEST(YuvColorimetry, LimitedRangeBt601IsOpenCvsI420) {
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(rgb[c], bgr.at<cv::Vec3b>(1, 1)[2 - c], 1.5);
 }
 
+// Samples and the BGR bytes `videoconvert ! video/x-raw,format=BGRx` made of them (GStreamer 1.22.0 and
+// 1.26.2 alike, I420 frames of 2x2 blocks), for the colorimetries decoders give: its integer maths reads a
+// little darker than the standard matrix (limited-range luma has no offset: 16 is not quite black).
+TEST(YuvToBgr, BytesAreVideoconverts) {
+  struct Sample {
+    int y, u, v;
+    int b, g, r;
+  };
+  YuvColorimetry bt709;
+  bt709.kr = 0.2126;
+  bt709.kb = 0.0722;
+  const struct {
+    const char *name;
+    YuvColorimetry colorimetry;
+    std::vector<Sample> samples;
+  } cases[] = {
+      {"jpeg (full-range BT.601)",
+       jpegColorimetry(),
+       {{90, 60, 200, 0, 61, 191},
+        {180, 150, 100, 219, 191, 141},
+        {16, 128, 128, 16, 16, 16},
+        {235, 16, 240, 37, 192, 255},
+        {0, 255, 0, 226, 47, 0},
+        {255, 0, 255, 28, 206, 255},
+        {40, 200, 90, 168, 41, 0}}},
+      {"bt601",
+       YuvColorimetry(),
+       {{90, 60, 200, 0, 51, 199},
+        {180, 150, 100, 232, 201, 144},
+        {16, 128, 128, 0, 0, 0},
+        {235, 16, 240, 28, 204, 255},
+        {0, 255, 0, 235, 32, 0},
+        {40, 200, 90, 171, 27, 0}}},
+      {"bt709",
+       bt709,
+       {{90, 60, 200, 0, 59, 213},
+        {180, 150, 100, 234, 197, 139},
+        {235, 16, 240, 17, 216, 255},
+        {0, 255, 0, 248, 18, 0},
+        {255, 0, 255, 6, 235, 255},
+        {40, 200, 90, 178, 29, 0}}},
+  };
+  for (const auto &c : cases) {
+    SCOPED_TRACE(c.name);
+    // Each sample as a 2x2 block of an I420 frame 32 samples wide (the vector path and the one-by-one path).
+    const int n = static_cast<int>(c.samples.size()), width = 64;
+    cv::Mat i420(3, width, CV_8UC1, cv::Scalar(128));
+    for (int k = 0; k < width / 2; ++k) {
+      const Sample &s = c.samples[k % n];
+      i420.at<uchar>(0, 2 * k) = i420.at<uchar>(0, 2 * k + 1) = static_cast<uchar>(s.y);
+      i420.at<uchar>(1, 2 * k) = i420.at<uchar>(1, 2 * k + 1) = static_cast<uchar>(s.y);
+      i420.at<uchar>(2, k) = static_cast<uchar>(s.u);              // U: the first half of the row
+      i420.at<uchar>(2, width / 2 + k) = static_cast<uchar>(s.v);  // V
+    }
+    cv::Mat bgr;
+    yuvToBgr(sampledI420(i420, cv::Size(width, 2), c.colorimetry), cv::Rect(0, 0, width, 2), 1, bgr);
+    for (int x = 0; x < width; ++x) {
+      const Sample &s = c.samples[(x / 2) % n];
+      EXPECT_EQ(bgr.at<cv::Vec3b>(1, x), cv::Vec3b(s.b, s.g, s.r))
+          << "column " << x << ": Y " << s.y << " U " << s.u << " V " << s.v;
+    }
+  }
+}
+
 // The same 4:2:0 samples laid out as I420 or NV12 give the same pixels, and YUY2's 4:2:2 its own; each is
-// what the reference conversion gives, also for a region that starts on an odd pixel and for a sample.
+// within videoconvert's rounding of the standard matrix, also for a region that starts on an odd pixel and
+// for a sample.
 TEST(YuvToBgr, EveryLayoutConvertsAsVideoconvertWould) {
   const scene::Scene scene(sceneConfig());
   const YuvLayouts l = makeLayouts(scene.render(7).bgr, jpegColorimetry());
-  const cv::Mat reference420 = referenceBgr(l.luma, l.u, l.v),
-                reference422 = referenceBgr(l.luma, l.u422, l.v422);
+  const cv::Mat reference420 = standardBgr(l.luma, l.u, l.v),
+                reference422 = standardBgr(l.luma, l.u422, l.v422);
   const cv::Rect all(cv::Point(), l.luma.size());
   cv::Mat fromI420, fromNv12, fromYuy2;
   yuvToBgr(l.i420Frame, all, 1, fromI420);
   yuvToBgr(l.nv12Frame, all, 1, fromNv12);
   yuvToBgr(l.yuy2Frame, all, 1, fromYuy2);
   EXPECT_EQ(cv::norm(fromI420, fromNv12, cv::NORM_INF), 0);
-  EXPECT_LE(cv::norm(fromI420, reference420, cv::NORM_INF), 2);
-  EXPECT_LE(cv::norm(fromYuy2, reference422, cv::NORM_INF), 2);
-  EXPECT_LT(meanAbsDifference(fromI420, reference420), 0.5);
-  EXPECT_LT(meanAbsDifference(fromYuy2, reference422), 0.5);
+  EXPECT_LE(cv::norm(fromI420, reference420, cv::NORM_INF), 3);
+  EXPECT_LE(cv::norm(fromYuy2, reference422, cv::NORM_INF), 3);
+  EXPECT_LT(meanAbsDifference(fromI420, reference420), 2.5);
+  EXPECT_LT(meanAbsDifference(fromYuy2, reference422), 2.5);
   for (const SampledFrame *frame : {&l.i420Frame, &l.nv12Frame, &l.yuy2Frame}) {
     const cv::Mat &whole = frame == &l.yuy2Frame ? fromYuy2 : fromI420;
     for (const cv::Rect &rect :
@@ -153,24 +219,26 @@ TEST(YuvToBgr, EveryLayoutConvertsAsVideoconvertWould) {
 // Reading a full-range frame as limited range (what the element did before) is not a small difference.
 TEST(YuvToBgr, TheRangeMatters) {
   const YuvLayouts l = makeLayouts(scene::Scene(sceneConfig()).render(3).bgr, jpegColorimetry());
-  const cv::Mat reference = referenceBgr(l.luma, l.u, l.v);
+  const cv::Mat reference = standardBgr(l.luma, l.u, l.v);
   SampledFrame misread = l.i420Frame;
   misread.colorimetry.fullRange = false;
   cv::Mat right, wrong;
   const cv::Rect all(cv::Point(), reference.size());
   yuvToBgr(l.i420Frame, all, 1, right);
   yuvToBgr(misread, all, 1, wrong);
-  EXPECT_LT(meanAbsDifference(right, reference), 0.5);
+  EXPECT_LT(meanAbsDifference(right, reference), 2.5);
   EXPECT_GT(meanAbsDifference(wrong, reference), 5);
 }
 
-// The object's HSV histogram from the frame converted upstream (the reference) and from its I420 planes:
-// each channel's intersection at least 0.98.
+// The object's HSV histogram from the frame converted upstream with the standard matrix (another library's
+// conversion, up to 3 levels from videoconvert's) and from its I420 planes: each channel's intersection at
+// least 0.9 (0.94-0.95 for saturation and value: levels that straddle a bin edge move whole pixels between
+// bins). From videoconvert's BGRx the bytes, so the histograms, are the same (tests/gst/test_frame_view.cpp).
 TEST(YuvToBgr, SameHistogramAsTheFrameConvertedUpstream) {
   const scene::Scene scene(sceneConfig());
   const scene::SceneFrame f = scene.render(30);
   const YuvLayouts l = makeLayouts(f.bgr, jpegColorimetry());
-  const cv::Mat reference = referenceBgr(l.luma, l.u, l.v);
+  const cv::Mat reference = standardBgr(l.luma, l.u, l.v);
   cv::Mat fromYuv;
   yuvToBgr(l.i420Frame, cv::Rect(cv::Point(), f.bgr.size()), 1, fromYuv);
   const BinLayout layout;
@@ -180,11 +248,11 @@ TEST(YuvToBgr, SameHistogramAsTheFrameConvertedUpstream) {
   mapper.map(fromYuv, yuvBins.bins);
   const cv::Rect box = cv::Rect(f.box) & cv::Rect(cv::Point(), f.bgr.size());
   const Histogram a = histogramOf(rgbBins, layout, box), b = histogramOf(yuvBins, layout, box);
-  for (int c = 0; c < 3; ++c) EXPECT_GT(intersection(a.channel(c), b.channel(c), layout.bins[c]), 0.98) << c;
+  for (int c = 0; c < 3; ++c) EXPECT_GT(intersection(a.channel(c), b.channel(c), layout.bins[c]), 0.9) << c;
 }
 
-// The tracker (default method) on the frames converted upstream and on their I420 planes: the same track,
-// frame by frame.
+// The tracker (default method) on the frames converted upstream with the standard matrix and on their I420
+// planes: the same track, frame by frame.
 TEST(YuvToBgr, SameTrackAsOnTheFramesConvertedUpstream) {
   const scene::Scene scene(sceneConfig());
   Tracker fromRgb, fromYuv;
@@ -192,7 +260,7 @@ TEST(YuvToBgr, SameTrackAsOnTheFramesConvertedUpstream) {
   for (int i = 0; i < scene.config().frames; ++i) {
     const scene::SceneFrame f = scene.render(i);
     const YuvLayouts l = makeLayouts(f.bgr, jpegColorimetry());
-    const cv::Mat reference = referenceBgr(l.luma, l.u, l.v);
+    const cv::Mat reference = standardBgr(l.luma, l.u, l.v);
     const MatImageSource rgbSource(reference);
     const YuvImageSource yuvSource(l.i420Frame);
     if (i == 0) {
@@ -206,7 +274,7 @@ TEST(YuvToBgr, SameTrackAsOnTheFramesConvertedUpstream) {
     agreement += same / scene.config().frames;
     minAgreement = std::min(minAgreement, same);
   }
-  // Pixels up to 2 levels apart (rounding) move the box by a pixel now and then, not more.
+  // Pixels up to 3 levels apart move the box by a pixel now and then, not more.
   EXPECT_GT(agreement, 0.95);
   EXPECT_GT(minAgreement, 0.8);
 }

@@ -1,6 +1,6 @@
-// YUV frames read as BGR the way GStreamer's videoconvert converts them to RGB (the frame's own matrix and
-// range, each chroma sample covering its block of pixels), so that the tracker sees the same image whether a
-// source delivers YUV or RGB converted upstream.
+// YUV frames read as BGR byte for byte as GStreamer's videoconvert converts them to RGB (the frame's own
+// matrix and range in videoconvert's integer maths, each chroma sample covering its block of pixels), so that
+// the tracker sees the same image whether a source delivers YUV or RGB converted upstream.
 #pragma once
 
 #include <opencv2/core.hpp>
