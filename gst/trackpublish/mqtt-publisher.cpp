@@ -148,7 +148,7 @@ struct MqttPublisher::Callback {
 };
 
 MqttPublisher::MqttPublisher(const MqttConfig &config, MqttListener &listener)
-    : config_(config), listener_(listener), backoff_(kFirstBackoff) {}
+    : config_(config), listener_(listener), documents_(config.maxQueued), backoff_(kFirstBackoff) {}
 
 MqttPublisher::~MqttPublisher() {
   stop(milliseconds(0));
@@ -186,12 +186,7 @@ void MqttPublisher::publish(std::string topic, std::string payload) {
   std::uint64_t droppedNow = 0;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    queue_.push_back(Document{nextSequence_++, std::move(topic), std::move(payload)});
-    // In-flight documents may still be acknowledged: only waiting ones are dropped.
-    if (queue_.size() + inFlight_.size() > config_.maxQueued && queue_.size() > 1) {
-      queue_.pop_front();
-      droppedNow = ++dropped_;
-    }
+    if (documents_.add(std::move(topic), std::move(payload))) droppedNow = documents_.dropped();
   }
   wake_.notify_all();
   if (droppedNow) listener_.dropped(droppedNow, config_.maxQueued);
@@ -199,7 +194,7 @@ void MqttPublisher::publish(std::string topic, std::string payload) {
 
 bool MqttPublisher::waitDelivered(milliseconds timeout) {
   std::unique_lock<std::mutex> lock(mutex_);
-  return wake_.wait_for(lock, timeout, [this] { return queue_.empty() && inFlight_.empty(); });
+  return wake_.wait_for(lock, timeout, [this] { return documents_.empty(); });
 }
 
 void MqttPublisher::stop(milliseconds drain) {
@@ -233,23 +228,23 @@ std::uint64_t MqttPublisher::delivered() const {
 
 std::uint64_t MqttPublisher::droppedCount() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  return dropped_;
+  return documents_.dropped();
 }
 
 std::size_t MqttPublisher::queued() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  return queue_.size() + inFlight_.size();
+  return documents_.size();
 }
 
 void MqttPublisher::run() {
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
     const auto now = Clock::now();
-    if (stopping_ && ((queue_.empty() && inFlight_.empty()) || now >= drainUntil_)) break;
+    if (stopping_ && (documents_.empty() || now >= drainUntil_)) break;
     if (!connected_ && !connecting_ && now >= nextAttempt_) connect(lock);
     if (connected_) send(lock);
-    if (connected_ && !inFlight_.empty() && now - inFlight_.front().sentAt > kAnswerTimeout)
-      abandonUnanswered(lock);
+    const auto oldestSent = documents_.oldestSentAt();
+    if (connected_ && oldestSent && now - *oldestSent > kAnswerTimeout) abandonUnanswered(lock);
     auto until = now + milliseconds(100);
     if (!connected_ && !connecting_) until = std::min(until, nextAttempt_);
     if (stopping_) until = std::min(until, drainUntil_);
@@ -289,13 +284,11 @@ void MqttPublisher::connect(std::unique_lock<std::mutex> &lock) {
 }
 
 void MqttPublisher::send(std::unique_lock<std::mutex> &lock) {
-  while (connected_ && !queue_.empty() && inFlight_.size() < kWindow) {
-    inFlight_.push_back(std::move(queue_.front()));
-    queue_.pop_front();
-    inFlight_.back().sentAt = Clock::now();
-    inFlight_.back().attempt = ++sendsMade_;
-    // Copies: a callback may change inFlight_ while the lock is released (Paho copies the payload too).
-    const Document document = inFlight_.back();
+  while (connected_) {
+    // A copy: a callback may change the queue while the lock is released (Paho copies the payload too).
+    const std::optional<SendQueue::Document> next = documents_.send(Clock::now(), kWindow);
+    if (!next) return;
+    const SendQueue::Document &document = *next;
     auto *context = new SendContext{this, document.sequence, document.attempt};
     sends_.insert(context);
     lock.unlock();
@@ -314,30 +307,16 @@ void MqttPublisher::send(std::unique_lock<std::mutex> &lock) {
       // Not taken (the connection went meanwhile): back in the queue, no callback will come.
       sends_.erase(context);
       delete context;
-      requeueInFlight();
+      documents_.requeueInFlight();
       return;
     }
-  }
-}
-
-// Everything sent and not acknowledged goes back to the front of the queue, in order, to be sent again.
-void MqttPublisher::requeueInFlight() {
-  while (!inFlight_.empty()) {
-    queue_.push_front(std::move(inFlight_.back()));
-    inFlight_.pop_back();
   }
 }
 
 void MqttPublisher::sent(std::uint64_t sequence, std::uint64_t attempt) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    const auto it = std::find_if(inFlight_.begin(), inFlight_.end(), [&](const Document &d) {
-      return d.sequence == sequence && d.attempt == attempt;
-    });
-    if (it != inFlight_.end()) {
-      inFlight_.erase(it);
-      ++delivered_;
-    }
+    if (documents_.acknowledged(sequence, attempt)) ++delivered_;
   }
   wake_.notify_all();
 }
@@ -345,17 +324,7 @@ void MqttPublisher::sent(std::uint64_t sequence, std::uint64_t attempt) {
 void MqttPublisher::sendFailed(std::uint64_t sequence, std::uint64_t attempt) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    // An answer to an earlier send of a document sent again since is stale: the new send stands.
-    const auto it = std::find_if(inFlight_.begin(), inFlight_.end(), [&](const Document &d) {
-      return d.sequence == sequence && d.attempt == attempt;
-    });
-    if (it == inFlight_.end()) return;
-    // Back in the queue before every later document, so the order holds when it is sent again.
-    Document document = std::move(*it);
-    inFlight_.erase(it);
-    const auto at = std::find_if(queue_.begin(), queue_.end(),
-                                 [&](const Document &d) { return d.sequence > document.sequence; });
-    queue_.insert(at, std::move(document));
+    documents_.failed(sequence, attempt);
   }
   wake_.notify_all();
 }
@@ -397,8 +366,8 @@ void MqttPublisher::lost(const std::string &why) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     connected_ = false;
-    requeueInFlight();
-    queued = queue_.size();
+    documents_.requeueInFlight();
+    queued = documents_.waiting();
     const auto now = Clock::now();
     // Announced unless it repeats a connection that keeps failing soon after it is made; one that lasted is
     // news again.

@@ -10,11 +10,12 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
-#include <deque>
 #include <mutex>
 #include <set>
 #include <string>
 #include <thread>
+
+#include "send-queue.h"
 
 namespace trackpublish {
 
@@ -86,21 +87,12 @@ class MqttPublisher {
   std::size_t queued() const;  // waiting or in flight
 
  private:
-  struct Document {
-    std::uint64_t sequence;
-    std::string topic, payload;
-    std::chrono::steady_clock::time_point sentAt{};  // in flight since
-    // Which send this is (every send has its own number): Paho may answer an earlier send of a document
-    // after it has been requeued and sent again, and that answer must not move the new send.
-    std::uint64_t attempt = 0;
-  };
   struct Callback;     // Paho's C callbacks, which call the members below
   struct SendContext;  // one document's send, until Paho answers it
 
   void run();
   void connect(std::unique_lock<std::mutex> &lock);
   void send(std::unique_lock<std::mutex> &lock);
-  void requeueInFlight();
   void sent(std::uint64_t sequence, std::uint64_t attempt);
   void sendFailed(std::uint64_t sequence, std::uint64_t attempt);
   void connectDone(bool ok, const std::string &why);
@@ -113,9 +105,8 @@ class MqttPublisher {
 
   mutable std::mutex mutex_;
   std::condition_variable wake_;
-  std::deque<Document> queue_;     // not yet sent, oldest first
-  std::deque<Document> inFlight_;  // sent, not yet acknowledged, oldest first
-  std::uint64_t nextSequence_ = 0, delivered_ = 0, dropped_ = 0, sendsMade_ = 0;
+  SendQueue documents_;
+  std::uint64_t delivered_ = 0;
   bool connected_ = false, connecting_ = false, everConnected_ = false, stopping_ = false;
   bool attempted_ = false;  // the first connection attempt has ended
   std::string lastError_;
