@@ -143,7 +143,12 @@ void FusedMethod::follow(const ImageSource &frame, double dt, TrackOutput &out) 
   }
   e.size = fitSize(e.size, frame.size());
   Detection d;
-  d.box = centredBox(e.centre.x, e.centre.y, e.size);
+  // The report takes the colour map's word on the size; the learners keep the scale filter's. Feeding the
+  // vote back into the size they learn at let it shrink onto a part or grow into the background (core
+  // harness OPE tune 0.642 -> 0.577, confirm 0.497 -> 0.476).
+  const cv::Rect2d learnt = centredBox(e.centre.x, e.centre.y, e.size);
+  d.box = centredBox(e.centre.x, e.centre.y,
+                     cv::Size2d(e.size.width * e.extent.width, e.size.height * e.extent.height));
   d.score = e.confidence;
   // The edge check and the two learners read the frame and write nothing the others read, so with a second
   // core (OpenCV's thread pool) they run side by side; with one thread, in turn. The result is the same. The
@@ -151,7 +156,7 @@ void FusedMethod::follow(const ImageSource &frame, double dt, TrackOutput &out) 
   cv::parallel_for_(cv::Range(0, 3), [&](const cv::Range &tasks) {
     for (int task = tasks.start; task < tasks.end; ++task) {
       if (task == 0)
-        colourCue_.learn(frame, d.box);
+        colourCue_.learn(frame, learnt);
       else if (task == 1)
         d.verified = verified(frame, d.box);
       else

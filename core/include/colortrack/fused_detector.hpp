@@ -21,6 +21,7 @@ class FusedDetector {
   struct Estimate {
     cv::Point2d centre;        // frame coordinates
     cv::Size2d size;           // the target's size after the scale filter
+    cv::Size2d extent{1, 1};   // what the colour map says of the size: report size * extent
     double confidence = 0;     // peak-to-sidelobe ratio of the fused response
     double colourPeak = 0;     // the mean colour likelihood of the target window at the peak
     unsigned long window = 0;  // which locate() call measured it
@@ -62,6 +63,8 @@ class FusedDetector {
   void windowFeatures(const ImageSource &frame, cv::Point2d centre, cv::Size2d size);
   void readWindow(const ImageSource &frame, cv::Point2d centre, cv::Size2d size);
   void scaleSamples(const ImageSource &frame, cv::Point2d centre, cv::Size2d size);
+  // What the colour likelihood map of the last colourResponse() says of the size: width and height factors.
+  cv::Size2d colourExtent(cv::Point2d peakCells, cv::Size2d sizeNormalised) const;
   void colourResponse(const BinMapper &colors, const ColorLikelihood &likelihood, cv::Size2d targetNormalised,
                       cv::Mat &response);
 

@@ -1,0 +1,46 @@
+#include "colortrack/likelihood_extent.hpp"
+
+#include <algorithm>
+
+#include "colortrack/likelihood.hpp"
+
+namespace colortrack {
+
+namespace {
+
+// Mean likelihood inside the box of `size` at `centre` minus the mean in the ring around it; far below any
+// contrast when the box leaves the map.
+double contrastOf(const cv::Mat &integral, cv::Point2d centre, cv::Size2d size, double ringWidth) {
+  const cv::Rect limits(0, 0, integral.cols - 1, integral.rows - 1);
+  const cv::Rect inner(cvRound(centre.x - size.width / 2), cvRound(centre.y - size.height / 2),
+                       std::max(1, cvRound(size.width)), std::max(1, cvRound(size.height)));
+  if ((inner & limits) != inner) return -1e9;
+  const int ring = std::max(1, cvRound(ringWidth * std::min(size.width, size.height)));
+  const cv::Rect outer =
+      cv::Rect(inner.x - ring, inner.y - ring, inner.width + 2 * ring, inner.height + 2 * ring) & limits;
+  const double innerSum = boxSum(integral, inner), ringArea = double(outer.area()) - inner.area();
+  const double inside = innerSum / inner.area();
+  const double around = ringArea > 0 ? (boxSum(integral, outer) - innerSum) / ringArea : 0;
+  return inside - around;
+}
+
+}  // namespace
+
+ExtentVote likelihoodExtent(const cv::Mat &integral, cv::Point2d centre, cv::Size2d size,
+                            const std::vector<double> &factors, double ringWidth) {
+  ExtentVote best;
+  best.contrast = contrastOf(integral, centre, size, ringWidth);
+  for (double fw : factors)
+    for (double fh : factors) {
+      const double contrast =
+          contrastOf(integral, centre, cv::Size2d(size.width * fw, size.height * fh), ringWidth);
+      // Strictly better only, so that ties keep the size tried.
+      if (contrast > best.contrast + 1e-9) {
+        best.contrast = contrast;
+        best.factor = cv::Size2d(fw, fh);
+      }
+    }
+  return best;
+}
+
+}  // namespace colortrack
