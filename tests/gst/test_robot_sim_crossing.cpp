@@ -3,6 +3,7 @@
 // C++ headers first: gstcheck.h defines macros (fail, ...) that clash with names in the standard library.
 #include <cmath>
 #include <cstdlib>
+#include <string>
 
 #include "robot_loop_rig.hpp"
 
@@ -47,10 +48,15 @@ Crossing behind(double speed) {
   return Crossing{speed, cv::Point2d(1.8, -1.25), 12 * kDeg};
 }
 
-void checkCrossing(const char *controller, const char *extra = "", const Crossing &c = Crossing()) {
+// `mode`: colortrack's mode. In template mode a track lost and taken back has a new id: there the ball's ROI
+// after the crossing must be the one tracker's box on the ball, whatever its id.
+void checkCrossing(const char *controller, const char *extra = "", const Crossing &c = Crossing(),
+                   const char *mode = "threshold") {
   constexpr int kSettleAfter = 45, kAfter = 60;
+  const bool templateMode = std::string(mode) == "template";
   Scenario sc = forController(controller);
   sc.extra = extra;
+  sc.mode = mode;
   sc.distance = setPointDistance();
   sc.distractorRadius = 0.12;
   sc.ballVelocity = cv::Point2d(0, -0.1);
@@ -114,14 +120,14 @@ void checkCrossing(const char *controller, const char *extra = "", const Crossin
     }
   }
   g_print(
-      "crossing %s%s%s at %.2f m/s: distractor in view frames %d-%d (the ball's track not measured on %d); "
+      "crossing %s%s%s%s at %.2f m/s: distractor in view frames %d-%d (the ball's track not measured on %d); "
       "ball track id %d before, %d after; max |bearing| %.1f deg, distance %.3f-%.3f m (set-point %.3f m), "
       "longest turn away from the ball %d frames; centred from frame %d (%d after it left)\n",
-      controller, *extra ? " " : "", extra, c.speed, enters, leaves - 1, unmeasured, idBefore, idAfter,
-      maxBearing / kDeg, minDistance, maxDistance, setPointDistance(), longestAway, centredFrom,
-      left ? centredFrom - leaves : -1);
+      controller, templateMode ? " template mode" : "", *extra ? " " : "", extra, c.speed, enters, leaves - 1,
+      unmeasured, idBefore, idAfter, maxBearing / kDeg, minDistance, maxDistance, setPointDistance(),
+      longestAway, centredFrom, left ? centredFrom - leaves : -1);
   fail_unless(left, "%s: the distractor never left the view", controller);
-  fail_unless(idBefore > 0 && idAfter == idBefore,
+  fail_unless(idBefore > 0 && (idAfter == idBefore || (templateMode && idAfter > 0)),
               "%s: the ball's track was %d before the crossing, %d after", controller, idBefore, idAfter);
   fail_unless(maxBearing < 10 * kDeg, "%s: turned %.1f deg off the ball", controller, maxBearing / kDeg);
   // In front, 3 frames at max-angular are 8.6 degrees. Behind, the distractor stays beside the ball for up to
@@ -181,6 +187,23 @@ GST_START_TEST(test_keeps_the_ball_at_every_crossing_speed) {
 }
 GST_END_TEST;
 
+// Issue 25, "both modes": driven by mode=template (init-box on the ball), both laws keep the ball when the
+// distractor passes in front at 0.2, 0.3 and 0.4 m/s and behind it at 0.1, 0.2, 0.3 and 0.5 m/s, and the
+// proportional law in front at 0.5 m/s. Before the fused method refused a detection far from the last
+// confirmed size after coasting, the zone robot at 0.4 m/s turned 87 degrees after the distractor: the scale
+// filter jumped 35 % onto it as it covered the ball. Not here, because it fails: the zone law in front at
+// 0.5 m/s keeps the ball in view (|bearing| <= 6 degrees) but closes to 0.92 m (-20 %): the box, partly
+// covered, shrank 4 % before the track coasted, the zone law drove forward, and robotctl holds the drive
+// while the track coasts (docs/benchmarks.md).
+GST_START_TEST(test_template_mode_keeps_the_ball_when_another_crosses) {
+  for (const char *controller : {"zone", "proportional"}) {
+    for (const double speed : {0.2, 0.3, 0.4}) checkCrossing(controller, "", Crossing{speed}, "template");
+    for (const double speed : {0.1, 0.2, 0.3, 0.5}) checkCrossing(controller, "", behind(speed), "template");
+  }
+  checkCrossing("proportional", "", Crossing{0.5}, "template");
+}
+GST_END_TEST;
+
 Suite *robot_sim_crossing_suite(void) {
   Suite *s = suite_create("robot_sim_crossing");
   TCase *tc = tcase_create("closed-loop");
@@ -192,6 +215,7 @@ Suite *robot_sim_crossing_suite(void) {
   tcase_add_test(tc, test_zone_keeps_the_ball_when_another_crosses_slowly);
   tcase_add_test(tc, test_proportional_keeps_the_ball_when_another_crosses_slowly);
   tcase_add_test(tc, test_keeps_the_ball_at_every_crossing_speed);
+  tcase_add_test(tc, test_template_mode_keeps_the_ball_when_another_crosses);
   return s;
 }
 
