@@ -378,11 +378,11 @@ const Def kProperties[] = {
     // The failsafe, which target to follow and the messages.
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
-       return g_param_spec_uint("lost-timeout", "Lost timeout",
-                                "Milliseconds without a confirmed target, or without any buffer, "
-                                "before the robot is stopped (until then it keeps its drive, not its turn)",
-                                1, 600000,
-                                static_cast<guint>(std::lround(FailsafeSettings{}.lostTimeout * 1000)), f);
+       return g_param_spec_uint(
+           "lost-timeout", "Lost timeout",
+           "Milliseconds without a confirmed target, or without any buffer, "
+           "before the robot is stopped (for the first half it keeps its drive, never its turn)",
+           1, 600000, static_cast<guint>(std::lround(FailsafeSettings{}.lostTimeout * 1000)), f);
      },
      [](const Settings &s, GValue *v) {
        g_value_set_uint(v, static_cast<guint>(std::lround(s.failsafe.lostTimeout * 1000)));

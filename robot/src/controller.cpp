@@ -22,6 +22,9 @@ double slew(double current, double target, double rate, double dt) {
   return current + std::clamp(target - current, -step, step);
 }
 
+// The share of lost-timeout for which an unconfirmed target's last drive is held.
+constexpr double kDriveHoldShare = 0.5;
+
 }  // namespace
 
 const char *toString(DriveCommand command) {
@@ -297,9 +300,12 @@ DriveOutput RobotController::update(const Observation &o) {
     // A short dropout (a coasting track, one bad frame): keep driving as decided, but do not turn. The track
     // coasts where the target was last seen, and a turn held for lost-timeout swings the camera off a
     // target that did not move, or onto a same-coloured object crossing it; the next confirmed frame turns
-    // again if it must. (The turn axis starts from standstill then, as the robot does.)
+    // again if it must. (The turn axis starts from standstill then, as the robot does.) The drive is held for
+    // half of lost-timeout only: a box that shrank as something covered the target asked for "forward" on
+    // its last confirmed frame, and driving blind for all of it closed 20 % of the distance (issue 25).
     proportional_.stopTurning();
-    DriveOutput held = makeOutput(last_.linear, 0, false);
+    const double drive = watchdog_.within(o.time, kDriveHoldShare) ? last_.linear : 0.0;
+    DriveOutput held = makeOutput(drive, 0, false);
     return held;
   }
 

@@ -187,14 +187,17 @@ GST_START_TEST(test_lost_timeout_change_reaches_the_stall_watchdog) {
 GST_END_TEST;
 
 GST_START_TEST(test_stop_after_lost_timeout_of_stream_time) {
-  // Frames 0-2 see the target; stop on the first frame at least 190 ms (stream time) after frame 2: frame 8.
-  Ctl ctl("rate=200 lost-timeout=190");
+  // Frames 0-2 see the target. Its drive is held for the frames less than 95 ms (half of lost-timeout, in
+  // stream time) after frame 2, then stopped; the first frame at least 190 ms after frame 2 (frame 8) starts
+  // the search turn, to the left: the target was last seen in the centre.
+  Ctl ctl("rate=200 lost-timeout=190 search-turn=true");
   for (int i = 0; i < 3; ++i) fail_unless_equals_int(ctl.decide({roi(kCentreFar)}).back(), 'F');
   Roi coasting = roi(kCentreFar);
   coasting.state = "coasting";
-  for (int i = 3; i < 8; ++i) fail_unless_equals_int(ctl.decide({coasting}).back(), 'F');  // held
-  fail_unless_equals_int(ctl.decide({coasting}).back(), 'S');
-  fail_unless_equals_int(ctl.decide({}).back(), 'S');
+  for (int i = 3; i < 5; ++i) fail_unless_equals_int(ctl.decide({coasting}).back(), 'F');  // held
+  for (int i = 5; i < 8; ++i) fail_unless_equals_int(ctl.decide({coasting}).back(), 'S');  // unconfirmed
+  fail_unless_equals_int(ctl.decide({coasting}).back(), 'L');
+  fail_unless_equals_int(ctl.decide({}).back(), 'L');
 }
 GST_END_TEST;
 

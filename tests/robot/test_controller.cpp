@@ -276,26 +276,40 @@ Observation unseen(double time) {
   return o;
 }
 
+// The drive is held for the first half of lost-timeout, then stopped; the robot is lost at lost-timeout.
 TEST(RobotController, HoldsTheDriveThroughDropoutsThenStops) {
   ControllerSettings c;
   FailsafeSettings f;  // 0.5 s
+  f.searchTurn = true;
   RobotController robot(c, f);
 
-  EXPECT_EQ(robot.update(unseen(0.0)).command, DriveCommand::Stop);  // never seen: stop
+  EXPECT_EQ(robot.update(unseen(0.0)).command, DriveCommand::Left);  // never seen: search
   DriveOutput out = robot.update(seen(1.0, 0.0, 30));                // centred and far
   EXPECT_EQ(out.command, DriveCommand::Forward);
   EXPECT_TRUE(out.targetVisible);
   out = robot.update(unseen(1.2));
   EXPECT_EQ(out.command, DriveCommand::Forward);  // held
   EXPECT_FALSE(out.targetVisible);
-  EXPECT_EQ(robot.update(seen(1.3, 0.0, 30, TrackState::Coasting)).command, DriveCommand::Forward);
-  EXPECT_EQ(robot.update(unseen(1.499)).command, DriveCommand::Forward);
-  out = robot.update(unseen(1.5));  // exactly lost-timeout after the last confirmed target
+  EXPECT_EQ(robot.update(seen(1.249, 0.0, 30, TrackState::Coasting)).command, DriveCommand::Forward);
+  out = robot.update(seen(1.25, 0.0, 30, TrackState::Coasting));  // half of lost-timeout: the drive stops
   EXPECT_EQ(out.command, DriveCommand::Stop);
   EXPECT_DOUBLE_EQ(out.left, 0.0);
-  EXPECT_EQ(robot.update(unseen(5.0)).command, DriveCommand::Stop);
+  EXPECT_DOUBLE_EQ(out.right, 0.0);
+  EXPECT_EQ(robot.update(unseen(1.499)).command, DriveCommand::Stop);  // not lost yet: no search turn
+  out = robot.update(unseen(1.5));  // exactly lost-timeout after the last confirmed target
+  EXPECT_EQ(out.command, DriveCommand::Left);
+  EXPECT_DOUBLE_EQ(out.linear, 0.0);
   // Back again: the zone controller starts from the centre zone.
   EXPECT_EQ(robot.update(seen(5.1, 0.08, 72)).command, DriveCommand::Stop);
+}
+
+// Confirmed again before lost-timeout, after the drive hold ended: the controller goes on where it was.
+TEST(RobotController, DrivesAgainWhenConfirmedAfterTheHold) {
+  ControllerSettings c;
+  RobotController robot(c, FailsafeSettings());
+  EXPECT_EQ(robot.update(seen(1.0, 0.0, 30)).command, DriveCommand::Forward);
+  EXPECT_EQ(robot.update(unseen(1.4)).command, DriveCommand::Stop);
+  EXPECT_EQ(robot.update(seen(1.45, 0.0, 30)).command, DriveCommand::Forward);
 }
 
 // A turn is not held while the target is unconfirmed: the track coasts where the target was, and a turn
@@ -462,13 +476,13 @@ TEST(RobotController, SetSettingsKeepsTheSlewStateAndTheHold) {
   EXPECT_NEAR(robot.update(seen(0.4, 0.0, 24)).linear, 0.3, 1e-12);
 
   // The lost-target hold survives a settings change, and the new lost-timeout counts from the last
-  // confirmed target (0.4 s).
+  // confirmed target (0.4 s): the drive is held for 0.15 s (0.25 s with the old one).
   f.lostTimeout = 0.3;
   robot.setSettings(c, f);
-  out = robot.update(unseen(0.6));
+  out = robot.update(unseen(0.5));
   EXPECT_NEAR(out.linear, 0.3, 1e-12);  // held
   EXPECT_FALSE(out.targetVisible);
-  EXPECT_EQ(robot.update(unseen(0.75)).command, DriveCommand::Stop);
+  EXPECT_EQ(robot.update(unseen(0.6)).command, DriveCommand::Stop);
 }
 
 TEST(RobotController, SetSettingsWithAnotherKindStartsFromStandstill) {

@@ -211,6 +211,8 @@ class Watchdog {
   void clear() { last_.reset(); }
   // True when never fed or the last feed is `timeout` or more ago.
   bool expired(double now) const { return !last_ || now - *last_ >= timeout_; }
+  // True when fed within `share` of the timeout (share in [0, 1]).
+  bool within(double now, double share) const { return last_ && now - *last_ < share * timeout_; }
   // Applies to the time since the last feed, which is kept.
   void setTimeout(double timeout) { timeout_ = timeout; }
 
@@ -221,9 +223,9 @@ class Watchdog {
 
 // The controller and the failsafe together: one decision per frame.
 //  - a confirmed target (a box, state tracking, score >= minScore) drives the controller;
-//  - without one, the last decision's drive (linear speed) is held, without its turn or tilt, until
-//    lostTimeout after the last confirmed target, then the robot stops (or turns slowly towards where the
-//    target was last seen, with searchTurn).
+//  - without one, the last decision's drive (linear speed) is held, without its turn or tilt, for half of
+//    lostTimeout after the last confirmed target; the robot then stands still, and at lostTimeout it is
+//    lost: it stays stopped (or turns slowly towards where the target was last seen, with searchTurn).
 class RobotController {
  public:
   RobotController(const ControllerSettings &controller, const FailsafeSettings &failsafe);
