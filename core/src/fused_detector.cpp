@@ -149,12 +149,16 @@ void FusedDetector::colourResponse(const BinMapper &colors, const ColorLikelihoo
 }
 
 cv::Size2d FusedDetector::colourExtent(cv::Point2d peakCells, cv::Size2d sizeNormalised) const {
-  std::vector<double> factors;
-  for (int i = -kExtentSteps; i <= kExtentSteps; ++i)
-    if (i != 0) factors.push_back(1 + i * kExtentStep);
+  // The sizes tried on each axis, as factors of the scale filter's: the same every frame.
+  static const std::vector<double> kFactors = [] {
+    std::vector<double> factors;
+    for (int i = -kExtentSteps; i <= kExtentSteps; ++i)
+      if (i != 0) factors.push_back(1 + i * kExtentStep);
+    return factors;
+  }();
   // The response's element (x, y) stands for the target centred at pixel (x * cell, y * cell) of the window.
   const ExtentVote vote =
-      likelihoodExtent(integral_, peakCells * kCell, sizeNormalised, factors, kExtentRing);
+      likelihoodExtent(integral_, peakCells * kCell, sizeNormalised, kFactors, kExtentRing);
   if (vote.contrast < kExtentMinContrast) return {1, 1};
   return {std::pow(vote.factor.width, kExtentRate), std::pow(vote.factor.height, kExtentRate)};
 }
