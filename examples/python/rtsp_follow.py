@@ -69,7 +69,8 @@ class Follower:
             tracker += f" init-box={self.args.init_box}"
         if self.args.template:
             tracker += f' template-location="{self.args.template}"'
-        # robotctl sends stop when no confirmed target (or no frame at all) came for lost-timeout.
+        # robotctl stands the robot still when no confirmed target came for half of lost-timeout, and sends
+        # stop when no frame at all came for all of it.
         tail = "fakesink sync=false"
         if self.args.robot:
             # A serial port through libserialport (device=, baud rate and framing set); a file, FIFO or

@@ -34,13 +34,14 @@
  * Commands go out at a fixed #GstRobotCtl:rate from a writer thread, repeated when unchanged so a watchdog
  * on the robot stays fed; the streaming thread only leaves the newest command for it and never waits for the
  * port. The robot is sent stop on EOS, on a flush, when going from PLAYING to PAUSED and from PAUSED to
- * READY, a last one when the port is closed (READY to NULL), when no confirmed target was seen for
- * #GstRobotCtl:lost-timeout ms, when upstream delivers no buffer for that long, and when the element is
- * disposed. A port that fails while running (a USB adapter unplugged, a UDP peer that stopped listening)
- * posts a warning and is reopened with back-off; the first command after reconnecting is stop. A reopen never
- * creates a file: it waits, with a warning, for the same kind of file (device, FIFO or regular file) to be
- * back at #GstRobotCtl:location. With MAVLink over UDP, a vehicle whose HEARTBEAT has not come back for
- * #GstRobotCtl:link-timeout ms is sent only stop, with a warning, until it answers again.
+ * READY, a last one when the port is closed (READY to NULL), when no confirmed target was seen for half of
+ * #GstRobotCtl:lost-timeout (the drive is held that long, never the turn), when upstream delivers no buffer
+ * for all of it, and when the element is disposed. A port that fails while running (a USB adapter unplugged,
+ * a UDP peer that stopped listening) posts a warning and is reopened with back-off; the first command after
+ * reconnecting is stop. A reopen never creates a file: it waits, with a warning, for the same kind of file
+ * (device, FIFO or regular file) to be back at #GstRobotCtl:location. With MAVLink over UDP, a vehicle whose
+ * HEARTBEAT has not come back for #GstRobotCtl:link-timeout ms is sent only stop, with a warning, until it
+ * answers again.
  *
  * With #GstRobotCtl:post-messages, every command sent is also posted as an element message "robotctl" with
  * command (string), left and right (int, as sent; with MAVLink instead pitch-rate or vx and yaw-rate, as
@@ -203,7 +204,8 @@ namespace {
 // The port the settings name, opened; null (with an error posted) when it cannot be opened.
 std::unique_ptr<robotctl::Port> openPort(GstRobotCtl *self, const robotctl::Settings &s) {
   const robotctl::PortKind kind = robotctl::portKind(s.device, s.location);
-  std::unique_ptr<robotctl::Port> port = robotctl::makePort(s.device, robotctl::toSerialConfig(s), s.location);
+  std::unique_ptr<robotctl::Port> port =
+      robotctl::makePort(s.device, robotctl::toSerialConfig(s), s.location);
   std::string why;
   if (!port->open(why)) {
     if (kind == robotctl::PortKind::Udp)

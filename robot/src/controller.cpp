@@ -304,9 +304,14 @@ DriveOutput RobotController::update(const Observation &o) {
     // half of lost-timeout only: a box that shrank as something covered the target asked for "forward" on
     // its last confirmed frame, and driving blind for all of it closed 20 % of the distance (issue 25).
     proportional_.stopTurning();
-    const double drive = watchdog_.within(o.time, kDriveHoldShare) ? last_.linear : 0.0;
-    DriveOutput held = makeOutput(drive, 0, false);
-    return held;
+    if (!watchdog_.within(o.time, kDriveHoldShare)) {
+      // The hold is over: stand still until confirmed again, then start from standstill (the slew limit
+      // ramps the drive up from zero; a target back nearer than wanted is not driven at), and keep still
+      // if lost-timeout is raised meanwhile.
+      last_ = DriveOutput();
+      proportional_.reset();
+    }
+    return makeOutput(last_.linear, 0, false);
   }
 
   // Lost: stop, and start from standstill (slew) and the centre zones (hysteresis) when it comes back.

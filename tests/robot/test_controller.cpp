@@ -303,13 +303,40 @@ TEST(RobotController, HoldsTheDriveThroughDropoutsThenStops) {
   EXPECT_EQ(robot.update(seen(5.1, 0.08, 72)).command, DriveCommand::Stop);
 }
 
-// Confirmed again before lost-timeout, after the drive hold ended: the controller goes on where it was.
+// Confirmed again before lost-timeout, after the drive hold ended: the zone law drives again at once.
 TEST(RobotController, DrivesAgainWhenConfirmedAfterTheHold) {
   ControllerSettings c;
   RobotController robot(c, FailsafeSettings());
   EXPECT_EQ(robot.update(seen(1.0, 0.0, 30)).command, DriveCommand::Forward);
   EXPECT_EQ(robot.update(unseen(1.4)).command, DriveCommand::Stop);
   EXPECT_EQ(robot.update(seen(1.45, 0.0, 30)).command, DriveCommand::Forward);
+}
+
+// The proportional law after the hold: its drive ramps up from standstill (not back to the speed it had),
+// never towards a target that came back nearer than wanted, and raising lost-timeout while the robot stands
+// does not bring the held drive back.
+TEST(RobotController, ProportionalDriveStartsFromStandstillAfterTheHold) {
+  ControllerSettings c;
+  c.kind = ControllerKind::Proportional;
+  FailsafeSettings f;
+  RobotController robot(c, f);
+  DriveOutput out;
+  for (double t = 0.0; t <= 0.5; t += 0.05) out = robot.update(seen(t, 0.0, 24));  // centred and far
+  ASSERT_NEAR(out.linear, c.maxLinear, 1e-12);
+  EXPECT_NEAR(robot.update(unseen(0.6)).linear, c.maxLinear, 1e-12);  // held
+  EXPECT_DOUBLE_EQ(robot.update(unseen(0.8)).linear, 0.0);            // the hold is over
+  f.lostTimeout = 2.0;
+  robot.setSettings(c, f);
+  EXPECT_DOUBLE_EQ(robot.update(unseen(0.85)).linear, 0.0);
+  // Far again: from zero at max-linear-accel.
+  out = robot.update(seen(0.9, 0.0, 24));
+  EXPECT_NEAR(out.linear, c.maxLinearAccel * 0.05, 1e-9);
+  // At full speed again, then a target back nearer than the set-point after another hold: never forward.
+  for (double t = 0.95; t <= 1.5; t += 0.05) out = robot.update(seen(t, 0.0, 24));
+  ASSERT_NEAR(out.linear, c.maxLinear, 1e-12);
+  EXPECT_DOUBLE_EQ(robot.update(unseen(2.6)).linear, 0.0);
+  out = robot.update(seen(2.65, 0.0, 110));
+  EXPECT_LE(out.linear, 0.0);
 }
 
 // A turn is not held while the target is unconfirmed: the track coasts where the target was, and a turn

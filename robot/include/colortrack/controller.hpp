@@ -94,7 +94,7 @@ struct ControllerSettings {
 };
 
 struct FailsafeSettings {
-  double lostTimeout = 0.5;   // seconds without a confirmed target before stopping
+  double lostTimeout = 0.5;   // seconds without a confirmed target before the target is lost
   double minScore = 0.0;      // a lower score counts as no target
   bool searchTurn = false;    // after the timeout turn slowly towards where the target was last seen
   double searchSpeed = 0.15;  // angular of the search turn
@@ -225,7 +225,8 @@ class Watchdog {
 //  - a confirmed target (a box, state tracking, score >= minScore) drives the controller;
 //  - without one, the last decision's drive (linear speed) is held, without its turn or tilt, for half of
 //    lostTimeout after the last confirmed target; the robot then stands still, and at lostTimeout it is
-//    lost: it stays stopped (or turns slowly towards where the target was last seen, with searchTurn).
+//    lost: it stays stopped (or turns slowly towards where the target was last seen, with searchTurn). A
+//    target confirmed again after the hold is driven from standstill.
 class RobotController {
  public:
   RobotController(const ControllerSettings &controller, const FailsafeSettings &failsafe);
