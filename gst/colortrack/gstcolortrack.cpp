@@ -2,11 +2,15 @@
  * SECTION:element-colortrack
  * @title: colortrack
  *
- * Tracks one coloured object through a video by modified colour indexing: a template gives per-channel
- * histograms (HSV by default), a window slides over a search region around the Kalman prediction and the
- * best histogram intersection wins; its size is refined between #GstColorTrack:scale-min and
- * #GstColorTrack:scale-max, and an edge density/energy check marks same-coloured but untextured look-alikes
- * as unverified.
+ * Tracks one object through a video. The default #GstColorTrack:method, fused, finds it with a correlation
+ * filter on its shape fused with a colour likelihood, sizes it with a scale filter, reports how confident
+ * each frame is (a frame under half the track's usual confidence is not a detection: the track coasts at its
+ * best guess) and re-detects it over the whole frame once lost. method=indexing is the paper's modified
+ * colour indexing: a template gives per-channel histograms (HSV by default), a window slides over a search
+ * region around the Kalman prediction and the best histogram intersection wins, its size refined between
+ * #GstColorTrack:scale-min and #GstColorTrack:scale-max. With every method an edge density/energy check
+ * marks same-coloured but untextured look-alikes as unverified. With #GstColorTrack:mode threshold, every
+ * blob of an HSV range is followed instead, each with its own id.
  *
  * The template comes from an image file (#GstColorTrack:template-location, PNG alpha selects the object's
  * pixels) or from a box of the next frame (#GstColorTrack:init-box). Without either, buffers pass through
@@ -22,8 +26,9 @@
  * stream-time, running-time, duration, frame, state, x, y, width, height, score, verified and scale.
  *
  * The overlay (#GstColorTrack:draw) shows the box in red for a colour-only match, green when verified and
- * orange while coasting on the prediction, the path of the box centre in yellow, the search window in blue
- * and an "id score state" label. YUV input is read and drawn with the BT.601 matrix.
+ * orange while coasting, the path of the box centre in yellow, the search window in blue and an "id score
+ * state" label. YUV input is read with the matrix and range its caps' colorimetry name (BT.601 when none
+ * is given, as videoconvert assumes); the overlay is drawn into YUV with BT.601.
  *
  * Click to track (#GstColorTrack:click-to-track): a left click in the window of a video sink that sends
  * GstNavigation events (xvimagesink, glimagesink, autovideosink ...) takes the template from the
