@@ -380,8 +380,9 @@ const Def kProperties[] = {
      [](GParamFlags f) {
        return g_param_spec_uint(
            "lost-timeout", "Lost timeout",
-           "Milliseconds without a confirmed target, or without any buffer, "
-           "before the robot is stopped (for the first half it keeps its drive, never its turn)",
+           "Milliseconds without a confirmed target, or without any buffer, before the target counts "
+           "as lost and the robot stops (or search-turns); without a confirmed target it keeps its drive "
+           "for the first half, then stands still, and never keeps its turn",
            1, 600000, static_cast<guint>(std::lround(FailsafeSettings{}.lostTimeout * 1000)), f);
      },
      [](const Settings &s, GValue *v) {
