@@ -300,4 +300,17 @@ double peakToSidelobe(const cv::Mat &response, cv::Point peak, int exclude) {
          std::max(deviation[0], std::max(1e-6, std::abs(peakValue) / kMaxPeakToSidelobe));
 }
 
+double rivalPeakRatio(const cv::Mat &response, cv::Point peak, cv::Size2d halfSides) {
+  cv::Mat outside(response.size(), CV_8U, cv::Scalar(255));
+  const cv::Rect own(cvRound(peak.x - halfSides.width), cvRound(peak.y - halfSides.height),
+                     cvRound(2 * halfSides.width) + 1, cvRound(2 * halfSides.height) + 1);
+  outside(own & cv::Rect(cv::Point(), response.size())).setTo(0);
+  if (cv::countNonZero(outside) == 0) return 0;
+  const double mean = cv::mean(response, outside)[0];
+  double rival = 0;
+  cv::minMaxLoc(response, nullptr, &rival, nullptr, nullptr, outside);
+  const double peakValue = response.at<float>(peak);
+  return peakValue > mean ? (rival - mean) / (peakValue - mean) : 0;
+}
+
 }  // namespace colortrack

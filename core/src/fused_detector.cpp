@@ -196,6 +196,9 @@ FusedDetector::Estimate FusedDetector::locate(const ImageSource &frame, cv::Poin
   e.colourPeak = colour.empty() ? 0 : colour.at<float>(peak);
   e.confidence =
       peakToSidelobe(response, peak, std::max(1, cvRound(0.2 * std::min(response.cols, response.rows))));
+  // The target's own area is half its size each way from the peak, in response elements.
+  e.rival =
+      rivalPeakRatio(response, peak, cv::Size2d(size.width * zx / kCell / 2, size.height * zy / kCell / 2));
   scaleMeasured_ = withScale;
   if (scaleMeasured_) {
     scaleSamples(frame, e.centre, size);

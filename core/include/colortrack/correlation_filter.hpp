@@ -86,4 +86,9 @@ cv::Point2d subCellPeak(const cv::Mat &response, cv::Point peak);
 // `exclude` cells around the peak. High for one sharp peak, low for a flat or many-peaked response.
 double peakToSidelobe(const cv::Mat &response, cv::Point peak, int exclude);
 
+// How high the strongest response outside the peak's own area (`halfSides` cells each way) rises, as a share
+// of the peak, both above the mean of the response outside that area: near 1 when another place in the window
+// answers the filter as well as the peak (a look-alike beside the target), 0 when nothing else stands out.
+double rivalPeakRatio(const cv::Mat &response, cv::Point peak, cv::Size2d halfSides);
+
 }  // namespace colortrack

@@ -24,6 +24,7 @@ class FusedDetector {
     cv::Size2d extent{1, 1};   // what the colour map says of the size: report size * extent
     double confidence = 0;     // peak-to-sidelobe ratio of the fused response
     double colourPeak = 0;     // the mean colour likelihood of the target window at the peak
+    double rival = 0;          // rivalPeakRatio of the fused response: another place nearly as good
     unsigned long window = 0;  // which locate() call measured it
   };
 
