@@ -205,9 +205,9 @@ TEST(CorrelationFilter, RivalPeakRatioIsTheSecondPeakShare) {
     cv::Mat r(24, 32, CV_32F);
     for (int y = 0; y < r.rows; ++y)
       for (int x = 0; x < r.cols; ++x)
-        r.at<float>(y, x) = static_cast<float>(
-            0.1 + std::exp(-(std::pow(x - 8, 2) + std::pow(y - 12, 2)) / 4.0) +
-            secondHeight * std::exp(-(std::pow(x - 22, 2) + std::pow(y - 12, 2)) / 4.0));
+        r.at<float>(y, x) =
+            static_cast<float>(0.1 + std::exp(-(std::pow(x - 8, 2) + std::pow(y - 12, 2)) / 4.0) +
+                               secondHeight * std::exp(-(std::pow(x - 22, 2) + std::pow(y - 12, 2)) / 4.0));
     return r;
   };
   const cv::Size2d ownArea(4, 4);
