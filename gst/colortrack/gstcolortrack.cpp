@@ -4,8 +4,9 @@
  *
  * Tracks one object through a video. The default #GstColorTrack:method, fused, finds it with a correlation
  * filter on its shape fused with a colour likelihood, sizes it with a scale filter, reports how confident
- * each frame is (a frame under half the track's usual confidence is not a detection: the track coasts at its
- * best guess) and re-detects it over the whole frame once lost. method=indexing is the paper's modified
+ * each frame is (a frame under half the track's usual confidence, or with a look-alike in the search window
+ * answering nearly as well, is not a detection: the track coasts at its best guess) and re-detects it over
+ * the whole frame once lost. method=indexing is the paper's modified
  * colour indexing: a template gives per-channel histograms (HSV by default), a window slides over a search
  * region around the Kalman prediction and the best histogram intersection wins, its size refined between
  * #GstColorTrack:scale-min and #GstColorTrack:scale-max. With every method an edge density/energy check
