@@ -11,19 +11,15 @@
 #include "colortrack/cell_features.hpp"
 #include "colortrack/correlation_filter.hpp"
 #include "colortrack/fused_detector.hpp"
+#include "noise_texture.hpp"
 
 using namespace colortrack;
 
 namespace {
 
-// Smooth random texture (blurred noise), CV_8UC3: plenty of gradients in every direction.
+// Blurred noise, CV_8UC3: plenty of gradients in every direction.
 cv::Mat texture(cv::Size size, int seed) {
-  cv::RNG rng(seed);
-  cv::Mat noise(size, CV_8UC3);
-  rng.fill(noise, cv::RNG::UNIFORM, 0, 256);
-  cv::GaussianBlur(noise, noise, cv::Size(0, 0), 2.0);
-  cv::normalize(noise, noise, 0, 255, cv::NORM_MINMAX);
-  return noise;
+  return colortrack::test::noiseTexture(size, seed, 2.0);
 }
 
 // The same texture as grey levels in [0, 1] (CV_32FC1), what the cell features read.

@@ -11,6 +11,7 @@
 
 #include "colortrack/fused_detector.hpp"
 #include "colortrack/tracker.hpp"
+#include "noise_texture.hpp"
 
 using namespace colortrack;
 
@@ -18,14 +19,9 @@ namespace {
 
 constexpr int kSide = 60;  // the target's side, px
 
-// Smooth random texture (blurred noise), CV_8UC3.
+// Blurred noise, CV_8UC3: a background or a target.
 cv::Mat texture(cv::Size size, int seed) {
-  cv::RNG rng(seed);
-  cv::Mat noise(size, CV_8UC3);
-  rng.fill(noise, cv::RNG::UNIFORM, 0, 256);
-  cv::GaussianBlur(noise, noise, cv::Size(0, 0), 3.0);
-  cv::normalize(noise, noise, 0, 255, cv::NORM_MINMAX);
-  return noise;
+  return colortrack::test::noiseTexture(size, seed, 3.0);
 }
 
 // A frame: the background, the target's patch at `target` seen at `visibility` (1 = plainly, 0 = not at all:
