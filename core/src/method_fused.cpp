@@ -64,10 +64,11 @@ constexpr double kReachSidesPerFrame = 1.0;
 // A frame whose response has a rival peak (FusedDetector::Estimate::rival) of at least this share of the
 // target's is not a detection: a look-alike beside the target (team-mates, a herd) answers the filter as
 // well, and learning or reporting `tracking` there is how the track went over to it. The track waits at its
-// peak until the two are apart. Core harness, all 162 runs: wrong frames reported `tracking` 15.7 % -> 10.5 %
-// of the SRE runs', SRE tune 0.5974 -> 0.5964, confirm 0.4685 -> 0.4718; 0.85: 12.9 %, 0.5972, 0.4760;
-// 0.9: 13.0
-// %, 0.5987, 0.4713; 0.75: 10.7 %, 0.5949; 0.7: 12.7 %, 0.5838 (docs/benchmarks.md).
+// peak until the two are apart. Core harness, all 162 runs, wrong frames reported `tracking` in the SRE runs
+// and SRE tune / confirm: main 15.7 %, 0.5974 / 0.4685; 0.8: 10.5 %, 0.5964 / 0.4718; 0.85: 12.9 %, 0.5972 /
+// 0.4760; 0.9: 13.0 %, 0.5987 / 0.4713; 0.75: 10.7 %, 0.5949; 0.7: 12.7 %, 0.5838 (docs/benchmarks.md).
+// Re-detections after a loss (acquire()) are not held to it: refusing to confirm one with a rival share of
+// 0.8 changed nothing, 0.6 lost 0.001-0.003 on each half.
 constexpr double kRivalShare = 0.8;
 // An unconfirmed track's score stays under that bar, however well this frame matched.
 double guessScore(double score) {
@@ -121,9 +122,9 @@ class FusedMethod : public DetectionMethod {
   cv::Point2d centre_;
   cv::Size2d size_;
   cv::Size2d targetSize_;  // size_ at the last confirmed detection: re-detection seeks sizes around it
-  cv::Point2d
-      confirmedCentre_;  // centre_ at the last confirmed detection: re-detection while coasting near it
-  cv::Size2d minSize_;   // the box never shrinks below this (8 px, or the start size if smaller)
+  // centre_ at the last confirmed detection: re-detection while coasting takes places near it only.
+  cv::Point2d confirmedCentre_;
+  cv::Size2d minSize_;          // the box never shrinks below this (8 px, or the start size if smaller)
   double usualConfidence_ = 0;  // running mean of the confidence of learnt frames
   int confidenceSamples_ = 0;   // how many frames the mean has seen
   int framesLearnt_ = 0;        // since the filters started
@@ -288,6 +289,9 @@ void FusedMethod::startFilters(const ImageSource &frame, const cv::Rect2d &box) 
   centre_ = cv::Point2d(fitted.x + fitted.width / 2, fitted.y + fitted.height / 2);
   size_ = fitted.size();
   targetSize_ = size_;
+  // The start box is a confirmed place (a new template mid-stream must not leave the old one's).
+  confirmedCentre_ = centre_;
+  coastingFromConfirmed_ = true;
   minSize_ = cv::Size2d(std::min(8.0, size_.width), std::min(8.0, size_.height));
 }
 

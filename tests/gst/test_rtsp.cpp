@@ -384,8 +384,18 @@ Quality quality(const Scene &scene, const std::vector<Observation> &run) {
 }
 
 // Tracks over RTSP in `codec`, the server killed and started again mid-stream.
+// GStreamer 1.22's rtspsrc sometimes sends an event with an unset sequence number while it tears a dead
+// session down, which logs this critical from inside the library (seen once in many runs, 2026-12-04). It is
+// not this project's to fix and changes nothing downstream; every other critical still fails the test.
+void ignoreRtspsrcUnsetSeqnum() {
+  GRegex *unsetSeqnum = g_regex_new("gst_event_set_seqnum: assertion 'seqnum != GST_SEQNUM_INVALID' failed",
+                                    GRegexCompileFlags(0), GRegexMatchFlags(0), nullptr);
+  gst_check_add_log_filter("GStreamer", G_LOG_LEVEL_CRITICAL, unsetSeqnum, nullptr, nullptr, nullptr);
+}
+
 void trackAndSurviveServerRestart(const Codec &codec) {
   g_print("rtsp: %s\n", codec.name);
+  ignoreRtspsrcUnsetSeqnum();
   const Scene scene(sceneConfig());
   // The frame-index strip must stay clear of the object, or the ground truth would be wrong.
   for (int i = 0; i < scene.config().frames; ++i)
