@@ -2,7 +2,7 @@
 // GStreamer. Meant for quick tuning loops: it runs the core tracker directly on the decoded JPEGs, several
 // sequences at once.
 //
-//   colortrack-core-eval [--set key=value ...] [--split tune|confirm|all] [--sre]
+//   colortrack-core-eval [--set key=value ...] [--split tune|confirm|all] [--sre] [--start-offset DX,DY]
 //                        [--threads N] [--frames-out DIR] SEQ_DIR_OR_PARENT...
 //
 // A SEQ_DIR holds img/<n>.jpg and groundtruth.txt (or OTB's groundtruth_rect.txt); a folder of such folders
@@ -18,6 +18,9 @@
 //                   sequences in neither list run with `all` (the default) only.
 // --sre             spatial robustness too: 8 more runs per sequence from perturbed frame-1 boxes (sre.hpp);
 //                   a sequence's SRE score is the mean AUC of those 8 runs.
+// --start-offset DX,DY  every start box (OPE and SRE) moved by whole pixels before the run. The means move
+//                   by about 0.01 (SRE) to 0.05 (OPE) for a 1 px offset, so a change smaller than that
+//                   spread, judged at one offset, is not yet a result (docs/benchmarks.md, noise floor).
 // --threads N       runs processed in parallel, one Tracker per run (default 2). OpenCV runs
 //                   single-threaded (cv::setNumThreads(1)), so the per-frame times are those of one core.
 // --frames-out DIR  DIR/<sequence>.csv (SRE runs: DIR/<sequence>.<start>.csv): frame,x,y,w,h,state,score
@@ -86,6 +89,7 @@ constexpr double kGtOrigin = 1.0;
 
 constexpr const char *kUsage =
     "usage: colortrack-core-eval [--set key=value ...] [--split tune|confirm|all] [--sre]\n"
+    "                            [--start-offset DX,DY]\n"
     "                            [--threads N] [--frames-out DIR] SEQ_DIR_OR_PARENT...\n"
     "\n"
     "  SEQ_DIR_OR_PARENT   OTB layout (img/*.jpg + groundtruth.txt), or a folder of such folders\n"
@@ -95,6 +99,7 @@ constexpr const char *kUsage =
     "                      verify=none|edge-density|edge-energy|both (repeatable)\n"
     "  --split S           tune, confirm or all (default all)\n"
     "  --sre               also 8 runs per sequence from perturbed start boxes (spatial robustness)\n"
+    "  --start-offset DX,DY  every start box moved by DX, DY whole pixels (the noise floor)\n"
     "  --threads N         runs in parallel (default 2)\n"
     "  --frames-out DIR    per-frame boxes and states in DIR/<sequence>.csv\n";
 
@@ -110,6 +115,7 @@ struct Options {
   TrackerSettings settings;
   Split split = Split::All;
   bool sre = false;
+  cv::Point startOffset;  // added to every start box
   int threads = 2;
   std::string framesOut;
   std::vector<std::string> inputs;
@@ -165,6 +171,13 @@ int parseInteger(const std::string &what, const std::string &value) {
   }
   if (used == 0 || used != value.size()) throw UsageError(what + ": '" + value + "' is not an integer");
   return number;
+}
+
+// "DX,DY" in whole pixels; `option` names the flag in the error.
+cv::Point parseOffset(const std::string &option, const std::string &text) {
+  const std::size_t comma = text.find(',');
+  if (comma == std::string::npos) throw UsageError(option + " expects DX,DY, got '" + text + "'");
+  return {parseInteger(option, text.substr(0, comma)), parseInteger(option, text.substr(comma + 1))};
 }
 
 // Splits "key=value"; `option` names the flag in the error.
@@ -244,6 +257,8 @@ Options parseOptions(int argc, char **argv) {
         throw UsageError("--split: '" + value + "' is not tune, confirm or all");
     } else if (arg == "--sre") {
       options.sre = true;
+    } else if (arg == "--start-offset") {
+      options.startOffset = parseOffset(arg, next());
     } else if (arg == "--threads") {
       options.threads = parseInteger(arg, next());
       if (options.threads < 1) throw UsageError("--threads must be at least 1");
@@ -395,12 +410,12 @@ std::vector<Result> runAll(const std::vector<Sequence> &sequences, const std::ve
 
 // ---------------------------------------------------------------------------------------------------------
 
-// Every sequence from its OPE start and, with --sre, from the perturbed ones.
-std::vector<Job> makeJobs(const std::vector<Sequence> &sequences, bool sre) {
+// Every sequence from its OPE start and, with --sre, from the perturbed ones; each moved by `offset`.
+std::vector<Job> makeJobs(const std::vector<Sequence> &sequences, bool sre, cv::Point offset) {
   std::vector<Job> jobs;
   for (std::size_t s = 0; s < sequences.size(); ++s) {
-    const std::vector<StartBox> starts =
-        startBoxes(*sequences[s].groundTruth[0], sequences[s].frameSize, sre);
+    const cv::Rect2d first = *sequences[s].groundTruth[0] + cv::Point2d(offset);
+    const std::vector<StartBox> starts = startBoxes(first, sequences[s].frameSize, sre);
     for (std::size_t i = 0; i < starts.size(); ++i) jobs.push_back({s, i, starts[i]});
   }
   return jobs;
@@ -456,7 +471,7 @@ int run(int argc, char **argv) {
   if (sequences.empty()) throw std::runtime_error("no sequence of the chosen split among the inputs");
   if (!options.framesOut.empty()) fs::create_directories(options.framesOut);
 
-  const std::vector<Job> jobs = makeJobs(sequences, options.sre);
+  const std::vector<Job> jobs = makeJobs(sequences, options.sre, options.startOffset);
   const Clock::time_point start = Clock::now();
   const std::vector<Result> results = runAll(sequences, jobs, options);
   const double wallSeconds = std::chrono::duration<double>(Clock::now() - start).count();
