@@ -1,7 +1,7 @@
 // colortrack-eval: accuracy and speed of GStreamer tracker elements on OTB-layout sequences, side by side.
 //
 //   colortrack-eval [options] SEQUENCE_DIR... --tracker FRAGMENT [--tracker FRAGMENT ...]
-//                   [--formats BGRx,I420] [--sre]
+//                   [--formats BGRx,I420] [--sre] [--start-offset DX,DY]
 //
 // A SEQUENCE_DIR holds img/<n>.jpg and groundtruth.txt (or OTB's groundtruth_rect.txt); a folder of such
 // folders stands for all of them. Each tracker is a gst-launch fragment whose last element is the tracker,
@@ -15,10 +15,12 @@
 // will meet. cvtracker negotiates its own input (it takes RGB only), so it runs without the caps filter,
 // once per sequence and start, and that one result stands in every format column ("[own caps]").
 // --sre adds OTB's spatial robustness evaluation: 8 more runs per sequence from perturbed frame-1 boxes
-// (sre.hpp); the SRE score of a sequence is the mean AUC of those 8 runs. The robustness summary
-// (robustness.hpp) ends the report: OPE and SRE per sequence and half, the spread between formats, the
-// sequences that move by more than 0.1, and colortrack's alarm and re-acquisition figures, computed from the
-// state it reports per frame (its element message, post-messages=true, else its ROI meta's params).
+// (sre.hpp); the SRE score of a sequence is the mean AUC of those 8 runs. --start-offset DX,DY moves every
+// start box by whole pixels for every tracker alike: a 1 px shift moves the means by up to 0.015 (SRE). The
+// robustness summary (robustness.hpp) ends the report: OPE and SRE per sequence and half, the spread between
+// formats, the sequences that move by more than 0.1, and colortrack's alarm and re-acquisition figures,
+// computed from the state it reports per frame (its element message, post-messages=true, else its ROI meta's
+// params).
 //
 // The tracker is initialised with frame 1's ground-truth box (or a perturbed one, --sre) (colortrack:
 // init-box; cvtracker: object-initial-x/y/width/height) and every buffer reaching the appsink is scored by
@@ -136,14 +138,16 @@ EvalResults evaluateAll(const std::vector<Sequence> &sequences, const std::vecto
   results.formats = options.formats;
   for (const std::string &fragment : trackers)
     results.runOnce.push_back(trackerFactory(fragment) == "cvtracker");
-  for (const StartBox &start : startBoxes(*sequences[0].groundTruth[0], sequences[0].frameSize, options.sre))
+  const cv::Point2d offset(options.startOffsetX, options.startOffsetY);
+  for (const StartBox &start :
+       startBoxes(*sequences[0].groundTruth[0] + offset, sequences[0].frameSize, options.sre))
     results.startNames.push_back(start.name);
   const int runs = countRuns(sequences, results);
   int done = 0;
   results.runs.resize(sequences.size());
   for (std::size_t s = 0; s < sequences.size(); ++s) {
     const Sequence &seq = sequences[s];
-    const std::vector<StartBox> starts = startBoxes(*seq.groundTruth[0], seq.frameSize, options.sre);
+    const std::vector<StartBox> starts = startBoxes(*seq.groundTruth[0] + offset, seq.frameSize, options.sre);
     results.runs[s].assign(
         trackers.size(),
         std::vector<std::vector<Evaluation>>(results.formats.size(), std::vector<Evaluation>(starts.size())));

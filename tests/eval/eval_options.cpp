@@ -17,6 +17,8 @@ const char *const kEvalUsage =
     "                        RGB, NV12, YUY2, BGR (default BGRx,I420; cvtracker keeps its own caps and\n"
     "                        runs once, its result shown under every format)\n"
     "  --sre                 also 8 runs per sequence from perturbed start boxes (spatial robustness)\n"
+    "  --start-offset DX,DY  every start box (OPE and SRE) moved by DX, DY whole pixels, for every\n"
+    "                        tracker alike (the noise floor of a result)\n"
     "  --out DIR             results.md, results.csv, curves.csv, success.png, precision.png, frames/\n"
     "                        (default eval-out)\n"
     "  --gt-origin N         subtracted from ground-truth x and y (default 1: OTB's 1-based boxes)\n"
@@ -66,6 +68,17 @@ bool parseFlag(const std::string &arg, Options &options) {
   return true;
 }
 
+// "DX,DY" as two whole numbers of pixels.
+void parseOffset(const std::string &arg, const std::string &value, Options &options) {
+  const std::size_t comma = value.find(',');
+  char *endX = nullptr, *endY = nullptr;
+  const std::string x = value.substr(0, comma), y = comma == std::string::npos ? "" : value.substr(comma + 1);
+  options.startOffsetX = int(std::strtol(x.c_str(), &endX, 10));
+  options.startOffsetY = int(std::strtol(y.c_str(), &endY, 10));
+  if (x.empty() || y.empty() || *endX != '\0' || *endY != '\0')
+    throw std::invalid_argument(arg + " expects DX,DY in whole pixels, got '" + value + "'");
+}
+
 int positive(const std::string &arg, const std::string &value) {
   const int n = std::atoi(value.c_str());
   if (n <= 0) throw std::invalid_argument(arg + " must be a positive number");
@@ -78,6 +91,8 @@ bool parseValued(const std::string &arg, const std::string &value, Options &opti
     options.trackers.push_back(value);
   else if (arg == "--formats")
     options.formats = parseFormats(value);
+  else if (arg == "--start-offset")
+    parseOffset(arg, value, options);
   else if (arg == "--out")
     options.outDir = value;
   else if (arg == "--gt-origin")
@@ -96,8 +111,8 @@ bool parseValued(const std::string &arg, const std::string &value, Options &opti
 }
 
 bool takesValue(const std::string &arg) {
-  return arg == "--tracker" || arg == "--formats" || arg == "--out" || arg == "--gt-origin" ||
-         arg == "--opencv-threads" || arg.rfind("--overhead-", 0) == 0;
+  return arg == "--tracker" || arg == "--formats" || arg == "--start-offset" || arg == "--out" ||
+         arg == "--gt-origin" || arg == "--opencv-threads" || arg.rfind("--overhead-", 0) == 0;
 }
 
 }  // namespace
