@@ -38,6 +38,7 @@ void KalmanTrack::newTemplate(cv::Size size) {
 
 void KalmanTrack::reset(const KalmanParams &params) {
   state = TrackState::Searching;
+  doubted = false;
   coastFrames = 0;
   unverifiedFrames = 0;
   searchFrames = 0;
@@ -51,6 +52,7 @@ void KalmanTrack::start(const cv::Rect2d &box, const KalmanParams &params) {
   kalman.init(box.x + box.width / 2, box.y + box.height / 2, lastScale);
   ++id;
   state = TrackState::Tracking;
+  doubted = false;
   coastFrames = 0;
   unverifiedFrames = 0;
 }
@@ -81,7 +83,7 @@ void KalmanTrack::coastAt(cv::Point2d centre, int maxCoastFrames) {
 }
 
 void KalmanTrack::report(TrackOutput &out) const {
-  out.state = state;
+  out.state = state == TrackState::Tracking && doubted ? TrackState::Coasting : state;
   out.id = id;
   if (!active()) return;
   out.hasBox = true;
@@ -89,7 +91,7 @@ void KalmanTrack::report(TrackOutput &out) const {
   out.scale = kalman.scale();
   out.vx = kalman.vx();
   out.vy = kalman.vy();
-  out.verified = state == TrackState::Tracking && lastVerified;
+  out.verified = out.state == TrackState::Tracking && lastVerified;
 }
 
 // Scale (for the Kalman filter: the square root of the box's area relative to the template's, so aspect

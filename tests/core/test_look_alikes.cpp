@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <memory>
 #include <optional>
+#include <string>
 
 #include <opencv2/imgproc.hpp>
 
@@ -128,6 +129,39 @@ TEST(LookAlikes, TrackerDoesNotReportAnAmbiguousFrameAsTracking) {
     }
     if (i >= 13) {
       EXPECT_EQ(out.state, TrackState::Tracking) << "frame " << i;
+    }
+  }
+}
+
+// After the twin's frame the target, alone again, is seen faintly (blended 0.58 with the background) for 11
+// frames, then plainly. Faint, it still passes the detection bar, so without the twin every frame is reported
+// `tracking`. After the twin's frame the track is doubted: followed and learnt, but reported `coasting` until
+// a frame reaches the bar that confirms a re-detection (PSR 6, or 0.6 of the usual). The faint target gets
+// there within a few frames as the filter learns it (0.54-0.62 blends behave alike; 0.52 is lost either way,
+// 0.64 is confirmed at once), and the plain one at once.
+TEST(LookAlikes, TrackIsDoubtedAfterARivalUntilAConfidentFrame) {
+  const Stage stage;
+  const cv::Point target(290, 210), moved = target - cv::Point(kJump, 0),
+                                    twin = target + cv::Point(kTwinOffset, 0);
+  for (bool withTwin : {false, true}) {
+    const auto tracker = fusedTracker(stage.render(target, 1, std::nullopt), target);
+    std::string states;
+    for (int i = 1; i <= 30; ++i) {
+      const bool twinFrame = withTwin && i == 11;
+      const double visibility = i <= 11 || i > 22 ? 1.0 : 0.58;
+      const cv::Point at = i <= 10 ? target : moved;
+      const TrackOutput out = tracker->process(
+          MatImageSource(stage.render(at, visibility, twinFrame ? std::optional(twin) : std::nullopt)));
+      ASSERT_TRUE(out.hasBox) << "frame " << i;
+      EXPECT_GE(iou(out.box, cv::Rect2d(at, cv::Size(kSide, kSide))), 0.5) << "frame " << i;
+      if (i > 11) states += out.state == TrackState::Tracking ? 'T' : '-';
+    }
+    std::printf("%s, frames 12-30: %s\n", withTwin ? "after the twin" : "no twin", states.c_str());
+    if (!withTwin) {
+      EXPECT_EQ(states, std::string(19, 'T')) << "the faint target alone must be a detection";
+    } else {
+      EXPECT_EQ(states[0], '-') << "the frame after the twin's was reported tracking";
+      EXPECT_EQ(states.substr(11), std::string(8, 'T')) << "the plain target did not clear the doubt";
     }
   }
 }

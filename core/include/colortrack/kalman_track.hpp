@@ -19,6 +19,9 @@ struct KalmanTrack {
   int searchFrames = 0;      // frames searched since the track was lost (picks the scale to try)
   double lastScale = 1.0;    // last measured scale
   bool lastVerified = false;
+  // Measured and followed, but not vouched for: reported coasting (and unverified) until the method clears
+  // it. The fused method sets it when a look-alike answers beside the target (FusedMethod::follow).
+  bool doubted = false;
   double aspect = 1.0;    // (box width / height) / (template width / height)
   cv::Size templateSize;  // boxes are measured relative to it
 
