@@ -175,9 +175,9 @@ int parseInteger(const std::string &what, const std::string &value) {
 
 // "DX,DY" in whole pixels; `option` names the flag in the error.
 cv::Point parseOffset(const std::string &option, const std::string &text) {
-  const std::size_t comma = text.find(',');
-  if (comma == std::string::npos) throw UsageError(option + " expects DX,DY, got '" + text + "'");
-  return {parseInteger(option, text.substr(0, comma)), parseInteger(option, text.substr(comma + 1))};
+  const std::optional<cv::Point> offset = parseStartOffset(text);
+  if (!offset) throw UsageError(option + " expects DX,DY in whole pixels, got '" + text + "'");
+  return *offset;
 }
 
 // Splits "key=value"; `option` names the flag in the error.

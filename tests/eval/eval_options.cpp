@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <optional>
 #include <stdexcept>
+
+#include "sre.hpp"
 
 namespace colortrack::eval {
 
@@ -70,13 +73,10 @@ bool parseFlag(const std::string &arg, Options &options) {
 
 // "DX,DY" as two whole numbers of pixels.
 void parseOffset(const std::string &arg, const std::string &value, Options &options) {
-  const std::size_t comma = value.find(',');
-  char *endX = nullptr, *endY = nullptr;
-  const std::string x = value.substr(0, comma), y = comma == std::string::npos ? "" : value.substr(comma + 1);
-  options.startOffsetX = int(std::strtol(x.c_str(), &endX, 10));
-  options.startOffsetY = int(std::strtol(y.c_str(), &endY, 10));
-  if (x.empty() || y.empty() || *endX != '\0' || *endY != '\0')
-    throw std::invalid_argument(arg + " expects DX,DY in whole pixels, got '" + value + "'");
+  const std::optional<cv::Point> offset = parseStartOffset(value);
+  if (!offset) throw std::invalid_argument(arg + " expects DX,DY in whole pixels, got '" + value + "'");
+  options.startOffsetX = offset->x;
+  options.startOffsetY = offset->y;
 }
 
 int positive(const std::string &arg, const std::string &value) {

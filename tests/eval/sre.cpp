@@ -1,5 +1,7 @@
 #include "sre.hpp"
 
+#include <cstdlib>
+
 namespace colortrack::eval {
 
 cv::Rect startRect(const cv::Rect2d &box, cv::Size frame) {
@@ -29,6 +31,16 @@ std::vector<StartBox> startBoxes(const cv::Rect2d &groundTruth, cv::Size frame, 
   scaled("scale0.9", 0.9);
   scaled("scale1.1", 1.1);
   return starts;
+}
+
+std::optional<cv::Point> parseStartOffset(const std::string &text) {
+  const std::size_t comma = text.find(',');
+  if (comma == std::string::npos) return std::nullopt;
+  const std::string x = text.substr(0, comma), y = text.substr(comma + 1);
+  char *endX = nullptr, *endY = nullptr;
+  const long dx = std::strtol(x.c_str(), &endX, 10), dy = std::strtol(y.c_str(), &endY, 10);
+  if (x.empty() || y.empty() || *endX != '\0' || *endY != '\0') return std::nullopt;
+  return cv::Point(int(dx), int(dy));
 }
 
 }  // namespace colortrack::eval

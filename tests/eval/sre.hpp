@@ -2,6 +2,7 @@
 // wrong boxes, so a score does not rest on one lucky initialisation.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,5 +26,8 @@ cv::Rect startRect(const cv::Rect2d &box, cv::Size frame);
 // by 10 % of the width left and right, 10 % of the height up and down, diagonally by 10 % up-left and
 // down-right, and scaled about the centre by 0.9 and 1.1. All rounded and clipped to `frame`.
 std::vector<StartBox> startBoxes(const cv::Rect2d &groundTruth, cv::Size frame, bool sre);
+
+// A start offset as the tools take it ("DX,DY", whole pixels, e.g. "-1,2"); nullopt for anything else.
+std::optional<cv::Point> parseStartOffset(const std::string &text);
 
 }  // namespace colortrack::eval

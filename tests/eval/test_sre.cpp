@@ -1,4 +1,5 @@
-// The SRE start boxes, worked out by hand on a box whose 10 % steps are whole pixels.
+// The SRE start boxes, worked out by hand on a box whose 10 % steps are whole pixels, and the start offset
+// the tools take.
 #include <gtest/gtest.h>
 
 #include "sre.hpp"
@@ -29,6 +30,13 @@ TEST(Sre, StartsAreClippedToTheFrame) {
   EXPECT_EQ(starts[1].box, cv::Rect(0, 0, 36, 60));  // left: the 4 px past the edge are cut off
   EXPECT_EQ(starts[5].box, cv::Rect(0, 0, 36, 54));  // up-left
   EXPECT_EQ(starts[8].box, cv::Rect(0, 0, 42, 63));  // 1.1 from (-2, -3, 44, 66)
+}
+
+TEST(StartOffset, ParsesWholePixelsAndRefusesTheRest) {
+  EXPECT_EQ(parseStartOffset("1,0"), cv::Point(1, 0));
+  EXPECT_EQ(parseStartOffset("-1,-2"), cv::Point(-1, -2));
+  for (const char *bad : {"1", "1,", ",1", "1,z", "1.5,0", "1,0,0", ""})
+    EXPECT_FALSE(parseStartOffset(bad).has_value()) << "'" << bad << "'";
 }
 
 }  // namespace
