@@ -99,6 +99,36 @@ std::string meansTable(const RobustnessTable &table) {
   return out.str();
 }
 
+// Mean AUC of each start (OPE and every SRE perturbation) per half: shows which kind of misplaced first box
+// costs most, which the SRE score alone hides.
+std::string perStartTable(const RobustnessTable &table) {
+  std::ostringstream out;
+  out << "\nMean AUC per start (tune / confirm / all)\n";
+  out << format("%-44s", "");
+  for (const std::string &name : table.startNames) out << format(" %17s", name.c_str());
+  out << "\n";
+  for (const Column &c : columns(table)) {
+    out << format("%-44.44s", columnName(table, c.tracker, c.format).c_str());
+    for (std::size_t i = 0; i < table.startNames.size(); ++i) {
+      double sum[3] = {0, 0, 0};  // tune, confirm, all
+      int count[3] = {0, 0, 0};
+      for (std::size_t s = 0; s < table.sequences.size(); ++s) {
+        const Cell &cell = table.cells[s][c.tracker][c.format];
+        if (i >= cell.starts.size() || !cell.starts[i].ok) continue;
+        const std::string half = halfOf(table.sequences[s]);
+        for (int h : {half == "tune" ? 0 : -1, half == "confirm" ? 1 : -1, 2})
+          if (h >= 0) sum[h] += cell.starts[i].score.auc, ++count[h];
+      }
+      std::string means;
+      for (int h = 0; h < 3; ++h)
+        means += (h ? "/" : "") + score(count[h] > 0 ? sum[h] / count[h] : kNan).substr(2);
+      out << " " << means;
+    }
+    out << "\n";
+  }
+  return out.str();
+}
+
 // Mean over the sequences of |a - b| for formats `a` and `b`, over the sequences where both ran.
 double meanSequenceDelta(const RobustnessTable &table, std::size_t t, std::size_t a, std::size_t b,
                          bool sre) {
@@ -268,6 +298,7 @@ HalfMeans halfMeans(const RobustnessTable &table, std::size_t tracker, std::size
 
 std::string robustnessReport(const RobustnessTable &table) {
   std::string report = perSequenceTable(table) + meansTable(table);
+  if (table.sre()) report += perStartTable(table);
   if (table.formats.size() > 1) report += formatSpread(table);
   if (table.formats.size() > 1 || table.sre()) report += flags(table);
   return report + alarmsTable(table);
