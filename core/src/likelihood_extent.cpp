@@ -27,18 +27,27 @@ double contrastOf(const cv::Mat &integral, cv::Point2d centre, cv::Size2d size, 
 }  // namespace
 
 ExtentVote likelihoodExtent(const cv::Mat &integral, cv::Point2d centre, cv::Size2d size,
-                            const std::vector<double> &factors, double ringWidth) {
+                            const std::vector<double> &factors, const std::vector<double> &shifts,
+                            double ringWidth) {
+  std::vector<double> sides{1}, offsets{0};
+  sides.insert(sides.end(), factors.begin(), factors.end());
+  offsets.insert(offsets.end(), shifts.begin(), shifts.end());
   ExtentVote best;
   best.contrast = contrastOf(integral, centre, size, ringWidth);
-  for (double fw : factors)
-    for (double fh : factors) {
-      const double contrast =
-          contrastOf(integral, centre, cv::Size2d(size.width * fw, size.height * fh), ringWidth);
-      // Strictly better only, so that ties keep the size tried.
-      if (contrast > best.contrast + 1e-9) {
-        best.contrast = contrast;
-        best.factor = cv::Size2d(fw, fh);
-      }
+  for (double sy : offsets)
+    for (double sx : offsets) {
+      const cv::Point2d at(centre.x + sx * size.width, centre.y + sy * size.height);
+      for (double fw : sides)
+        for (double fh : sides) {
+          const double contrast =
+              contrastOf(integral, at, cv::Size2d(size.width * fw, size.height * fh), ringWidth);
+          // Strictly better only, so that ties keep the box tried.
+          if (contrast > best.contrast + 1e-9) {
+            best.contrast = contrast;
+            best.factor = cv::Size2d(fw, fh);
+            best.shift = cv::Point2d(sx, sy);
+          }
+        }
     }
   return best;
 }

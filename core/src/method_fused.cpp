@@ -192,11 +192,11 @@ void FusedMethod::follow(const ImageSource &frame, double dt, TrackOutput &out) 
   if (track.doubted) out.score = guessScore(out.score);
   e.size = fitSize(e.size, frame.size());
   Detection d;
-  // The report takes the colour map's word on the size; the learners keep the scale filter's. Feeding the
-  // vote back into the size they learn at let it shrink onto a part or grow into the background (core
+  // The report takes the colour map's word on the size and centre; the learners keep the filters'. Feeding
+  // the vote back into the size they learn at let it shrink onto a part or grow into the background (core
   // harness OPE tune 0.642 -> 0.577, confirm 0.497 -> 0.476).
   const cv::Rect2d learnt = centredBox(e.centre.x, e.centre.y, e.size);
-  d.box = centredBox(e.centre.x, e.centre.y,
+  d.box = centredBox(e.centre.x + e.offset.x, e.centre.y + e.offset.y,
                      cv::Size2d(e.size.width * e.extent.width, e.size.height * e.extent.height));
   d.score = e.confidence;
   // The edge check and the two learners read the frame and write nothing the others read, so with a second

@@ -26,7 +26,7 @@ std::vector<double> factors() {
 
 TEST(LikelihoodExtent, ShrinksATooLargeBoxToTheObject) {
   const ExtentVote vote =
-      likelihoodExtent(integralOfRectangle({60, 40}), {100, 100}, {72, 48}, factors(), 0.25);
+      likelihoodExtent(integralOfRectangle({60, 40}), {100, 100}, {72, 48}, factors(), {}, 0.25);
   EXPECT_NEAR(72 * vote.factor.width, 60, 3);
   EXPECT_NEAR(48 * vote.factor.height, 40, 3);
   EXPECT_GT(vote.contrast, 0.5);
@@ -36,7 +36,7 @@ TEST(LikelihoodExtent, GrowsEachAxisOnItsOwn) {
   // Width right, height too small: the height grows by 15 %, the width stays within a step (whole-pixel
   // rounding of the boxes).
   const ExtentVote vote =
-      likelihoodExtent(integralOfRectangle({60, 40}), {100, 100}, {60, 34}, factors(), 0.25);
+      likelihoodExtent(integralOfRectangle({60, 40}), {100, 100}, {60, 34}, factors(), {}, 0.25);
   EXPECT_NEAR(vote.factor.width, 1.0, 0.05 + 1e-9);
   EXPECT_NEAR(34 * vote.factor.height, 40, 2);
 }
@@ -44,7 +44,7 @@ TEST(LikelihoodExtent, GrowsEachAxisOnItsOwn) {
 TEST(LikelihoodExtent, KeepsTheSizeOnAFlatMap) {
   cv::Mat flat(200, 200, CV_32F, cv::Scalar(0.5)), integral;
   cv::integral(flat, integral, CV_64F);
-  const ExtentVote vote = likelihoodExtent(integral, {100, 100}, {60, 40}, factors(), 0.25);
+  const ExtentVote vote = likelihoodExtent(integral, {100, 100}, {60, 40}, factors(), {}, 0.25);
   EXPECT_EQ(vote.factor, cv::Size2d(1, 1));
   EXPECT_NEAR(vote.contrast, 0, 1e-9);
 }
@@ -54,7 +54,23 @@ TEST(LikelihoodExtent, NeverTriesABoxOffTheMap) {
   cv::Mat map(200, 200, CV_32F, cv::Scalar(0.2)), integral;
   map(cv::Rect(0, 80, 60, 40)).setTo(0.9);
   cv::integral(map, integral, CV_64F);
-  const ExtentVote vote = likelihoodExtent(integral, {30, 100}, {52, 40}, factors(), 0.25);
+  const ExtentVote vote = likelihoodExtent(integral, {30, 100}, {52, 40}, factors(), {}, 0.25);
   EXPECT_GT(52 * vote.factor.width, 52);
   EXPECT_LE(52 * vote.factor.width, 60);
+}
+
+TEST(LikelihoodExtent, MovesABoxPlacedOffTheObjectOntoIt) {
+  // Tried 6 px right and 4 px below the rectangle's centre (a tenth of its size): the vote moves it back.
+  const ExtentVote vote = likelihoodExtent(integralOfRectangle({60, 40}), {106, 104}, {60, 40}, factors(),
+                                           {-0.1, -0.05, 0.05, 0.1}, 0.25);
+  EXPECT_NEAR(106 + 60 * vote.shift.x, 100, 1e-9);
+  EXPECT_NEAR(104 + 40 * vote.shift.y, 100, 1e-9);
+  EXPECT_NEAR(vote.factor.width, 1.0, 1e-9);
+  EXPECT_NEAR(vote.factor.height, 1.0, 1e-9);
+}
+
+TEST(LikelihoodExtent, KeepsABoxOnTheObjectWhereItIs) {
+  const ExtentVote vote = likelihoodExtent(integralOfRectangle({60, 40}), {100, 100}, {60, 40}, factors(),
+                                           {-0.1, -0.05, 0.05, 0.1}, 0.25);
+  EXPECT_EQ(vote.shift, cv::Point2d(0, 0));
 }

@@ -22,6 +22,7 @@ class FusedDetector {
     cv::Point2d centre;        // frame coordinates
     cv::Size2d size;           // the target's size after the scale filter
     cv::Size2d extent{1, 1};   // what the colour map says of the size: report size * extent
+    cv::Point2d offset{0, 0};  // ... and of the centre: report at centre + offset (frame px)
     double confidence = 0;     // peak-to-sidelobe ratio of the fused response
     double colourPeak = 0;     // the mean colour likelihood of the target window at the peak
     double rival = 0;          // rivalPeakRatio of the fused response: another place nearly as good
@@ -64,8 +65,9 @@ class FusedDetector {
   void windowFeatures(const ImageSource &frame, cv::Point2d centre, cv::Size2d size);
   void readWindow(const ImageSource &frame, cv::Point2d centre, cv::Size2d size);
   void scaleSamples(const ImageSource &frame, cv::Point2d centre, cv::Size2d size);
-  // What the colour likelihood map of the last colourResponse() says of the size: width and height factors.
-  cv::Size2d colourExtent(cv::Point2d peakCells, cv::Size2d sizeNormalised) const;
+  // What the colour likelihood map of the last colourResponse() says of the box at the peak: fills in `e`'s
+  // extent and offset.
+  void colourVote(cv::Point2d peakCells, cv::Point2d zoom, Estimate &e) const;
   void colourResponse(const BinMapper &colors, const ColorLikelihood &likelihood, cv::Size2d targetNormalised,
                       cv::Mat &response);
 
