@@ -165,3 +165,33 @@ TEST(LookAlikes, TrackIsDoubtedAfterARivalUntilAConfidentFrame) {
     }
   }
 }
+
+// A new colour model mid-stream (hsv -> rgb, frame 13) restarts the filters (DetectionMethod::forget) but not
+// the track, so a doubt from the twin's frame stays open through the frame of the change (the colour search's
+// frame, faint target), and is cleared as usual by the first frame that reaches the confirmation bar: the
+// restarted filters, whose usual confidence is not known yet, are held to the absolute bar, which the faint
+// target reaches at once. The plain target then stays `tracking`.
+TEST(LookAlikes, ADoubtSurvivesANewColourModelUntilAConfidentFrame) {
+  const Stage stage;
+  const cv::Point target(290, 210), moved = target - cv::Point(kJump, 0),
+                                    twin = target + cv::Point(kTwinOffset, 0);
+  const auto tracker = fusedTracker(stage.render(target, 1, std::nullopt), target);
+  std::string states;
+  for (int i = 1; i <= 30; ++i) {
+    if (i == 13) {
+      TrackerSettings rgb = tracker->settings();
+      rgb.colorSpace = ColorSpace::Rgb;
+      tracker->setSettings(rgb);
+    }
+    const double visibility = i <= 11 || i > 16 ? 1.0 : 0.58;
+    const cv::Point at = i <= 10 ? target : moved;
+    const TrackOutput out = tracker->process(
+        MatImageSource(stage.render(at, visibility, i == 11 ? std::optional(twin) : std::nullopt)));
+    ASSERT_TRUE(out.hasBox) << "frame " << i;
+    EXPECT_GE(iou(out.box, cv::Rect2d(at, cv::Size(kSide, kSide))), 0.5) << "frame " << i;
+    if (i > 11) states += out.state == TrackState::Tracking ? 'T' : '-';
+  }
+  std::printf("frames 12-30, rgb from frame 13: %s\n", states.c_str());
+  EXPECT_EQ(states.substr(0, 2), "--") << "the new colour model dropped the doubt";
+  EXPECT_EQ(states.substr(5), std::string(14, 'T')) << "the doubt stuck after the new colour model";
+}
