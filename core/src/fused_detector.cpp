@@ -167,6 +167,10 @@ void FusedDetector::colourResponse(const BinMapper &colors, const ColorLikelihoo
     }
 }
 
+bool FusedDetector::showsObject(double colourContrast) {
+  return colourContrast >= kExtentMinContrast;
+}
+
 void FusedDetector::colourVote(cv::Point2d peakCells, cv::Point2d zoom, Estimate &e) const {
   // The sizes and shifts tried on each axis, as factors and shares of the scale filter's size.
   static const std::vector<double> kFactors = steps(kExtentSteps, kExtentStep, 1);
@@ -175,7 +179,8 @@ void FusedDetector::colourVote(cv::Point2d peakCells, cv::Point2d zoom, Estimate
   const cv::Size2d sizeNormalised(e.size.width * zoom.x, e.size.height * zoom.y);
   const ExtentVote vote =
       likelihoodExtent(integral_, peakCells * kCell, sizeNormalised, kFactors, kShifts, kExtentRing);
-  if (vote.contrast < kExtentMinContrast) return;
+  e.colourContrast = vote.contrast;
+  if (!showsObject(vote.contrast)) return;
   e.extent = cv::Size2d(std::pow(vote.factor.width, kExtentRate), std::pow(vote.factor.height, kExtentRate));
   e.offset = cv::Point2d(vote.shift.x * e.size.width, vote.shift.y * e.size.height) * kShiftRate;
 }

@@ -3,6 +3,7 @@
 // see.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -194,4 +195,53 @@ TEST(LookAlikes, ADoubtSurvivesANewColourModelUntilAConfidentFrame) {
   std::printf("frames 12-30, rgb from frame 13: %s\n", states.c_str());
   EXPECT_EQ(states.substr(0, 2), "--") << "the new colour model dropped the doubt";
   EXPECT_EQ(states.substr(5), std::string(14, 'T')) << "the doubt stuck after the new colour model";
+}
+
+// The target walks from a background its colours stand out on (the Stage's dimmed one, left half) onto one
+// made of its colours (the target turned upside down, tiled: its colours everywhere, not its shape; right
+// half), 6 px a frame. The shape filter follows it all the way. Once the colour map, which showed an object
+// at the box, shows none, the track is doubted (not reported `tracking`): there it could be on background or
+// on a look-alike without knowing it. A track whose colours never stood out is not doubted for that
+// (TrackInAUniformRegionIsReportedTracking).
+TEST(LookAlikes, TargetWalkingOntoItsOwnColoursIsDoubted) {
+  Stage stage;
+  cv::Mat turned, tiled;
+  cv::flip(stage.patch, turned, -1);
+  cv::repeat(turned, 8, 6, tiled);
+  tiled(cv::Rect(0, 0, 320, 480)).copyTo(stage.background(cv::Rect(320, 0, 320, 480)));
+  const cv::Point start(100, 200);
+  const auto tracker = fusedTracker(stage.render(start, 1, std::nullopt), start);
+  std::string states;
+  for (int i = 1; i <= 50; ++i) {
+    const cv::Point at = start + cv::Point(6 * i, 0);
+    const TrackOutput out = tracker->process(MatImageSource(stage.render(at, 1, std::nullopt)));
+    ASSERT_TRUE(out.hasBox) << "frame " << i;
+    EXPECT_GE(iou(out.box, cv::Rect2d(at, cv::Size(kSide, kSide))), 0.5) << "frame " << i;
+    states += out.state == TrackState::Tracking ? 'T' : '-';
+  }
+  std::printf("frames 1-50 (on its own colours from frame 37): %s\n", states.c_str());
+  EXPECT_EQ(states.substr(0, 36), std::string(36, 'T')) << "the target was doubted where it stood out";
+  EXPECT_GE(std::count(states.begin() + 40, states.end(), '-'), 8)
+      << "the target among its own colours was reported tracking";
+}
+
+// A target that never stood out in colour (a box inside a region of its colours, such as one of
+// videotestsrc's bars): the colour map shows no object from the start, and that is no reason for doubt.
+TEST(LookAlikes, TrackInAUniformRegionIsReportedTracking) {
+  Stage stage;
+  cv::Mat turned;
+  cv::flip(stage.patch, turned, -1);
+  cv::repeat(turned, 8, 11, stage.background);
+  stage.background = stage.background(cv::Rect(0, 0, 640, 480)).clone();
+  const cv::Point start(200, 200);
+  const auto tracker = fusedTracker(stage.render(start, 1, std::nullopt), start);
+  int tracking = 0;
+  for (int i = 1; i <= 30; ++i) {
+    const cv::Point at = start + cv::Point(2 * i, 0);
+    const TrackOutput out = tracker->process(MatImageSource(stage.render(at, 1, std::nullopt)));
+    ASSERT_TRUE(out.hasBox) << "frame " << i;
+    EXPECT_GE(iou(out.box, cv::Rect2d(at, cv::Size(kSide, kSide))), 0.5) << "frame " << i;
+    tracking += out.state == TrackState::Tracking;
+  }
+  EXPECT_EQ(tracking, 30);
 }

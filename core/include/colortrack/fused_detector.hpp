@@ -19,15 +19,20 @@ namespace colortrack {
 class FusedDetector {
  public:
   struct Estimate {
-    cv::Point2d centre;        // frame coordinates
-    cv::Size2d size;           // the target's size after the scale filter
-    cv::Size2d extent{1, 1};   // what the colour map says of the size: report size * extent
-    cv::Point2d offset{0, 0};  // ... and of the centre: report at centre + offset (frame px)
-    double confidence = 0;     // peak-to-sidelobe ratio of the fused response
-    double colourPeak = 0;     // the mean colour likelihood of the target window at the peak
-    double rival = 0;          // rivalPeakRatio of the fused response: another place nearly as good
-    unsigned long window = 0;  // which locate() call measured it
+    cv::Point2d centre;         // frame coordinates
+    cv::Size2d size;            // the target's size after the scale filter
+    cv::Size2d extent{1, 1};    // what the colour map says of the size: report size * extent
+    cv::Point2d offset{0, 0};   // ... and of the centre: report at centre + offset (frame px)
+    double colourContrast = 1;  // ... and how object-like its best box is (1 without a colour cue)
+    double confidence = 0;      // peak-to-sidelobe ratio of the fused response
+    double colourPeak = 0;      // the mean colour likelihood of the target window at the peak
+    double rival = 0;           // rivalPeakRatio of the fused response: another place nearly as good
+    unsigned long window = 0;   // which locate() call measured it
   };
+
+  // Whether a colour contrast (Estimate::colourContrast) shows an object at all: the bar under which the
+  // colour vote leaves the box alone.
+  static bool showsObject(double colourContrast);
 
   // Learns both filters from scratch on `box`.
   void start(const ImageSource &frame, const cv::Rect2d &box);
