@@ -24,6 +24,7 @@ class FusedDetector {
     cv::Size2d extent{1, 1};    // what the colour map says of the size: report size * extent
     cv::Point2d offset{0, 0};   // ... and of the centre: report at centre + offset (frame px)
     double colourContrast = 1;  // ... and how object-like its best box is (1 without a colour cue)
+    cv::Size2d shrink{1, 1};    // ... and, where that box is its smallest on both axes, a step towards it
     double confidence = 0;      // peak-to-sidelobe ratio of the fused response
     double colourPeak = 0;      // the mean colour likelihood of the target window at the peak
     double rival = 0;           // rivalPeakRatio of the fused response: another place nearly as good
