@@ -53,14 +53,14 @@ constexpr double kExtentMinContrast = 0.1;
 // or 0.15: 0.660/0.507, 0.607/0.483 and 0.663/0.506, 0.615/0.486 (at rate 0.3). Feeding the shift to the
 // learners (rate 0.1 or 0.3) moved single sequences both ways and the tune half by -0.026..+0.017.
 constexpr double kShiftRate = 0.5;
+constexpr double kShiftStep = 0.05;
+constexpr int kShiftSteps = 2;
 // Where the vote's best box is the smallest it tries on both axes (the scale filter's box is at least 1.25
 // times the object's each way: it has grown into the background), the size the next frame is searched at
 // takes kShrinkRate of the way (in log size) to it; FusedMethod says when. Chosen on the tune half (core
 // harness, four start offsets, SRE): 0.05 / 0.1 / 0.2 give 0.6350 / 0.6349 / 0.6349, OPE 0.660 / 0.669 /
 // 0.669; every step smaller on each axis on its own instead shrank onto parts (OPE tune 0.649 -> 0.581).
 constexpr double kShrinkRate = 0.1;
-constexpr double kShiftStep = 0.05;
-constexpr int kShiftSteps = 2;
 
 // identity + i * step for i in -count..count, i != 0: the values the colour vote tries besides identity.
 std::vector<double> steps(int count, double step, double identity) {
