@@ -258,11 +258,9 @@ void FusedDetector::learn(const ImageSource &frame, const Estimate &e) {
   scaleMeasured_ = false;
 }
 
-std::vector<FusedDetector::Candidate> FusedDetector::colourCandidates(const ImageSource &frame,
-                                                                      const std::vector<cv::Size2d> &sizes,
-                                                                      const BinMapper &colors,
-                                                                      const ColorLikelihood &likelihood,
-                                                                      int countPerSize) {
+std::vector<FusedDetector::Candidate> FusedDetector::colourCandidates(
+    const ImageSource &frame, const std::vector<cv::Size2d> &sizes, const BinMapper &colors,
+    const ColorLikelihood &likelihood, int countPerSize, int imageCountPerSize) {
   std::vector<Candidate> out;
   if (likelihood.empty() || sizes.empty()) return out;
   const cv::Size frameSize = frame.size();
@@ -285,18 +283,30 @@ std::vector<FusedDetector::Candidate> FusedDetector::colourCandidates(const Imag
   for (const cv::Size2d &size : sizes) {
     const cv::Size window(std::max(1, cvRound(size.width / f)), std::max(1, cvRound(size.height / f)));
     cv::boxFilter(probability, mean, CV_32F, window, cv::Point(-1, -1), true, cv::BORDER_CONSTANT);
-    for (int i = 0; i < countPerSize; ++i) {
-      double best;
-      cv::Point at;
-      cv::minMaxLoc(mean, nullptr, &best, nullptr, &at);
-      if (best <= 0) break;
-      out.push_back({cv::Point2d((at.x + 0.5) * f, (at.y + 0.5) * f), size, best});
-      // Suppress the neighbourhood so the next candidate is another place.
-      cv::rectangle(
-          mean,
-          cv::Rect(at.x - window.width, at.y - window.height, 2 * window.width + 1, 2 * window.height + 1),
-          cv::Scalar(0), cv::FILLED);
+    const auto take = [&](cv::Mat &scores, int count) {
+      for (int i = 0; i < count; ++i) {
+        double best;
+        cv::Point at;
+        cv::minMaxLoc(scores, nullptr, &best, nullptr, &at);
+        if (best <= 0) break;
+        out.push_back({cv::Point2d((at.x + 0.5) * f, (at.y + 0.5) * f), size, mean.at<float>(at)});
+        // Suppress the neighbourhood so the next candidate is another place.
+        cv::rectangle(
+            scores,
+            cv::Rect(at.x - window.width, at.y - window.height, 2 * window.width + 1, 2 * window.height + 1),
+            cv::Scalar(0), cv::FILLED);
+      }
+    };
+    if (imageCountPerSize > 0) {
+      cv::Mat imageProbability = candidateScratch_[4].view(reducedSize, CV_32FC1);
+      cv::Mat imageMean = candidateScratch_[5].view(reducedSize, CV_32FC1);
+      likelihood.mapAgainstImage(BinImage{bins, cv::Point()}, window.area(), imageProbability);
+      cv::boxFilter(imageProbability, imageMean, CV_32F, window, cv::Point(-1, -1), true,
+                    cv::BORDER_CONSTANT);
+      take(imageMean, imageCountPerSize);
     }
+    // Last: the suppression writes into the map the candidates' colour is read from.
+    take(mean, countPerSize);
   }
   return out;
 }

@@ -21,7 +21,8 @@ std::array<int, 3> coarsened(const BinLayout &layout) {
 ColorLikelihood::ColorLikelihood(const BinLayout &layout)
     : layout_(layout),
       jointBins_(coarsened(layout)),
-      table_(static_cast<size_t>(jointBins_[0]) * jointBins_[1] * jointBins_[2], 0.5f),
+      objectShare_(static_cast<size_t>(jointBins_[0]) * jointBins_[1] * jointBins_[2], 0.f),
+      table_(objectShare_.size(), 0.5f),
       strict_(table_.size(), 0.f) {
   for (int c = 0; c < 3; ++c)
     for (int b = 0; b < 256; ++b)
@@ -54,7 +55,9 @@ void ColorLikelihood::learn(const BinImage &bins, const cv::Rect &object, const 
   // P(O|c) = H_O(c) / (H_O(c) + H_S(c)) on raw counts: the ring's larger area is the prior that a colour
   // seen in both belongs to the background more often than not.
   const float keep = static_cast<float>(learned_ ? 1.0 - rate : 0.0), add = 1.f - keep;
+  const float objectArea = static_cast<float>(inner.area());
   for (size_t j = 0; j < table_.size(); ++j) {
+    objectShare_[j] = keep * objectShare_[j] + add * objectCounts[j] / objectArea;
     const float total = objectCounts[j] + ringCounts[j];
     const float p = total > 0 ? objectCounts[j] / total : 0.5f;
     table_[j] = keep * table_[j] + add * p;
@@ -64,12 +67,32 @@ void ColorLikelihood::learn(const BinImage &bins, const cv::Rect &object, const 
 }
 
 void ColorLikelihood::map(const BinImage &bins, cv::Mat &probability) const {
+  mapWith(table_, bins, probability);
+}
+
+void ColorLikelihood::mapWith(const std::vector<float> &table, const BinImage &bins,
+                              cv::Mat &probability) const {
   probability.create(bins.bins.size(), CV_32FC1);
   for (int y = 0; y < bins.bins.rows; ++y) {
     const cv::Vec3b *in = bins.bins.ptr<cv::Vec3b>(y);
     float *out = probability.ptr<float>(y);
-    for (int x = 0; x < bins.bins.cols; ++x) out[x] = table_[jointBin(in[x])];
+    for (int x = 0; x < bins.bins.cols; ++x) out[x] = table[jointBin(in[x])];
   }
+}
+
+void ColorLikelihood::mapAgainstImage(const BinImage &bins, double objectArea, cv::Mat &probability) const {
+  std::vector<float> imageCounts(table_.size(), 0.f);
+  for (int y = 0; y < bins.bins.rows; ++y) {
+    const cv::Vec3b *in = bins.bins.ptr<cv::Vec3b>(y);
+    for (int x = 0; x < bins.bins.cols; ++x) imageCounts[jointBin(in[x])] += 1.f;
+  }
+  // The same ratio as learn()'s, with the image for the ring: the image's larger area is again the prior.
+  std::vector<float> table(table_.size());
+  for (size_t j = 0; j < table.size(); ++j) {
+    const float object = static_cast<float>(objectArea) * objectShare_[j];
+    table[j] = object > 0 ? object / (object + imageCounts[j]) : 0.f;
+  }
+  mapWith(table, bins, probability);
 }
 
 double ColorLikelihood::confidence(const BinImage &bins, const cv::Rect &rect) const {

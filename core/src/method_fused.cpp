@@ -119,7 +119,7 @@ class FusedMethod : public DetectionMethod {
   Detection detectionOf(const ImageSource &frame, const FusedDetector::Estimate &e);
   // The edge check of `box` (clipped to the frame).
   bool verified(const ImageSource &frame, const cv::Rect2d &box);
-  std::optional<FusedDetector::Estimate> redetect(const ImageSource &frame);
+  std::optional<FusedDetector::Estimate> redetect(const ImageSource &frame, bool lost);
   UsualDetection usual() const;
   void redetectWhileCoasting(const ImageSource &frame, bool sizeGuarded, FusedDetector::Estimate &e,
                              double &frameScore);
@@ -240,7 +240,7 @@ void FusedMethod::follow(const ImageSource &frame, double dt, TrackOutput &out) 
 // within reach and, if `sizeGuarded`, of the target's size; under the confirmation bar it starts a guess.
 void FusedMethod::redetectWhileCoasting(const ImageSource &frame, bool sizeGuarded,
                                         FusedDetector::Estimate &e, double &frameScore) {
-  const auto found = redetect(frame);
+  const auto found = redetect(frame, false);
   if (!found || (sizeGuarded && !sameSize(found->size))) return;
   if (coastingFromConfirmed_) {
     const double reach =
@@ -269,7 +269,10 @@ void FusedMethod::waitAt(const FusedDetector::Estimate &e) {
 // A track begun from a re-detection under the confirmation bar follows its peak, coasting and learning
 // nothing but its size, until a frame reaches the bar (then it is the target again: false, and the frame is
 // learnt as usual) or max-coast-frames pass. Reported as tracking at once, such guesses put half the frames
-// whose box is off the target at `tracking` (docs/benchmarks.md).
+// whose box is off the target at `tracking` (docs/benchmarks.md). Its size takes the same step smaller as a
+// confirmed track's where the colour map says it has grown into the background (sizeToSearchAt): the scale
+// filter alone grew a guess on a target that came back smaller, and its PSR stayed under the bar
+// (test_reacquisition.cpp; core harness: the means within 0.001).
 bool FusedMethod::followUnconfirmed(const FusedDetector::Estimate &e, bool detection, TrackOutput &out) {
   if (detection && Redetector::confirmed(e, usual())) {
     unconfirmed_ = false;
@@ -277,7 +280,7 @@ bool FusedMethod::followUnconfirmed(const FusedDetector::Estimate &e, bool detec
   }
   out.score = guessScore(out.score);
   waitAt(e);
-  if (detection) size_ = e.size;
+  if (detection) size_ = sizeToSearchAt(e);
   if (!context_.track.active()) unconfirmed_ = false;
   return true;
 }
@@ -287,7 +290,7 @@ void FusedMethod::acquire(const ImageSource &frame, TrackOutput &out) {
   KalmanTrack &track = context_.track;
   out.searchRegion = cv::Rect(cv::Point(), frame.size());
   if (track.searchFrames++ % kRedetectPeriod != 0) return;
-  auto found = redetect(frame);
+  auto found = redetect(frame, true);
   if (!found) return;
   found->size = fitSize(found->size, frame.size());
   const Detection d = detectionOf(frame, *found);
@@ -407,10 +410,11 @@ UsualDetection FusedMethod::usual() const {
   return usual;
 }
 
-// The best re-detection over the whole frame, if it passes the Redetector's proposal bars.
-std::optional<FusedDetector::Estimate> FusedMethod::redetect(const ImageSource &frame) {
+// The best re-detection over the whole frame, if it passes the Redetector's proposal bars; `lost`: the track
+// is not coasting but lost.
+std::optional<FusedDetector::Estimate> FusedMethod::redetect(const ImageSource &frame, bool lost) {
   return redetector_.search(frame, fused_, context_.model.mapper(), context_.model.likelihood(), centre_,
-                            targetSize_, minSize_, usual());
+                            targetSize_, minSize_, usual(), lost);
 }
 
 }  // namespace

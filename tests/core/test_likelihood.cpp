@@ -91,3 +91,41 @@ TEST(Likelihood, FineBinsAreCoarsenedToABoundedTable) {
   EXPECT_FLOAT_EQ(probability.at<float>(20, 20), 1.0f);  // red, only in the object
   EXPECT_FLOAT_EQ(probability.at<float>(35, 35), 0.0f);  // green, only around it
 }
+
+// Against a whole image: the object's learnt colour shares (red 380 / 400, blue 20 / 400 px) at the given
+// object area, against each colour's count in the image itself.
+TEST(Likelihood, AgainstTheWholeImage) {
+  Fixture f;
+  f.likelihood.learn(f.bins, cv::Rect(10, 10, 20, 20), cv::Rect(0, 0, 40, 40), 1.0);
+  // Another frame: yellow, a 10x10 red patch and a 20x20 blue one.
+  cv::Mat frame(40, 40, CV_8UC3, cv::Scalar(kYellow[0], kYellow[1], kYellow[2]));
+  frame(cv::Rect(0, 0, 10, 10)).setTo(cv::Scalar(kRed[0], kRed[1], kRed[2]));
+  frame(cv::Rect(20, 20, 20, 20)).setTo(cv::Scalar(kBlue[0], kBlue[1], kBlue[2]));
+  BinImage bins;
+  f.mapper.map(frame, bins.bins);
+  cv::Mat probability;
+  f.likelihood.mapAgainstImage(bins, 100, probability);
+  ASSERT_EQ(probability.type(), CV_32FC1);
+  ASSERT_EQ(probability.size(), frame.size());
+  EXPECT_NEAR(probability.at<float>(5, 5), 95.0 / (95 + 100), 1e-6);  // red: 0.95 * 100 against 100 px
+  EXPECT_NEAR(probability.at<float>(30, 30), 5.0 / (5 + 400), 1e-6);  // blue: 0.05 * 100 against 400 px
+  // A colour the object never showed is background here; the map against the surroundings calls it unknown.
+  EXPECT_FLOAT_EQ(probability.at<float>(5, 30), 0.0f);
+  f.likelihood.map(bins, probability);
+  EXPECT_FLOAT_EQ(probability.at<float>(5, 30), 0.5f);
+  EXPECT_FLOAT_EQ(probability.at<float>(30, 30), 0.5f);
+}
+
+TEST(Likelihood, AgainstTheWholeImageBlendsTheObjectsColours) {
+  Fixture f;
+  f.likelihood.learn(f.bins, cv::Rect(10, 10, 20, 20), cv::Rect(0, 0, 40, 40), 1.0);
+  // The object turns green (a box on the surroundings), learnt at rate 0.1: red keeps 0.9 of its share.
+  f.likelihood.learn(f.bins, cv::Rect(30, 30, 10, 10), cv::Rect(30, 30, 10, 10), 0.1);
+  cv::Mat red(4, 4, CV_8UC3, cv::Scalar(kRed[0], kRed[1], kRed[2]));
+  BinImage bins;
+  f.mapper.map(red, bins.bins);
+  cv::Mat probability;
+  f.likelihood.mapAgainstImage(bins, 16, probability);
+  const double object = 16 * 0.9 * 0.95;
+  EXPECT_NEAR(probability.at<float>(0, 0), object / (object + 16), 1e-5);
+}

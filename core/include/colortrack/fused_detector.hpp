@@ -60,10 +60,12 @@ class FusedDetector {
     double colour = 0;
   };
   // Candidates for re-detection: for each of `sizes`, the `countPerSize` strongest, well-separated maxima of
-  // the colour likelihood averaged over a window of that size, on one reduced copy of the frame.
+  // the colour likelihood averaged over a window of that size, on one reduced copy of the frame; then the
+  // `imageCountPerSize` strongest of the likelihood against the whole frame (ColorLikelihood::
+  // mapAgainstImage). Every candidate's colour is read on the first map.
   std::vector<Candidate> colourCandidates(const ImageSource &frame, const std::vector<cv::Size2d> &sizes,
                                           const BinMapper &colors, const ColorLikelihood &likelihood,
-                                          int countPerSize);
+                                          int countPerSize, int imageCountPerSize = 0);
 
  private:
   // The search window around `centre` for a target of `size`: readWindow() resamples it into patch_ (colour)
@@ -89,7 +91,8 @@ class FusedDetector {
   // Scratch reused across frames.
   PatchSampler sampler_;
   cv::Mat patch_, grayBytes_, gray_, scaleSamples_, bins_, probability_, integral_;
-  ScratchImage candidateScratch_[4];  // colourCandidates(): the reduced frame, its bins, likelihood, means
+  // colourCandidates(): the reduced frame, its bins, the two likelihoods and their means
+  ScratchImage candidateScratch_[6];
   std::vector<cv::Mat> channels_;
   CellFeatureIntegral scaleIntegral_;
 };

@@ -28,6 +28,12 @@ class ColorLikelihood {
   // Per-pixel P(object | colour) of a bin image, CV_32FC1 in [0,1]. Colours never seen count 0.5.
   void map(const BinImage &bins, cv::Mat &probability) const;
 
+  // Per-pixel P(object | colour) of a bin image taken as the whole background: the object's learnt colour
+  // distribution, counted as `objectArea` pixels, against the colour counts of `bins` themselves. For a
+  // search over a whole frame after a loss, where the colours that tell the target apart are the ones the
+  // frame rarely shows, not the ones its last surroundings lacked. CV_32FC1 in [0,1].
+  void mapAgainstImage(const BinImage &bins, double objectArea, cv::Mat &probability) const;
+
   // Mean P(object | colour) over `rect` with colours never seen counted as background (0): the confidence
   // that the box holds the object, which unseen colours (0.5 for the search) must not raise.
   double confidence(const BinImage &bins, const cv::Rect &rect) const;
@@ -43,12 +49,16 @@ class ColorLikelihood {
   static constexpr size_t kMaxJointBins = 1 << 16;
 
  private:
+  // Per-pixel table[joint bin] of a bin image.
+  void mapWith(const std::vector<float> &table, const BinImage &bins, cv::Mat &probability) const;
+
   BinLayout layout_;
   std::array<int, 3> jointBins_{};                         // bins per channel in the joint table
   std::array<std::array<std::uint8_t, 256>, 3> reduce_{};  // channel bin -> joint-table bin
   std::vector<float> objectCounts_, ringCounts_;           // scratch for learn(), kept between frames
-  std::vector<float> table_;   // joint bin -> P(object | colour), unseen colours 0.5
-  std::vector<float> strict_;  // the same with unseen colours 0
+  std::vector<float> objectShare_;  // joint bin -> share of the object's pixels (running mean, as table_)
+  std::vector<float> table_;        // joint bin -> P(object | colour), unseen colours 0.5
+  std::vector<float> strict_;       // the same with unseen colours 0
   bool learned_ = false;
 };
 

@@ -25,11 +25,12 @@ class Redetector {
  public:
   // The best place over the whole frame for a target last seen at `last` with `size` (sizes are kept within
   // [minSize, frame]), if it passes the proposal bars against `usual`. A place under the confirmation bar
-  // (confirmed()) is a guess to follow, not yet the target.
+  // (confirmed()) is a guess to follow, not yet the target. A `lost` track's search also takes candidates
+  // from the colours the whole frame rarely shows (FusedDetector::colourCandidates).
   std::optional<FusedDetector::Estimate> search(const ImageSource &frame, FusedDetector &detector,
                                                 const BinMapper &colors, const ColorLikelihood &likelihood,
                                                 cv::Point2d last, cv::Size2d size, cv::Size2d minSize,
-                                                const UsualDetection &usual);
+                                                const UsualDetection &usual, bool lost);
   // Whether `e` is sure enough to be the target again: a re-detection, or a frame of a track begun from one.
   static bool confirmed(const FusedDetector::Estimate &e, const UsualDetection &usual);
 
