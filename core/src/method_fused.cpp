@@ -114,7 +114,8 @@ class FusedMethod : public DetectionMethod {
   double relativeConfidence(double confidence) const;
   double relativeColour(double colour) const;
   void noteConfidence(const FusedDetector::Estimate &e);
-  cv::Size2d sizeToSearchAt(const FusedDetector::Estimate &e);
+  void notePartVote(const FusedDetector::Estimate &e);
+  cv::Size2d sizeToSearchAt(const FusedDetector::Estimate &e) const;
   cv::Size2d fitSize(cv::Size2d size, cv::Size frameSize) const;
   Detection detectionOf(const ImageSource &frame, const FusedDetector::Estimate &e);
   // The edge check of `box` (clipped to the frame).
@@ -229,6 +230,7 @@ void FusedMethod::follow(const ImageSource &frame, double dt, TrackOutput &out) 
   track.update(d.box);
   track.lastVerified = d.verified;
   centre_ = e.centre;
+  notePartVote(e);
   size_ = sizeToSearchAt(e);
   targetSize_ = size_;
   confirmedCentre_ = centre_;
@@ -374,10 +376,15 @@ void FusedMethod::noteConfidence(const FusedDetector::Estimate &e) {
 // frames) person11's OPE fell by 0.21: one frame's vote is too fragile. A floor at the start size instead of
 // the exception: 0.658/0.513, 0.626/0.482.
 constexpr int kPartFrames = 5;
-cv::Size2d FusedMethod::sizeToSearchAt(const FusedDetector::Estimate &e) {
-  if (framesLearnt_ < kPartFrames && e.shrink != cv::Size2d(1, 1)) colourFillsAPart_ = true;
+cv::Size2d FusedMethod::sizeToSearchAt(const FusedDetector::Estimate &e) const {
   if (colourFillsAPart_) return e.size;
   return cv::Size2d(e.size.width * e.shrink.width, e.size.height * e.shrink.height);
+}
+
+// Records the exception of sizeToSearchAt() from a confirmed detection's vote (a guess's says nothing of the
+// target).
+void FusedMethod::notePartVote(const FusedDetector::Estimate &e) {
+  if (framesLearnt_ < kPartFrames && e.shrink != cv::Size2d(1, 1)) colourFillsAPart_ = true;
 }
 
 // A size kept between the minimum and the frame.
