@@ -280,6 +280,7 @@ std::vector<FusedDetector::Candidate> FusedDetector::colourCandidates(
   frame.sampledBgr(frameRect, f, reduced);
   colors.map(reduced, bins);
   likelihood.map(BinImage{bins, cv::Point()}, probability);
+  if (imageCountPerSize > 0) likelihood.countImageColours(BinImage{bins, cv::Point()}, imageColours_);
   for (const cv::Size2d &size : sizes) {
     const cv::Size window(std::max(1, cvRound(size.width / f)), std::max(1, cvRound(size.height / f)));
     cv::boxFilter(probability, mean, CV_32F, window, cv::Point(-1, -1), true, cv::BORDER_CONSTANT);
@@ -300,7 +301,7 @@ std::vector<FusedDetector::Candidate> FusedDetector::colourCandidates(
     if (imageCountPerSize > 0) {
       cv::Mat imageProbability = candidateScratch_[4].view(reducedSize, CV_32FC1);
       cv::Mat imageMean = candidateScratch_[5].view(reducedSize, CV_32FC1);
-      likelihood.mapAgainstImage(BinImage{bins, cv::Point()}, window.area(), imageProbability);
+      likelihood.mapAgainstImage(BinImage{bins, cv::Point()}, window.area(), imageColours_, imageProbability);
       cv::boxFilter(imageProbability, imageMean, CV_32F, window, cv::Point(-1, -1), true,
                     cv::BORDER_CONSTANT);
       take(imageMean, imageCountPerSize);

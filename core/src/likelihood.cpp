@@ -80,19 +80,24 @@ void ColorLikelihood::mapWith(const std::vector<float> &table, const BinImage &b
   }
 }
 
-void ColorLikelihood::mapAgainstImage(const BinImage &bins, double objectArea, cv::Mat &probability) const {
-  std::vector<float> imageCounts(table_.size(), 0.f);
+void ColorLikelihood::countImageColours(const BinImage &bins, ImageColours &image) const {
+  image.counts.assign(table_.size(), 0.f);
   for (int y = 0; y < bins.bins.rows; ++y) {
     const cv::Vec3b *in = bins.bins.ptr<cv::Vec3b>(y);
-    for (int x = 0; x < bins.bins.cols; ++x) imageCounts[jointBin(in[x])] += 1.f;
+    for (int x = 0; x < bins.bins.cols; ++x) image.counts[jointBin(in[x])] += 1.f;
   }
+}
+
+void ColorLikelihood::mapAgainstImage(const BinImage &bins, double objectArea, ImageColours &image,
+                                      cv::Mat &probability) const {
+  CV_Assert(image.counts.size() == table_.size());
   // The same ratio as learn()'s, with the image for the ring: the image's larger area is again the prior.
-  std::vector<float> table(table_.size());
-  for (size_t j = 0; j < table.size(); ++j) {
+  image.table.resize(table_.size());
+  for (size_t j = 0; j < image.table.size(); ++j) {
     const float object = static_cast<float>(objectArea) * objectShare_[j];
-    table[j] = object > 0 ? object / (object + imageCounts[j]) : 0.f;
+    image.table[j] = object > 0 ? object / (object + image.counts[j]) : 0.f;
   }
-  mapWith(table, bins, probability);
+  mapWith(image.table, bins, probability);
 }
 
 double ColorLikelihood::confidence(const BinImage &bins, const cv::Rect &rect) const {

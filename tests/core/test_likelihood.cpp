@@ -104,7 +104,9 @@ TEST(Likelihood, AgainstTheWholeImage) {
   BinImage bins;
   f.mapper.map(frame, bins.bins);
   cv::Mat probability;
-  f.likelihood.mapAgainstImage(bins, 100, probability);
+  ImageColours image;
+  f.likelihood.countImageColours(bins, image);
+  f.likelihood.mapAgainstImage(bins, 100, image, probability);
   ASSERT_EQ(probability.type(), CV_32FC1);
   ASSERT_EQ(probability.size(), frame.size());
   EXPECT_NEAR(probability.at<float>(5, 5), 95.0 / (95 + 100), 1e-6);  // red: 0.95 * 100 against 100 px
@@ -125,7 +127,9 @@ TEST(Likelihood, AgainstTheWholeImageBlendsTheObjectsColours) {
   BinImage bins;
   f.mapper.map(red, bins.bins);
   cv::Mat probability;
-  f.likelihood.mapAgainstImage(bins, 16, probability);
+  ImageColours image;
+  f.likelihood.countImageColours(bins, image);
+  f.likelihood.mapAgainstImage(bins, 16, image, probability);
   const double object = 16 * 0.9 * 0.95;
   EXPECT_NEAR(probability.at<float>(0, 0), object / (object + 16), 1e-5);
 }

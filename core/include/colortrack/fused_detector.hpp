@@ -93,6 +93,7 @@ class FusedDetector {
   cv::Mat patch_, grayBytes_, gray_, scaleSamples_, bins_, probability_, integral_;
   // colourCandidates(): the reduced frame, its bins, the two likelihoods and their means
   ScratchImage candidateScratch_[6];
+  ImageColours imageColours_;  // colourCandidates(): the reduced frame's colours, counted once for all sizes
   std::vector<cv::Mat> channels_;
   CellFeatureIntegral scaleIntegral_;
 };

@@ -13,6 +13,13 @@
 
 namespace colortrack {
 
+// A whole frame's colours against the object's (ColorLikelihood::mapAgainstImage), kept by the caller
+// between frames so that the lost frames that use them allocate nothing.
+struct ImageColours {
+  std::vector<float> counts;  // joint bin -> pixels of that colour in the image
+  std::vector<float> table;   // joint bin -> P(object | colour) against them
+};
+
 class ColorLikelihood {
  public:
   explicit ColorLikelihood(const BinLayout &layout = BinLayout());
@@ -28,11 +35,15 @@ class ColorLikelihood {
   // Per-pixel P(object | colour) of a bin image, CV_32FC1 in [0,1]. Colours never seen count 0.5.
   void map(const BinImage &bins, cv::Mat &probability) const;
 
+  // The colour counts of a whole bin image (`image.counts`), for mapAgainstImage().
+  void countImageColours(const BinImage &bins, ImageColours &image) const;
   // Per-pixel P(object | colour) of a bin image taken as the whole background: the object's learnt colour
-  // distribution, counted as `objectArea` pixels, against the colour counts of `bins` themselves. For a
-  // search over a whole frame after a loss, where the colours that tell the target apart are the ones the
-  // frame rarely shows, not the ones its last surroundings lacked. CV_32FC1 in [0,1].
-  void mapAgainstImage(const BinImage &bins, double objectArea, cv::Mat &probability) const;
+  // distribution, counted as `objectArea` pixels, against the colour counts of `bins` themselves, counted
+  // before by countImageColours(). For a search over a whole frame after a loss, where the colours that tell
+  // the target apart are the ones the frame rarely shows, not the ones its last surroundings lacked.
+  // CV_32FC1 in [0,1]; `image.table` holds the table used.
+  void mapAgainstImage(const BinImage &bins, double objectArea, ImageColours &image,
+                       cv::Mat &probability) const;
 
   // Mean P(object | colour) over `rect` with colours never seen counted as background (0): the confidence
   // that the box holds the object, which unseen colours (0.5 for the search) must not raise.
