@@ -267,3 +267,29 @@ TEST(FusedDetector, ConfidenceFallsWhenTheTargetIsGone) {
   // The tracker stops trusting a frame whose confidence is under half its usual one.
   EXPECT_LT(gone, 0.5 * seen);
 }
+
+// The colour cue must put the target where the shape cue does. A red box on grey of the same brightness
+// leaves the shape cue nothing to prefer, so the colour cue alone places it. The window's grid is 24 x 24
+// cells for 40 x 40, 27 x 24 for 50 x 40 and 24 x 27 for 40 x 50: on an odd side the middle element lies half
+// a cell beyond middle * cell, and reading it there put the box 0.45 px off.
+TEST(FusedDetector, ColourCueCentresTheTargetOnOddAndEvenGrids) {
+  const BinMapper colours(ColorSpace::Hsv, BinLayout());
+  for (const cv::Size2d size : {cv::Size2d(40, 40), cv::Size2d(50, 40), cv::Size2d(40, 50)}) {
+    cv::Mat image(240, 320, CV_8UC3, cv::Scalar(100, 100, 100));
+    const cv::Rect2d box(137, 93, size.width, size.height);
+    image(box).setTo(cv::Scalar(44, 60, 200));  // BGR; grey level 100 as the background's
+    BinImage bins{cv::Mat(), cv::Point()};
+    colours.map(image, bins.bins);
+    ColorLikelihood likelihood;
+    likelihood.learn(bins, box, cv::Rect(97, 53, 80 + box.width, 80 + box.height), 1.0);
+    FusedDetector detector;
+    detector.start(MatImageSource(image), box);
+    const cv::Point2d centre(box.x + box.width / 2, box.y + box.height / 2);
+    const FusedDetector::Estimate e =
+        detector.locate(MatImageSource(image), centre, size, colours, likelihood);
+    std::printf("%.0f x %.0f: centre off by (%.2f, %.2f) px\n", size.width, size.height,
+                e.centre.x - centre.x, e.centre.y - centre.y);
+    EXPECT_NEAR(e.centre.x, centre.x, 0.25);
+    EXPECT_NEAR(e.centre.y, centre.y, 0.25);
+  }
+}
