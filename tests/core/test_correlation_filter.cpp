@@ -270,7 +270,7 @@ TEST(FusedDetector, ConfidenceFallsWhenTheTargetIsGone) {
 
 // The colour cue must put the target where the shape cue does. A red box on grey of the same brightness
 // leaves the shape cue nothing to prefer, so the colour cue alone places it. The window's grid is 24 x 24
-// cells for 40 x 40, 27 x 24 for 50 x 40 and 24 x 27 for 40 x 50: on an odd side the middle element lies half
+// cells for 40 x 40, 25 x 24 for 50 x 40 and 24 x 25 for 40 x 50: on an odd side the middle element lies half
 // a cell beyond middle * cell, and reading it there put the box 0.45 px off.
 TEST(FusedDetector, ColourCueCentresTheTargetOnOddAndEvenGrids) {
   const BinMapper colours(ColorSpace::Hsv, BinLayout());

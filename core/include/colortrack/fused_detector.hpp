@@ -73,11 +73,11 @@ class FusedDetector {
   void windowFeatures(const ImageSource &frame, cv::Point2d centre, cv::Size2d size);
   void readWindow(const ImageSource &frame, cv::Point2d centre, cv::Size2d size);
   void scaleSamples(const ImageSource &frame, cv::Point2d centre, cv::Size2d size);
-  // What the colour likelihood map of the last colourResponse() says of the box at the peak: fills in `e`'s
-  // extent and offset.
   // The point of the normalised window (px) that response element `element` (cells, fractions allowed)
   // stands for: the target centred there gives that element's value, for the colour cue as for the filter.
   cv::Point2d windowPoint(cv::Point2d element) const;
+  // What the colour likelihood map of the last colourResponse() says of the box at the peak: fills in `e`'s
+  // extent and offset.
   void colourVote(cv::Point2d peakCells, cv::Point2d zoom, Estimate &e) const;
   void colourResponse(const BinMapper &colors, const ColorLikelihood &likelihood, cv::Size2d targetNormalised,
                       cv::Mat &response);
