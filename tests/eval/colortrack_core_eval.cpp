@@ -18,6 +18,8 @@
 //                   sequences in neither list run with `all` (the default) only.
 // --sre             spatial robustness too: 8 more runs per sequence from perturbed frame-1 boxes (sre.hpp);
 //                   a sequence's SRE score is the mean AUC of those 8 runs.
+// --inject         also the injected failures of injection.hpp (cuts, covers, a crossing copy of the target),
+//                   each from the OPE start; the honesty report (honesty.hpp) then covers them too.
 // --start-offset DX,DY  every start box (OPE and SRE) moved by whole pixels before the run. The means move
 //                   by about 0.01 (SRE) to 0.05 (OPE) for a 1 px offset, so a change smaller than that
 //                   spread, judged at one offset, is not yet a result (docs/benchmarks.md, noise floor).
@@ -73,6 +75,8 @@
 #include "colortrack/image_source.hpp"
 #include "colortrack/detection_method.hpp"
 #include "colortrack/tracker.hpp"
+#include "honesty.hpp"
+#include "injection.hpp"
 #include "metrics.hpp"
 #include "robustness.hpp"
 #include "sequences.hpp"
@@ -88,7 +92,7 @@ namespace {
 constexpr double kGtOrigin = 1.0;
 
 constexpr const char *kUsage =
-    "usage: colortrack-core-eval [--set key=value ...] [--split tune|confirm|all] [--sre]\n"
+    "usage: colortrack-core-eval [--set key=value ...] [--split tune|confirm|all] [--sre] [--inject]\n"
     "                            [--start-offset DX,DY]\n"
     "                            [--threads N] [--frames-out DIR] SEQ_DIR_OR_PARENT...\n"
     "\n"
@@ -99,6 +103,7 @@ constexpr const char *kUsage =
     "                      verify=none|edge-density|edge-energy|both (repeatable)\n"
     "  --split S           tune, confirm or all (default all)\n"
     "  --sre               also 8 runs per sequence from perturbed start boxes (spatial robustness)\n"
+    "  --inject            also runs with injected failures: cuts, covers, a crossing copy\n"
     "  --start-offset DX,DY  every start box moved by DX, DY whole pixels (the noise floor)\n"
     "  --threads N         runs in parallel (default 2)\n"
     "  --frames-out DIR    per-frame boxes and states in DIR/<sequence>.csv\n";
@@ -115,17 +120,19 @@ struct Options {
   TrackerSettings settings;
   Split split = Split::All;
   bool sre = false;
+  bool inject = false;
   cv::Point startOffset;  // added to every start box
   int threads = 2;
   std::string framesOut;
   std::vector<std::string> inputs;
 };
 
-// One run: a sequence from one start box.
+// One run: a sequence from one start box, or from the OPE start with a failure injected.
 struct Job {
   std::size_t sequence = 0;
-  std::size_t start = 0;  // 0: OPE
+  std::size_t start = 0;  // 0: OPE (and every injected run)
   StartBox box;
+  std::optional<Injection> injection;
 };
 
 // What one run produced.
@@ -136,6 +143,8 @@ struct Result {
   int frames = 0;
   double medianMs = 0, meanMs = 0, maxMs = 0;
   int lostFrames = 0;
+  std::vector<FrameTruth> truth;  // per frame, for the honesty report
+  std::vector<FrameReport> reports;
 };
 
 // ---------------------------------------------------------------------------------------------------------
@@ -257,6 +266,8 @@ Options parseOptions(int argc, char **argv) {
         throw UsageError("--split: '" + value + "' is not tune, confirm or all");
     } else if (arg == "--sre") {
       options.sre = true;
+    } else if (arg == "--inject") {
+      options.inject = true;
     } else if (arg == "--start-offset") {
       options.startOffset = parseOffset(arg, next());
     } else if (arg == "--threads") {
@@ -288,13 +299,6 @@ bool selected(const Sequence &sequence, Split split) {
 
 // ---------------------------------------------------------------------------------------------------------
 // Tracking
-
-cv::Mat readFrame(const Sequence &sequence, int index) {
-  const fs::path path = framePath(sequence, index);
-  cv::Mat image = cv::imread(path.string(), cv::IMREAD_COLOR);
-  if (image.empty()) throw std::runtime_error("cannot decode " + path.string());
-  return image;
-}
 
 // The box as the element publishes it: rounded to whole pixels, clipped to the frame.
 cv::Rect roundedClippedBox(const cv::Rect2d &box, cv::Size frame) {
@@ -335,23 +339,30 @@ void setTimes(Result &result, const std::vector<double> &processMs) {
   result.maxMs = processMs.empty() ? 0 : *std::max_element(processMs.begin(), processMs.end());
 }
 
-Result runSequence(const Sequence &sequence, const StartBox &start, const Options &options) {
+Result runSequence(const std::vector<Sequence> &sequences, const Job &job, const Options &options) {
   Result result;
+  const Sequence &sequence = sequences[job.sequence];
+  const StartBox &start = job.box;
   try {
     const int frames = sequence.pattern.count;
+    const FrameReader read = [&](std::size_t s, int i) { return readSequenceFrame(sequences, s, i); };
+    std::optional<InjectedRun> injected;
+    if (job.injection) injected.emplace(sequences, job.sequence, *job.injection);
+    result.truth = injected ? injected->truth() : plainTruth(sequence);
     std::vector<std::optional<cv::Rect2d>> boxes;  // scored box per frame
     std::vector<std::string> states;
     std::vector<double> scores, processMs;
 
     Tracker tracker(options.settings);
     for (int i = 0; i < frames; ++i) {
-      const cv::Mat image = readFrame(sequence, i);
+      const cv::Mat image = injected ? injected->frame(i, read) : read(job.sequence, i);
       const MatImageSource source(image);
       if (i == 0) {
         tracker.setTemplateFromBox(source, start.box);
         boxes.emplace_back(cv::Rect2d(start.box));  // frame 1's result is the start box (OTB)
         states.emplace_back("init");
         scores.push_back(0);
+        result.reports.push_back({cv::Rect2d(start.box), "init", 0});
         continue;
       }
       const Clock::time_point begin = Clock::now();
@@ -362,12 +373,14 @@ Result runSequence(const Sequence &sequence, const StartBox &start, const Option
       boxes.push_back(box.empty() ? std::nullopt : std::optional<cv::Rect2d>(cv::Rect2d(box)));
       states.emplace_back(toString(out.state));
       scores.push_back(out.score);
+      result.reports.push_back({boxes.back(), states.back(), out.score});
       if (out.state == TrackState::Lost) ++result.lostFrames;
     }
 
     result.frames = frames;
     result.outcome.score = scoreSequence(sequence.groundTruth, boxes);
     result.outcome.alarm = alarmFigures(sequence.groundTruth, boxes, states, sequence.frameSize);
+    if (injected) result.outcome.alarm = AlarmFigures();  // injected runs are judged by the honesty report
     result.outcome.hasStates = true;
     setTimes(result, processMs);
     if (frames != static_cast<int>(sequence.groundTruth.size()))
@@ -394,7 +407,7 @@ std::vector<Result> runAll(const std::vector<Sequence> &sequences, const std::ve
   auto worker = [&]() {
     for (std::size_t i = nextIndex++; i < jobs.size(); i = nextIndex++) {
       const Sequence &sequence = sequences[jobs[i].sequence];
-      results[i] = runSequence(sequence, jobs[i].box, options);
+      results[i] = runSequence(sequences, jobs[i], options);
       const std::lock_guard<std::mutex> lock(printMutex);
       std::fprintf(stderr, "  %-14s %-10s %s\n", sequence.name.c_str(), jobs[i].box.name.c_str(),
                    results[i].outcome.ok ? format("AUC %.3f", results[i].outcome.score.auc).c_str()
@@ -410,15 +423,38 @@ std::vector<Result> runAll(const std::vector<Sequence> &sequences, const std::ve
 
 // ---------------------------------------------------------------------------------------------------------
 
-// Every sequence from its OPE start and, with --sre, from the perturbed ones; each moved by `offset`.
-std::vector<Job> makeJobs(const std::vector<Sequence> &sequences, bool sre, cv::Point offset) {
+// Every sequence from its OPE start and, with --sre, from the perturbed ones; each moved by `offset`. With
+// `inject`, the injected runs follow (after every plain run, so the robustness table's jobs come first).
+std::vector<Job> makeJobs(const std::vector<Sequence> &sequences, bool sre, bool inject, cv::Point offset) {
   std::vector<Job> jobs;
   for (std::size_t s = 0; s < sequences.size(); ++s) {
     const cv::Rect2d first = *sequences[s].groundTruth[0] + cv::Point2d(offset);
     const std::vector<StartBox> starts = startBoxes(first, sequences[s].frameSize, sre);
-    for (std::size_t i = 0; i < starts.size(); ++i) jobs.push_back({s, i, starts[i]});
+    for (std::size_t i = 0; i < starts.size(); ++i) jobs.push_back({s, i, starts[i], std::nullopt});
+  }
+  if (!inject) return jobs;
+  for (std::size_t s = 0; s < sequences.size(); ++s) {
+    const cv::Rect2d first = *sequences[s].groundTruth[0] + cv::Point2d(offset);
+    StartBox ope = startBoxes(first, sequences[s].frameSize, false).front();
+    for (const Injection &injection : planInjections(sequences, s)) {
+      ope.name = injection.name;
+      jobs.push_back({s, 0, ope, injection});
+    }
   }
   return jobs;
+}
+
+// Every run's frames, truth and reports, for the honesty report.
+std::vector<RunRecord> runRecords(const std::vector<Sequence> &sequences, const std::vector<Job> &jobs,
+                                  std::vector<Result> &results) {
+  std::vector<RunRecord> records;
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    if (!results[i].outcome.ok) continue;
+    const std::string &name = sequences[jobs[i].sequence].name;
+    records.push_back({name, halfOf(name), jobs[i].box.name, jobs[i].injection, std::move(results[i].truth),
+                       std::move(results[i].reports)});
+  }
+  return records;
 }
 
 // The results as the robustness summary's table: one tracker (the core one), no formats.
@@ -427,7 +463,7 @@ RobustnessTable makeTable(const std::vector<Sequence> &sequences, const std::vec
   RobustnessTable table;
   for (const Sequence &sequence : sequences) table.sequences.push_back(sequence.name);
   for (const Job &job : jobs)
-    if (job.sequence == 0) table.startNames.push_back(job.box.name);
+    if (job.sequence == 0 && !job.injection) table.startNames.push_back(job.box.name);
   table.trackers = {"colortrack (core)"};
   table.formats = {""};
   table.runOnce = {false};
@@ -435,7 +471,7 @@ RobustnessTable makeTable(const std::vector<Sequence> &sequences, const std::vec
   empty.starts.resize(table.startNames.size());
   table.cells.assign(sequences.size(), std::vector<std::vector<Cell>>(1, std::vector<Cell>(1, empty)));
   for (std::size_t i = 0; i < jobs.size(); ++i)
-    table.cells[jobs[i].sequence][0][0].starts[jobs[i].start] = results[i].outcome;
+    if (!jobs[i].injection) table.cells[jobs[i].sequence][0][0].starts[jobs[i].start] = results[i].outcome;
   return table;
 }
 
@@ -448,7 +484,7 @@ bool printOpeRows(const std::vector<Sequence> &sequences, const std::vector<Job>
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     const Result &r = results[i];
     failed = failed || !r.outcome.ok;
-    if (jobs[i].start != 0) continue;
+    if (jobs[i].start != 0 || jobs[i].injection) continue;
     const Sequence &s = sequences[jobs[i].sequence];
     if (!r.outcome.ok) {
       std::printf("%-14s %-7s FAILED: %s\n", s.name.c_str(), halfOf(s.name), r.error.c_str());
@@ -471,14 +507,15 @@ int run(int argc, char **argv) {
   if (sequences.empty()) throw std::runtime_error("no sequence of the chosen split among the inputs");
   if (!options.framesOut.empty()) fs::create_directories(options.framesOut);
 
-  const std::vector<Job> jobs = makeJobs(sequences, options.sre, options.startOffset);
+  const std::vector<Job> jobs = makeJobs(sequences, options.sre, options.inject, options.startOffset);
   const Clock::time_point start = Clock::now();
-  const std::vector<Result> results = runAll(sequences, jobs, options);
+  std::vector<Result> results = runAll(sequences, jobs, options);
   const double wallSeconds = std::chrono::duration<double>(Clock::now() - start).count();
 
   const bool failed = printOpeRows(sequences, jobs, results);
   const RobustnessTable table = makeTable(sequences, jobs, results);
   std::printf("\n%s", robustnessReport(table).c_str());
+  std::printf("\n%s", honestyReport(runRecords(sequences, jobs, results)).c_str());
 
   const HalfMeans ope = halfMeans(table, 0, 0, false);
   std::printf("\n");

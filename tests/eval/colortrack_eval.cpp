@@ -1,7 +1,7 @@
 // colortrack-eval: accuracy and speed of GStreamer tracker elements on OTB-layout sequences, side by side.
 //
 //   colortrack-eval [options] SEQUENCE_DIR... --tracker FRAGMENT [--tracker FRAGMENT ...]
-//                   [--formats BGRx,I420] [--sre] [--start-offset DX,DY]
+//                   [--formats BGRx,I420] [--sre] [--inject] [--start-offset DX,DY]
 //
 // A SEQUENCE_DIR holds img/<n>.jpg and groundtruth.txt (or OTB's groundtruth_rect.txt); a folder of such
 // folders stands for all of them. Each tracker is a gst-launch fragment whose last element is the tracker,
@@ -20,7 +20,9 @@
 // robustness summary (robustness.hpp) ends the report: OPE and SRE per sequence and half, the spread between
 // formats, the sequences that move by more than 0.1, and colortrack's alarm and re-acquisition figures,
 // computed from the state it reports per frame (its element message, post-messages=true, else its ROI meta's
-// params).
+// params). The honesty section (eval_honesty.hpp) follows: off-target frames reported `tracking`, the AUROC
+// of the score, and with --inject what each tracker does through failures injected into the sequences (a
+// cut, a cover, a copy of the target crossing it; injection.hpp).
 //
 // The tracker is initialised with frame 1's ground-truth box (or a perturbed one, --sre) (colortrack:
 // init-box; cvtracker: object-initial-x/y/width/height) and every buffer reaching the appsink is scored by
@@ -61,6 +63,7 @@
 
 #include <opencv2/core/utility.hpp>
 
+#include "eval_honesty.hpp"
 #include "eval_options.hpp"
 #include "eval_overhead.hpp"
 #include "eval_pipeline.hpp"
@@ -262,8 +265,10 @@ int run(int argc, char **argv) {
   Progress progress;
 
   std::string body;
-  if (!sequences.empty())
-    body = writeResults(sequences, evaluateAll(sequences, trackers, options, progress), outDir);
+  if (!sequences.empty()) {
+    const EvalResults results = evaluateAll(sequences, trackers, options, progress);
+    body = writeResults(sequences, results, outDir) + honestySection(sequences, results, options, progress);
+  }
   if (options.overhead) body += (sequences.empty() ? "" : "\n") + measureOverhead(options, progress);
 
   const std::string report = reportHeader(options, !sequences.empty()) + body;

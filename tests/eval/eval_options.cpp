@@ -20,6 +20,8 @@ const char *const kEvalUsage =
     "                        RGB, NV12, YUY2, BGR (default BGRx,I420; cvtracker keeps its own caps and\n"
     "                        runs once, its result shown under every format)\n"
     "  --sre                 also 8 runs per sequence from perturbed start boxes (spatial robustness)\n"
+    "  --inject              also runs with injected failures (a cut to another sequence, the target\n"
+    "                        covered, a copy of it crossing its path) and the honesty report on them\n"
     "  --start-offset DX,DY  every start box (OPE and SRE) moved by DX, DY whole pixels, for every\n"
     "                        tracker alike (the noise floor of a result)\n"
     "  --out DIR             results.md, results.csv, curves.csv, success.png, precision.png, frames/\n"
@@ -60,6 +62,8 @@ bool parseFlag(const std::string &arg, Options &options) {
     options.allCvtracker = true;
   else if (arg == "--sre")
     options.sre = true;
+  else if (arg == "--inject")
+    options.inject = true;
   else if (arg == "--no-frames")
     options.writeFrames = false;
   else if (arg == "--no-build-plugin")

@@ -14,6 +14,7 @@ struct Options {
   std::vector<std::string> trackers;
   std::vector<std::string> formats = {"BGRx", "I420"};
   bool sre = false;
+  bool inject = false;                     // --inject: also runs with failures injected (injection.hpp)
   int startOffsetX = 0, startOffsetY = 0;  // --start-offset: added to every start box, in pixels
   bool allCvtracker = false;
   std::string outDir = "eval-out";

@@ -45,6 +45,7 @@ struct RunContext {
   GQuark roiType = 0;
   RunResult *result = nullptr;
   std::vector<std::string> messageStates;  // colortrack's element messages, by their frame number
+  std::vector<double> messageScores;
   std::atomic<int> framesReceived{0};
   Clock::time_point enteredTracker;
   Clock::duration insideTracker{};
@@ -69,18 +70,22 @@ GstFlowReturn onNewSample(GstAppSink *sink, gpointer data) {
   GstBuffer *buffer = gst_sample_get_buffer(sample);
   std::optional<cv::Rect2d> box;
   std::string state;
+  double score = 0;
   gpointer iterator = nullptr;
   while (GstMeta *meta = gst_buffer_iterate_meta_filtered(buffer, &iterator,
                                                           GST_VIDEO_REGION_OF_INTEREST_META_API_TYPE)) {
     auto *roi = reinterpret_cast<GstVideoRegionOfInterestMeta *>(meta);
     if (context->roiType != 0 && roi->roi_type != context->roiType) continue;
     box = cv::Rect2d(static_cast<gint32>(roi->x), static_cast<gint32>(roi->y), roi->w, roi->h);
-    if (const GstStructure *params = gst_video_region_of_interest_meta_get_param(roi, "colortrack"))
+    if (const GstStructure *params = gst_video_region_of_interest_meta_get_param(roi, "colortrack")) {
       if (const char *text = gst_structure_get_string(params, "state")) state = text;
+      gst_structure_get_double(params, "score", &score);
+    }
     break;
   }
   context->result->boxes.push_back(box);
   context->result->states.push_back(state);
+  context->result->scores.push_back(score);
   ++context->framesReceived;
   gst_sample_unref(sample);
   return GST_FLOW_OK;
@@ -101,7 +106,9 @@ GstBusSyncReply onSyncMessage(GstBus *, GstMessage *message, gpointer data) {
   const char *state = gst_structure_get_string(s, "state");
   if (state && gst_structure_get_uint64(s, "frame", &frame) && frame < 1000000) {
     if (context->messageStates.size() <= frame) context->messageStates.resize(frame + 1);
+    if (context->messageScores.size() <= frame) context->messageScores.resize(frame + 1);
     context->messageStates[frame] = state;
+    gst_structure_get_double(s, "score", &context->messageScores[frame]);
   }
   return GST_BUS_DROP;
 }
@@ -233,7 +240,10 @@ void play(GstElement *pipeline, RunContext &context, const std::function<void(in
   result.elementSeconds = std::chrono::duration<double>(context.insideTracker).count();
   // The message names the state also where no ROI meta came (no box); the meta's is the fallback.
   for (std::size_t i = 0; i < result.states.size() && i < context.messageStates.size(); ++i)
-    if (!context.messageStates[i].empty()) result.states[i] = context.messageStates[i];
+    if (!context.messageStates[i].empty()) {
+      result.states[i] = context.messageStates[i];
+      result.scores[i] = context.messageScores[i];
+    }
 }
 
 }  // namespace

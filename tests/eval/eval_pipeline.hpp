@@ -18,6 +18,8 @@ struct RunResult {
   std::vector<std::optional<cv::Rect2d>> boxes;  // per received frame
   // colortrack's state per frame (its element message, else its ROI meta's params); "" for other trackers
   std::vector<std::string> states;
+  // colortrack's score per frame (its element message, else its ROI meta's params); 0 for other trackers
+  std::vector<double> scores;
   double wallSeconds = 0;
   double elementSeconds = 0;
   int frames() const { return static_cast<int>(boxes.size()); }
