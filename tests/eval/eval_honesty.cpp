@@ -85,7 +85,7 @@ void addPlainRuns(const std::vector<Sequence> &sequences, const EvalResults &res
       const Evaluation &e = results.runs[s][column.tracker][column.format][i];
       if (!e.ok) continue;
       records.push_back({sequences[s].name, halfOf(sequences[s].name), starts[i].name, std::nullopt,
-                         plainTruth(sequences[s]), reportsOf(e.run, starts[i].box, e.hasStates)});
+                         plainTruth(sequences[s]), reportsOf(e.run, starts[i].box, reportsStates(e.run))});
     }
   }
 }

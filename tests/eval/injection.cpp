@@ -150,12 +150,7 @@ cv::Mat InjectedRun::frame(int i, const FrameReader &read) {
       return image;
     }
     case InjectionKind::Copy: {
-      if (copy_.empty()) {
-        const cv::Mat before = read(index_, injection_.first - 1);
-        const cv::Rect from =
-            wholeRect(*s.groundTruth[injection_.first - 1]) & cv::Rect(cv::Point(), before.size());
-        copy_ = before(from).clone();
-      }
+      if (copy_.empty()) copy_ = read(index_, injection_.first - 1)(copySource()).clone();
       cv::Mat image = read(index_, i).clone();
       const cv::Rect2d box = copyBox(i, *s.groundTruth[i], copy_.size());
       pasteClipped(copy_, image,
@@ -179,13 +174,12 @@ std::vector<FrameTruth> InjectedRun::truth() const {
         t.grace = injection_.kind == InjectionKind::Cut && i - injection_.first < kCutGrace;
         break;
       case InjectionKind::Copy: {
-        const cv::Rect from =
-            wholeRect(*s.groundTruth[injection_.first - 1]) & cv::Rect(cv::Point(), s.frameSize);
-        const cv::Rect2d box = copyBox(i, *s.groundTruth[i], from.size());
+        const cv::Size size = copySource().size();
+        const cv::Rect2d box = copyBox(i, *s.groundTruth[i], size);
         // The box as pasted: whole pixels, inside the frame.
         const cv::Rect pasted =
             cv::Rect(cv::Point(static_cast<int>(std::lround(box.x)), static_cast<int>(std::lround(box.y))),
-                     from.size()) &
+                     size) &
             cv::Rect(cv::Point(), s.frameSize);
         if (!pasted.empty()) t.copy = cv::Rect2d(pasted);
         break;
@@ -193,6 +187,11 @@ std::vector<FrameTruth> InjectedRun::truth() const {
     }
   }
   return truth;
+}
+
+cv::Rect InjectedRun::copySource() const {
+  const Sequence &s = sequences_[index_];
+  return wholeRect(*s.groundTruth[injection_.first - 1]) & cv::Rect(cv::Point(), s.frameSize);
 }
 
 cv::Mat readSequenceFrame(const std::vector<Sequence> &sequences, std::size_t sequence, int index) {

@@ -85,6 +85,10 @@ class InjectedRun {
   cv::Rect2d copyBox(int i, const cv::Rect2d &target, cv::Size copySize) const;
 
  private:
+  // Where the copy is cut from: the target's box on the frame before the crossing, whole pixels, in the
+  // frame.
+  cv::Rect copySource() const;
+
   const std::vector<Sequence> &sequences_;
   std::size_t index_;
   Injection injection_;
