@@ -10,6 +10,7 @@
 #include "colortrack/detection_method.hpp"
 #include "colortrack/kalman_track.hpp"
 #include "colortrack/regular_file.hpp"
+#include "colortrack/scene_cut.hpp"
 #include "colortrack/template_model.hpp"
 
 namespace colortrack {
@@ -22,6 +23,7 @@ struct Tracker::Impl {
   KalmanTrack track;
   MethodContext context;
   std::unique_ptr<DetectionMethod> method;
+  SceneCut sceneCut;
 };
 
 Tracker::Tracker(const TrackerSettings &settings)
@@ -110,6 +112,11 @@ TrackOutput Tracker::process(const ImageSource &frame, double dt) {
   KalmanTrack &track = impl_->track;
   // A lost track is reported for one frame; the frame after it searches again.
   if (track.state == TrackState::Lost) track.state = TrackState::Searching;
+  if (impl_->sceneCut.observe(frame) && track.active()) {
+    track.state = TrackState::Lost;
+    track.report(out);
+    return out;
+  }
   impl_->method->process(frame, dt, out);
   track.report(out);
   return out;

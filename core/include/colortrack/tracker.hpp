@@ -101,7 +101,8 @@ class Tracker : public FrameTracker {
   cv::Size templateSize() const;
 
   // Processes one frame. dt: time since the previous frame in frames (1 unless timestamps say otherwise).
-  // Throws TrackerError when the template does not fit in the frame.
+  // A frame that cuts to another scene (SceneCut) loses the track at once: it is reported `lost`, and the
+  // frames after it search the whole frame. Throws TrackerError when the template does not fit in the frame.
   TrackOutput process(const ImageSource &frame, double dt = 1.0);
   // process() as the element sees it: the track (if any) as the primary and only report.
   FrameReport track(const ImageSource &frame, double dt) override;
