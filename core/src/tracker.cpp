@@ -114,6 +114,7 @@ TrackOutput Tracker::process(const ImageSource &frame, double dt) {
   if (track.state == TrackState::Lost) track.state = TrackState::Searching;
   if (impl_->sceneCut.observe(frame) && track.active()) {
     track.state = TrackState::Lost;
+    track.lostToCut = true;
     track.report(out);
     return out;
   }

@@ -1,8 +1,8 @@
-// The closed loop of the robot simulations (test_robot_sim.cpp, test_robot_sim_crossing.cpp): a simulated
-// robot's camera view goes through appsrc ! colortrack ! robotctl, the commands come back over a
-// pseudo-terminal and move the robot. Each frame is pushed, then the loop waits for the command decided on
-// that frame (robotctl's message carries the frame's timestamp) and reads the bytes from the pty, so the
-// loop advances frame by frame whatever the machine's speed.
+// The closed loop of the robot simulations (test_robot_sim*.cpp): a simulated robot's camera view goes
+// through appsrc ! colortrack ! robotctl, the commands come back over a pseudo-terminal and move the robot.
+// Each frame is pushed, then the loop waits for the command decided on that frame (robotctl's message
+// carries the frame's timestamp) and reads the bytes from the pty, so the loop advances frame by frame
+// whatever the machine's speed.
 #pragma once
 
 // C++ headers first: gstcheck.h defines macros (fail, ...) that clash with names in the standard library.
@@ -34,6 +34,7 @@ using colortrack::gst_test_util::bgrBuffer;
 using colortrack::gst_test_util::colortrackRois;
 using colortrack::gst_test_util::kFps;
 using colortrack::gst_test_util::waitForCommandOf;
+using colortrack::robot_sim::Backdrop;
 using colortrack::robot_sim::CommandDecoder;
 using colortrack::robot_sim::Pose;
 using colortrack::robot_sim::RobotSim;
@@ -59,9 +60,17 @@ struct Scenario {
   int latency = 0;                 // frames between a command's arrival and the wheels
   int frames = 210;
   int hideAt = -1;  // frame at which the ball disappears (-1: never)
+  // Frame from which the camera shows another place (-1: never): the mottled backdrop, without the ball.
+  int cutAt = -1;
   // A second ball of the same colour (none while distractorRadius is 0), world frame.
   double distractorRadius = 0;
   cv::Point2d distractor{0, 0}, distractorVelocity{0, 0};
+  // Frame at which the distractor first shows (-1: from the start, at `distractor`): then it is put
+  // distractorOffset (rad, > 0 to the left) from the ball's bearing, at the ball's distance.
+  int distractorAt = -1;
+  double distractorOffset = 0;
+  // With hideAt or cutAt: run every frame and record its step (else the run ends at the first stop).
+  bool runAfterStop = false;
   const char *extra = "";          // more robotctl properties
   const char *mode = "threshold";  // colortrack's mode (init-box on the ball either way)
 };
@@ -81,13 +90,17 @@ struct Step {
   bool inView = false;
   double distractorBearing = 0;   // rad
   bool distractorInView = false;  // some of the distractor's box lies in the frame
+  double distractorDistance = 0;  // m
   cv::Rect2d ballBox;             // ground truth, in the frame the decision was made on
+  cv::Rect2d distractorBox;       // the same
   std::vector<Roi> rois;          // what robotctl was given on that frame
+  WheelCommand command;           // the one decided on that frame
+  Pose pose;                      // the robot's
 };
 
 struct LoopResult {
   std::vector<Step> steps;
-  int stopAfterHide = -1;  // frames from hiding the ball to the first stop received
+  int stopAfterHide = -1;  // frames from hiding the ball (or the cut) to the first stop received
   int commandsBeforeHide = 0, movingBeforeHide = 0;
   int rejected = 0;
 };
@@ -122,6 +135,7 @@ inline LoopResult runLoop(const Scenario &sc) {
   config.distractor = sc.distractor;
   config.distractorVelocity = sc.distractorVelocity;
   RobotSim robot(config, Pose{});
+  robot.setDistractorHidden(sc.distractorAt >= 0);
   CommandDecoder decoder(sc.decoding, kMaxLinear, kMaxAngular, 255);
 
   Pty pty;
@@ -153,8 +167,13 @@ inline LoopResult runLoop(const Scenario &sc) {
   std::deque<WheelCommand> inFlight(sc.latency, WheelCommand());  // arrived, not yet at the wheels
   const double dt = 1.0 / kFps;
   for (int i = 0; i < sc.frames; ++i) {
-    if (i == sc.hideAt) robot.setBallHidden(true);
-    const cv::Rect2d ballBox = robot.ballBox();
+    if (i == sc.hideAt || i == sc.cutAt) robot.setBallHidden(true);
+    if (i == sc.cutAt) robot.setBackdrop(Backdrop::Mottled);
+    if (i == sc.distractorAt) {
+      robot.placeDistractor(robot.ballBearing() + sc.distractorOffset, robot.ballDistance());
+      robot.setDistractorHidden(false);
+    }
+    const cv::Rect2d ballBox = robot.ballBox(), distractorBox = robot.distractorBox();
     fail_unless(gst_app_src_push_buffer(GST_APP_SRC(src), bgrBuffer(robot.render(), i)) == GST_FLOW_OK);
     waitForCommandOf(bus, gst_util_uint64_scale_int(i, GST_SECOND, kFps));
     const std::vector<std::uint8_t> bytes = pty.drain();
@@ -167,15 +186,16 @@ inline LoopResult runLoop(const Scenario &sc) {
     robot.drive(wheels.left, wheels.right, dt);
     robot.moveBall(dt);
 
-    if (sc.hideAt >= 0) {
-      if (i < sc.hideAt) {
+    const int goneAt = sc.cutAt >= 0 ? sc.cutAt : sc.hideAt;
+    if (goneAt >= 0) {
+      if (i < goneAt) {
         ++result.commandsBeforeHide;
         result.movingBeforeHide += !received.stop();
       } else if (result.stopAfterHide < 0 && received.stop()) {
-        result.stopAfterHide = i - sc.hideAt;
-        break;
+        result.stopAfterHide = i - goneAt;
+        if (!sc.runAfterStop) break;
       }
-      continue;
+      if (!sc.runAfterStop) continue;
     }
     Step step;
     step.bearing = robot.ballBearing();
@@ -186,7 +206,11 @@ inline LoopResult runLoop(const Scenario &sc) {
     step.distractorBearing = robot.distractorBearing();
     const cv::Rect2d frameRect(cv::Point2d(), cv::Size2d(config.frameSize));
     step.distractorInView = (robot.distractorBox() & frameRect).area() > 0;
+    step.distractorDistance = robot.distractorDistance();
     step.ballBox = ballBox;
+    step.distractorBox = distractorBox;
+    step.command = received;
+    step.pose = robot.pose();
     {
       std::lock_guard<std::mutex> lock(roiLog.mutex);
       if (roiLog.frames.size() > static_cast<size_t>(i)) step.rois = roiLog.frames[i];

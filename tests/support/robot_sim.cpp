@@ -24,7 +24,7 @@ cv::Rect2d RobotSim::ballBox() const {
 }
 
 cv::Rect2d RobotSim::distractorBox() const {
-  if (config_.distractorRadius <= 0) return {};
+  if (config_.distractorRadius <= 0 || distractorHidden_) return {};
   return boxOf(config_.distractor, config_.distractorRadius);
 }
 
@@ -35,6 +35,39 @@ cv::Rect2d RobotSim::boxOf(cv::Point2d position, double r) const {
   const double u = cx - focal_ * p.y / p.x, v = cy - focal_ * p.z / p.x;
   const double radius = focal_ * r / p.x;
   return {u - radius, v - radius, 2 * radius, 2 * radius};
+}
+
+void RobotSim::placeDistractor(double bearing, double distance) {
+  const double direction = pose_.heading + bearing;
+  config_.distractor =
+      cv::Point2d(pose_.x + distance * std::cos(direction), pose_.y + distance * std::sin(direction));
+}
+
+namespace {
+
+// Smooth noise stretched to 0-255, blurred by `sigma` (x, y) cells.
+cv::Mat smoothNoise(cv::Size size, int seed, cv::Size2d sigma) {
+  cv::Mat noise(size, CV_8U);
+  cv::RNG(seed).fill(noise, cv::RNG::UNIFORM, 0, 256);
+  cv::GaussianBlur(noise, noise, cv::Size(0, 0), sigma.width, sigma.height, cv::BORDER_WRAP);
+  cv::normalize(noise, noise, 0, 255, cv::NORM_MINMAX);
+  return noise;
+}
+
+// Wraps `i` into [0, n).
+int wrap(long i, int n) {
+  return static_cast<int>(((i % n) + n) % n);
+}
+
+}  // namespace
+
+void RobotSim::setBackdrop(Backdrop backdrop) {
+  backdrop_ = backdrop;
+  if (backdrop == Backdrop::Mottled && floorTexture_.empty()) {
+    floorTexture_ = smoothNoise(cv::Size(1024, 1024), 46, cv::Size2d(8, 8));
+    // Vertical streaks, as of boards or panels.
+    wallTexture_ = smoothNoise(cv::Size(1024, 64), 47, cv::Size2d(1.5, 12));
+  }
 }
 
 void RobotSim::moveBall(double dt) {
@@ -78,29 +111,57 @@ void drawBall(cv::Mat &image, const cv::Rect2d &box) {
              cvRound(radius * 0.25 * scale), cv::Scalar(120, 120, 245), cv::FILLED, cv::LINE_AA, kShift);
 }
 
+cv::Point2d RobotSim::floorPoint(double left, double up) const {
+  const double c = std::cos(pose_.heading), s = std::sin(pose_.heading);
+  const double t = config_.cameraHeight / -up;  // the ray meets the floor at this forward distance
+  return {pose_.x + t * (c - left * s), pose_.y + t * (s + left * c)};
+}
+
+cv::Vec3b RobotSim::checkered(double left, double up) const {
+  if (up >= -1e-6) {
+    // Sky: a soft vertical gradient, pale and unsaturated.
+    const int shade = static_cast<int>(200 + 40 * std::min(1.0, up * 2));
+    return cv::Vec3b(static_cast<uchar>(shade), static_cast<uchar>(shade - 10),
+                     static_cast<uchar>(shade - 30));
+  }
+  constexpr double kTile = 0.5;  // m
+  const cv::Point2d p = floorPoint(left, up);
+  const bool dark =
+      (static_cast<long>(std::floor(p.x / kTile)) + static_cast<long>(std::floor(p.y / kTile))) & 1;
+  return dark ? cv::Vec3b(95, 105, 100) : cv::Vec3b(150, 160, 155);
+}
+
+cv::Vec3b RobotSim::mottled(double left, double up) const {
+  const auto shade = [](double base, double gain, uchar n) { return static_cast<uchar>(base + gain * n); };
+  if (up >= -1e-6) {
+    // A far wall: its texture turns with the robot (by azimuth) and does not come nearer.
+    const double azimuth = pose_.heading + std::atan(left);
+    const int column =
+        wrap(std::lround(std::floor(azimuth / (2 * CV_PI) * wallTexture_.cols)), wallTexture_.cols);
+    const int row = std::min(wallTexture_.rows - 1, static_cast<int>(up * 2 * wallTexture_.rows));
+    const uchar n = wallTexture_.at<uchar>(row, column);
+    const uchar seam = column % 32 == 0 ? 40 : 0;  // panel joints
+    return cv::Vec3b(shade(140 - seam, 0.35, n), shade(125 - seam, 0.3, n), shade(105 - seam, 0.25, n));
+  }
+  constexpr double kCell = 0.01;  // m per texel: a 10 m patch, repeated
+  const cv::Point2d p = floorPoint(left, up);
+  const uchar n =
+      floorTexture_.at<uchar>(wrap(static_cast<long>(std::floor(p.y / kCell)), floorTexture_.rows),
+                              wrap(static_cast<long>(std::floor(p.x / kCell)), floorTexture_.cols));
+  return cv::Vec3b(shade(45, 0.25, n), shade(95, 0.45, n), shade(70, 0.3, n));
+}
+
 cv::Mat RobotSim::render() const {
   const cv::Size size = config_.frameSize;
   cv::Mat image(size, CV_8UC3);
   const double cx = size.width / 2.0, cy = size.height / 2.0;
-  const double c = std::cos(pose_.heading), s = std::sin(pose_.heading);
-  constexpr double kTile = 0.5;  // m
+  const bool checkeredBackdrop = backdrop_ == Backdrop::Checkered;
   for (int v = 0; v < size.height; ++v) {
     auto *row = image.ptr<cv::Vec3b>(v);
     const double up = -(v + 0.5 - cy) / focal_;
     for (int u = 0; u < size.width; ++u) {
-      if (up >= -1e-6) {
-        // Sky: a soft vertical gradient, pale and unsaturated.
-        const int shade = static_cast<int>(200 + 40 * std::min(1.0, up * 2));
-        row[u] = cv::Vec3b(static_cast<uchar>(shade), static_cast<uchar>(shade - 10),
-                           static_cast<uchar>(shade - 30));
-        continue;
-      }
       const double left = -(u + 0.5 - cx) / focal_;
-      const double t = config_.cameraHeight / -up;  // the ray meets the floor at this forward distance
-      const double x = pose_.x + t * (c - left * s), y = pose_.y + t * (s + left * c);
-      const bool dark =
-          (static_cast<long>(std::floor(x / kTile)) + static_cast<long>(std::floor(y / kTile))) & 1;
-      row[u] = dark ? cv::Vec3b(95, 105, 100) : cv::Vec3b(150, 160, 155);
+      row[u] = checkeredBackdrop ? checkered(left, up) : mottled(left, up);
     }
   }
   // The farther ball first, so the nearer one covers it.

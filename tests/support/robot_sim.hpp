@@ -1,7 +1,8 @@
 // A simulated differential-drive robot with a forward camera, in a flat world with one coloured ball (and,
-// optionally, a second ball of the same colour that rolls across: a distractor). It
-// renders what the camera sees (pinhole model) and drives from wheel speeds, so robotctl can be tested in a
-// closed loop. It also decodes robotctl's three protocols, independently of core/ (from docs/robotctl.md).
+// optionally, a second ball of the same colour that rolls across: a distractor), seen against a checkered
+// floor and the sky or, after a cut, against another place's mottled floor and wall. It renders what the
+// camera sees (pinhole model) and drives from wheel speeds, so robotctl can be tested in a closed loop. It
+// also decodes robotctl's three protocols, independently of core/ (from docs/robotctl.md).
 #pragma once
 
 #include <cstdint>
@@ -33,18 +34,28 @@ struct Pose {
   double x = 0, y = 0, heading = 0;
 };
 
+// What the balls are seen against: the checkered floor under the sky, or another place (for a cut): a
+// mottled green floor and a blue-grey wall, both textured and anchored to the world so they move with the
+// robot, and nowhere near the balls' red.
+enum class Backdrop { Checkered, Mottled };
+
 class RobotSim {
  public:
   RobotSim(const RobotSimConfig &config, const Pose &start);
 
-  // The camera view: sky, a checkered floor, the ball and the distractor, the nearer one drawn over the
-  // other (BGR, CV_8UC3).
+  // The camera view: the backdrop, the ball and the distractor, the nearer one drawn over the other (BGR,
+  // CV_8UC3).
   cv::Mat render() const;
   // Where the ball appears (ground truth); empty when hidden or behind the camera.
   cv::Rect2d ballBox() const;
-  // Where the distractor appears, whole (not cut where the ball is in front); empty without one.
+  // Where the distractor appears, whole (not cut where the ball is in front); empty without one or hidden.
   cv::Rect2d distractorBox() const;
   void setBallHidden(bool hidden) { hidden_ = hidden; }
+  void setDistractorHidden(bool hidden) { distractorHidden_ = hidden; }
+  void setBackdrop(Backdrop backdrop);
+  // Moves the distractor to `bearing` (rad from the camera's axis, > 0 to the left) and `distance` (m on the
+  // floor from the camera), so that a test can put it where it wants it in the image.
+  void placeDistractor(double bearing, double distance);
   // Rolls the ball and the distractor for dt seconds at their velocities.
   void moveBall(double dt);
 
@@ -71,11 +82,18 @@ class RobotSim {
   cv::Point3d toCamera(double x, double y, double z) const;
   // Where a ball of `radius` resting at `position` appears; empty when behind the camera.
   cv::Rect2d boxOf(cv::Point2d position, double radius) const;
+  // Where the ray `left` and `up` (camera coordinates, per unit forward; up < 0) meets the floor.
+  cv::Point2d floorPoint(double left, double up) const;
+  // The backdrop's colour seen along the ray `left` and `up` (camera coordinates, per unit forward).
+  cv::Vec3b checkered(double left, double up) const;
+  cv::Vec3b mottled(double left, double up) const;
 
   RobotSimConfig config_;
   Pose pose_;
   double focal_;
-  bool hidden_ = false;
+  bool hidden_ = false, distractorHidden_ = false;
+  Backdrop backdrop_ = Backdrop::Checkered;
+  cv::Mat floorTexture_, wallTexture_;  // CV_8U, made when the mottled backdrop is first set
 };
 
 // A shaded red ball with a highlight, filling `box` (nothing when empty); sub-pixel centre (shift) so it
