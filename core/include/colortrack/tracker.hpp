@@ -64,8 +64,8 @@ struct TrackOutput {
   int id = 0;           // track id, >= 1 once a track has existed; grows at every new acquisition
   cv::Rect2d box;       // filtered box, frame coordinates
   // Indexing and discriminative: match value of this frame's detection against the template (0 when
-  // coasting). Fused: the frame's confidence relative to the track's usual one, capped at 1 (under 0.5: not
-  // a detection).
+  // coasting). Fused: the frame's confidence relative to the track's usual one, capped at 1 and at
+  // 1 - rival / 2 when a look-alike answers in the window (under 0.5: not a detection, a guess or doubted).
   double score = 0;
   bool verified = false;  // edge check passed (always true when verify = None)
   double scale = 1.0;     // box size relative to the template
