@@ -112,8 +112,10 @@ TrackOutput Tracker::process(const ImageSource &frame, double dt) {
   KalmanTrack &track = impl_->track;
   // A lost track is reported for one frame; the frame after it searches again.
   if (track.state == TrackState::Lost) track.state = TrackState::Searching;
-  if (impl_->sceneCut.observe(frame) && track.active()) {
-    track.state = TrackState::Lost;
+  // The frame of a cut is not searched either: what is found on the other scene is found on the next frames,
+  // and then on probation (lostToCut).
+  if (impl_->sceneCut.observe(frame)) {
+    if (track.active()) track.state = TrackState::Lost;
     track.lostToCut = true;
     track.report(out);
     return out;
