@@ -340,6 +340,7 @@ void FusedMethod::acquire(const ImageSource &frame, TrackOutput &out) {
   track.lastVerified = d.verified;
   probation_ = track.lostToCut ? kProbationFrames : 0;
   track.lostToCut = false;
+  jumped_ = false;  // a jump seen by the track that was lost: this one starts with its own id already
   if (probation_ > 0) track.doubted = true;
   centre_ = found->centre;
   size_ = found->size;

@@ -37,9 +37,4 @@ bool SceneCut::observe(const ImageSource &frame) {
   return lastDistance_ >= kCutDistance;
 }
 
-void SceneCut::reset() {
-  previous_.release();
-  lastDistance_ = 0;
-}
-
 }  // namespace colortrack

@@ -16,7 +16,6 @@ class SceneCut {
   bool observe(const ImageSource &frame);
   // How far the last frame's colours were from the frame before (Bhattacharyya distance, 0 = same).
   double lastDistance() const { return lastDistance_; }
-  void reset();
 
  private:
   cv::Mat previous_;  // colour histogram of the frame before
