@@ -1,6 +1,7 @@
 #include "colortrack/scene_cut.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include <opencv2/imgproc.hpp>
 
@@ -32,7 +33,7 @@ bool SceneCut::observe(const ImageSource &frame) {
   cv::normalize(histogram_, histogram_, 1, 0, cv::NORM_L1);
   const bool comparable = !previous_.empty() && size == previousSize_;
   lastDistance_ = comparable ? cv::compareHist(previous_, histogram_, cv::HISTCMP_BHATTACHARYYA) : 0;
-  histogram_.copyTo(previous_);
+  std::swap(previous_, histogram_);
   previousSize_ = size;
   return lastDistance_ >= kCutDistance;
 }
