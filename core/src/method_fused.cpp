@@ -13,6 +13,7 @@
 #include "colortrack/fused_detector.hpp"
 #include "colortrack/method_discriminative.hpp"
 #include "colortrack/redetection.hpp"
+#include "colortrack/start_likeness.hpp"
 
 namespace colortrack {
 
@@ -176,7 +177,8 @@ class FusedMethod : public DetectionMethod {
   int probation_ = 0;    // confirmed frames a re-acquired track still needs before it is reported tracking
   bool jumped_ = false;  // the coasting track took a re-detection far from its last confirmed place
   bool coastingFromConfirmed_ = false;  // the track was last a confirmed detection (sizeGuarded in follow())
-  bool unconfirmed_ = false;  // the track follows a re-detection that has not reached the confirmation bar
+  bool unconfirmed_ = false;     // the track follows a re-detection that has not reached the confirmation bar
+  StartLikeness startLikeness_;  // every reported score is multiplied by its factor
 };
 
 void FusedMethod::process(const ImageSource &frame, double dt, TrackOutput &out) {
@@ -185,6 +187,8 @@ void FusedMethod::process(const ImageSource &frame, double dt, TrackOutput &out)
       follow(frame, dt, out);
     else
       acquire(frame, out);
+    // A box that no longer looks like the start ranks lower, however well it matches the adapted model.
+    out.score *= startLikeness_.factor();
     return;
   }
   colourSearch_.process(frame, dt, out);
@@ -248,16 +252,18 @@ void FusedMethod::follow(const ImageSource &frame, double dt, TrackOutput &out) 
   d.box = centredBox(e.centre.x + e.offset.x, e.centre.y + e.offset.y,
                      cv::Size2d(e.size.width * e.extent.width, e.size.height * e.extent.height));
   d.score = e.confidence;
-  // The edge check and the two learners read the frame and write nothing the others read, so with a second
-  // core (OpenCV's thread pool) they run side by side; with one thread, in turn. The result is the same. The
-  // longest (the colour learner) goes first, so the other two share the second thread.
+  // The edge check (with the start's match) and the two learners read the frame and write nothing the others
+  // read, so with a second core (OpenCV's thread pool) they run side by side; with one thread, in turn. The
+  // result is the same. The longest (the colour learner) goes first, so the other two share the second
+  // thread.
   cv::parallel_for_(cv::Range(0, 3), [&](const cv::Range &tasks) {
     for (int task = tasks.start; task < tasks.end; ++task) {
       if (task == 0)
         colourCue_.learn(frame, learnt);
-      else if (task == 1)
+      else if (task == 1) {
         d.verified = verified(frame, d.box);
-      else
+        startLikeness_.observe(context_.model.matchStart(frame, roundRect(d.box), context_.settings));
+      } else
         fused_.learn(frame, e);
     }
   });
@@ -368,6 +374,7 @@ void FusedMethod::startFilters(const ImageSource &frame, const cv::Rect2d &box) 
 
 void FusedMethod::stopFilters() {
   fused_.stop();
+  startLikeness_.reset();
   probation_ = 0;
   jumped_ = false;
   unconfirmed_ = false;

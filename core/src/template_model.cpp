@@ -1,5 +1,8 @@
 #include "colortrack/template_model.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include <opencv2/imgproc.hpp>
 
 namespace colortrack {
@@ -40,6 +43,18 @@ void TemplateModel::rebuild(const TrackerSettings &settings) {
   cv::Mat templateGray;
   cv::cvtColor(templateBgr_, templateGray, cv::COLOR_BGR2GRAY);
   verifier_.setTemplate(flattenOutsideMask(templateGray, templateMask_));
+}
+
+double TemplateModel::matchStart(const ImageSource &frame, const cv::Rect &box,
+                                 const TrackerSettings &settings) {
+  const cv::Rect inside = box & cv::Rect(cv::Point(), frame.size());
+  if (inside.area() <= 0 || histogram_.empty()) return 0;
+  // A sample of about kMatchPixels pixels is enough for a histogram, and keeps a large box cheap.
+  constexpr double kMatchPixels = 4096;
+  const int step = std::max(1, static_cast<int>(std::sqrt(inside.area() / kMatchPixels)));
+  frame.sampledBgr(inside, step, bgr_);
+  mapper_->map(bgr_, boxBins_.bins);
+  return windowMatch(boxBins_, cv::Rect(cv::Point(), bgr_.size()), histogram_, settings.weights);
 }
 
 bool TemplateModel::verify(const ImageSource &frame, const cv::Rect &box, const TrackerSettings &settings) {

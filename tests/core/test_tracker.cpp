@@ -255,7 +255,10 @@ TEST(FusedTracker, ConfidenceFallsBehindAnOccluderAndTheTargetIsReacquired) {
       "mean score while visible %.2f; behind the board: %d/%d frames under 0.5, %d tracking; "
       "reacquired at frame %d\n",
       visibleScore, lowConfidence, kTo - kFrom, trackingBehind, reacquiredAt);
-  EXPECT_GT(visibleScore, 0.8);
+  // Well above the loss bar of 0.5 while visible. Not 0.8 any more: the score also weighs how much the box
+  // still looks like the start (StartLikeness), which this scene's turning object under +-40 % light lowers
+  // (0.79 with it, 0.8 and more without).
+  EXPECT_GT(visibleScore, 0.75);
   EXPECT_GE(lowConfidence, kTo - kFrom - 1);
   EXPECT_LE(trackingBehind, 1);
   ASSERT_GE(reacquiredAt, kTo);

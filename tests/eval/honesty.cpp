@@ -101,6 +101,19 @@ std::string figuresLine(const std::string &runs, const std::string &half, const 
                 number(precision).c_str(), number(recall).c_str());
 }
 
+// The same figures per sequence, plain and injected runs together, in the order the runs came.
+std::string perSequenceLines(const std::vector<RunRecord> &runs) {
+  std::vector<std::string> order;
+  std::map<std::string, HonestyFigures> bySequence;
+  for (const RunRecord &run : runs) {
+    if (!bySequence.count(run.sequence)) order.push_back(run.sequence);
+    bySequence[run.sequence] += honestyFigures(run.truth, run.reports);
+  }
+  std::string text = "\nPer sequence, plain and injected runs together:\n";
+  for (const std::string &sequence : order) text += figuresLine(sequence, "", bySequence[sequence]);
+  return text;
+}
+
 }  // namespace
 
 HonestyFigures &HonestyFigures::operator+=(const HonestyFigures &other) {
@@ -218,6 +231,7 @@ std::string honestyReport(const std::vector<RunRecord> &runs) {
       text += figuresLine(kind, half, pooled);
     }
 
+  text += perSequenceLines(runs);
   text += "\nInjected failures, per run:\n";
   text += format("%-14s %-20s %8s %10s %6s %8s %6s %6s %7s\n", "sequence", "injection", "declared",
                  "tracking", "back", "IoU aft", "onTgt", "onCopy", "score");

@@ -31,6 +31,10 @@ class TemplateModel {
   ColorLikelihood &likelihood() { return likelihood_; }
   const ColorLikelihood &likelihood() const { return likelihood_; }
 
+  // The paper's match value (weighted histogram intersection) of `box` (clipped to the frame) against the
+  // template's histogram, which is never updated: how much the box still looks like the start.
+  double matchStart(const ImageSource &frame, const cv::Rect &box, const TrackerSettings &settings);
+
   // The edge check of `box` against the template's edges (true when the settings verify nothing).
   bool verify(const ImageSource &frame, const cv::Rect &box, const TrackerSettings &settings);
 
@@ -42,6 +46,7 @@ class TemplateModel {
   ColorLikelihood likelihood_;
 
   cv::Mat bgr_, gray_;  // scratch reused across frames
+  BinImage boxBins_;
 };
 
 }  // namespace colortrack
