@@ -93,10 +93,11 @@ std::string groupLine(const std::string &group, const std::string &half, const G
   return line + "\n";
 }
 
-std::string figuresLine(const std::string &runs, const std::string &half, const HonestyFigures &f) {
+// One line of figures after `label` (18 characters: "runs half", or a sequence's name).
+std::string figuresLine(const std::string &label, const HonestyFigures &f) {
   const double precision = f.tracking > 0 ? double(f.trackingOnTarget) / f.tracking : NAN;
   const double recall = f.onTarget > 0 ? double(f.trackingOnTarget) / f.onTarget : NAN;
-  return format("%-9s %-8s %22s  %7s  %9s  %7s\n", runs.c_str(), half.c_str(),
+  return format("%-18s %22s  %7s  %9s  %7s\n", label.c_str(),
                 percent(f.offTargetTracking, f.offTarget).c_str(), number(auroc(f.scores)).c_str(),
                 number(precision).c_str(), number(recall).c_str());
 }
@@ -110,7 +111,7 @@ std::string perSequenceLines(const std::vector<RunRecord> &runs) {
     bySequence[run.sequence] += honestyFigures(run.truth, run.reports);
   }
   std::string text = "\nPer sequence, plain and injected runs together:\n";
-  for (const std::string &sequence : order) text += figuresLine(sequence, "", bySequence[sequence]);
+  for (const std::string &sequence : order) text += figuresLine(sequence, bySequence[sequence]);
   return text;
 }
 
@@ -228,7 +229,7 @@ std::string honestyReport(const std::vector<RunRecord> &runs) {
         if (half != std::string("all") && run.half != half) continue;
         pooled += honestyFigures(run.truth, run.reports);
       }
-      text += figuresLine(kind, half, pooled);
+      text += figuresLine(format("%-9s %s", kind, half), pooled);
     }
 
   text += perSequenceLines(runs);
