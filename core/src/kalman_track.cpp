@@ -39,7 +39,6 @@ void KalmanTrack::newTemplate(cv::Size size) {
 void KalmanTrack::reset(const KalmanParams &params) {
   state = TrackState::Searching;
   doubted = false;
-  lostToCut = false;
   coastFrames = 0;
   unverifiedFrames = 0;
   searchFrames = 0;

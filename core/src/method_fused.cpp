@@ -128,6 +128,7 @@ class FusedMethod : public DetectionMethod {
   // The filters were learnt from the old template or with the old colour model: the next detection of the
   // colour search starts them again.
   void forget() override { stopFilters(); }
+  void sceneCut() override { afterCut_ = true; }
 
  private:
   void follow(const ImageSource &frame, double dt, TrackOutput &out);
@@ -176,6 +177,8 @@ class FusedMethod : public DetectionMethod {
   Redetector redetector_;
   int probation_ = 0;    // confirmed frames a re-acquired track still needs before it is reported tracking
   bool jumped_ = false;  // the coasting track took a re-detection far from its last confirmed place
+  bool afterCut_ =
+      false;  // the picture cut to another scene since the last find: the next one is on probation
   bool coastingFromConfirmed_ = false;  // the track was last a confirmed detection (sizeGuarded in follow())
   bool unconfirmed_ = false;     // the track follows a re-detection that has not reached the confirmation bar
   StartLikeness startLikeness_;  // every reported score is multiplied by its factor
@@ -345,8 +348,8 @@ void FusedMethod::acquire(const ImageSource &frame, TrackOutput &out) {
   else
     track.start(d.box, context_.settings.kalman);
   track.lastVerified = d.verified;
-  probation_ = track.lostToCut ? kProbationFrames : 0;
-  track.lostToCut = false;
+  probation_ = afterCut_ ? kProbationFrames : 0;
+  afterCut_ = false;
   jumped_ = false;  // a jump seen by the track that was lost: this one starts with its own id already
   if (probation_ > 0) track.doubted = true;
   centre_ = found->centre;
@@ -362,6 +365,7 @@ void FusedMethod::acquire(const ImageSource &frame, TrackOutput &out) {
 void FusedMethod::startFilters(const ImageSource &frame, const cv::Rect2d &box) {
   const cv::Rect2d fitted(box.x, box.y, std::max(1.0, box.width), std::max(1.0, box.height));
   stopFilters();
+  afterCut_ = false;  // a start box is the target, wherever the picture came from
   fused_.start(frame, fitted);
   centre_ = cv::Point2d(fitted.x + fitted.width / 2, fitted.y + fitted.height / 2);
   size_ = fitted.size();

@@ -113,10 +113,10 @@ TrackOutput Tracker::process(const ImageSource &frame, double dt) {
   // A lost track is reported for one frame; the frame after it searches again.
   if (track.state == TrackState::Lost) track.state = TrackState::Searching;
   // The frame of a cut is not searched either: what is found on the other scene is found on the next frames,
-  // and then on probation (lostToCut).
+  // and the method may hold it to a higher bar (DetectionMethod::sceneCut).
   if (impl_->sceneCut.observe(frame)) {
     if (track.active()) track.state = TrackState::Lost;
-    track.lostToCut = true;
+    impl_->method->sceneCut();
     track.report(out);
     return out;
   }

@@ -43,6 +43,9 @@ class DetectionMethod {
   // leaves the method alone: it forgets the track, not the target; the fused method's re-detection after a
   // reset still uses its filters.)
   virtual void forget() = 0;
+  // The picture cut to another scene (SceneCut): the Tracker has lost the track, if there was one, and does
+  // not search this frame. What is found next may be anything.
+  virtual void sceneCut() {}
 };
 
 // The method registered for `method`; throws std::logic_error for a value without a registration.

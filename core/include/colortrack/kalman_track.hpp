@@ -22,8 +22,6 @@ struct KalmanTrack {
   // Measured and followed, but not vouched for: reported coasting (and unverified) until the method clears
   // it. The fused method sets it when a look-alike answers beside the target (FusedMethod::follow).
   bool doubted = false;
-  // The track was lost to a cut to another scene (Tracker::process): what is found next may be anything.
-  bool lostToCut = false;
   double aspect = 1.0;    // (box width / height) / (template width / height)
   cv::Size templateSize;  // boxes are measured relative to it
 
