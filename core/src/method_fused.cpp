@@ -177,8 +177,8 @@ class FusedMethod : public DetectionMethod {
   Redetector redetector_;
   int probation_ = 0;    // confirmed frames a re-acquired track still needs before it is reported tracking
   bool jumped_ = false;  // the coasting track took a re-detection far from its last confirmed place
-  bool afterCut_ =
-      false;  // the picture cut to another scene since the last find: the next one is on probation
+  // The picture cut to another scene since the last find: the next find is on probation.
+  bool afterCut_ = false;
   bool coastingFromConfirmed_ = false;  // the track was last a confirmed detection (sizeGuarded in follow())
   bool unconfirmed_ = false;     // the track follows a re-detection that has not reached the confirmation bar
   StartLikeness startLikeness_;  // every reported score is multiplied by its factor
