@@ -109,6 +109,7 @@ std::string redactedAddress(const std::string &address) {
 
 struct MqttPublisher::SendContext {
   MqttPublisher *publisher;
+  void *client;  // the client it was sent through
   std::uint64_t sequence, attempt;
 };
 
@@ -156,7 +157,13 @@ MqttPublisher::~MqttPublisher() {
 
 bool MqttPublisher::start(std::string &why) {
   why = checkAddress(config_.address);
-  if (!why.empty()) return false;
+  if (!why.empty() || !createClient(why)) return false;
+  nextAttempt_ = Clock::now();
+  worker_ = std::thread([this] { run(); });
+  return true;
+}
+
+bool MqttPublisher::createClient(std::string &why) {
   MQTTAsync client = nullptr;
   MQTTAsync_createOptions options = MQTTAsync_createOptions_initializer;
   options.sendWhileDisconnected = 0;  // the queue is ours
@@ -168,9 +175,28 @@ bool MqttPublisher::start(std::string &why) {
   }
   client_ = client;
   MQTTAsync_setConnectionLostCallback(client, this, &Callback::lost);
-  nextAttempt_ = Clock::now();
-  worker_ = std::thread([this] { run(); });
   return true;
+}
+
+void MqttPublisher::destroyClient(void *&client) {
+  if (!client) return;
+  MQTTAsync handle = static_cast<MQTTAsync>(client);
+  if (MQTTAsync_isConnected(handle)) {
+    MQTTAsync_disconnectOptions options = MQTTAsync_disconnectOptions_initializer;
+    options.timeout = 0;
+    MQTTAsync_disconnect(handle, &options);
+  }
+  MQTTAsync_destroy(&handle);  // no callback of this client runs after this
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (auto it = sends_.begin(); it != sends_.end();) {  // its sends it discarded unanswered
+    if ((*it)->client != client) {
+      ++it;
+      continue;
+    }
+    delete *it;
+    it = sends_.erase(it);
+  }
+  client = nullptr;
 }
 
 bool MqttPublisher::waitFirstAttempt(milliseconds timeout, std::string &why) {
@@ -206,19 +232,8 @@ void MqttPublisher::stop(milliseconds drain) {
   }
   wake_.notify_all();
   if (worker_.joinable()) worker_.join();
-  if (client_) {
-    MQTTAsync client = client_;
-    if (MQTTAsync_isConnected(client)) {
-      MQTTAsync_disconnectOptions options = MQTTAsync_disconnectOptions_initializer;
-      options.timeout = 0;
-      MQTTAsync_disconnect(client, &options);
-    }
-    MQTTAsync_destroy(&client);  // no callback runs after this
-    client_ = nullptr;
-  }
-  std::lock_guard<std::mutex> lock(mutex_);
-  for (SendContext *send : sends_) delete send;  // sends Paho discarded unanswered
-  sends_.clear();
+  destroyClient(client_);
+  destroyClient(retired_);
 }
 
 std::uint64_t MqttPublisher::delivered() const {
@@ -254,6 +269,7 @@ void MqttPublisher::run() {
 
 void MqttPublisher::connect(std::unique_lock<std::mutex> &lock) {
   connecting_ = true;
+  if (replaceClient_ && !replaceClient(lock)) return;
   MQTTAsync_connectOptions options = MQTTAsync_connectOptions_initializer;
   options.keepAliveInterval = kKeepAliveSeconds;
   options.cleansession = 1;  // what was in flight is resent from our queue
@@ -283,13 +299,31 @@ void MqttPublisher::connect(std::unique_lock<std::mutex> &lock) {
   }
 }
 
+// Paho keeps the publishes it had queued but not yet written when a connection went, and writes them first
+// on its next connection (its clean session clears only what was in flight). Our queue has put those
+// documents back already, to resend from the oldest; sent again by Paho they would overtake it. So each
+// connection after a lost one gets a new client. The old one never connects again; it is destroyed one
+// reconnect later, when none of its threads can still be in the callback that reported the loss.
+bool MqttPublisher::replaceClient(std::unique_lock<std::mutex> &lock) {
+  replaceClient_ = false;
+  lock.unlock();  // this is the worker, the only thread that uses client_ while running
+  destroyClient(retired_);
+  retired_ = client_;
+  client_ = nullptr;
+  std::string why;
+  const bool made = createClient(why);
+  if (!made) connectDone(false, why);
+  lock.lock();
+  return made;
+}
+
 void MqttPublisher::send(std::unique_lock<std::mutex> &lock) {
   while (connected_) {
     // A copy: a callback may change the queue while the lock is released (Paho copies the payload too).
     const std::optional<SendQueue::Document> next = documents_.send(Clock::now(), kWindow);
     if (!next) return;
     const SendQueue::Document &document = *next;
-    auto *context = new SendContext{this, document.sequence, document.attempt};
+    auto *context = new SendContext{this, client_, document.sequence, document.attempt};
     sends_.insert(context);
     lock.unlock();
     MQTTAsync_message message = MQTTAsync_message_initializer;
@@ -366,6 +400,7 @@ void MqttPublisher::lost(const std::string &why) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     connected_ = false;
+    replaceClient_ = true;
     documents_.requeueInFlight();
     queued = documents_.waiting();
     const auto now = Clock::now();

@@ -90,8 +90,11 @@ class MqttPublisher {
   struct Callback;     // Paho's C callbacks, which call the members below
   struct SendContext;  // one document's send, until Paho answers it
 
+  bool createClient(std::string &why);
+  void destroyClient(void *&client);  // and frees its unanswered sends
   void run();
   void connect(std::unique_lock<std::mutex> &lock);
+  bool replaceClient(std::unique_lock<std::mutex> &lock);
   void send(std::unique_lock<std::mutex> &lock);
   void sent(std::uint64_t sequence, std::uint64_t attempt);
   void sendFailed(std::uint64_t sequence, std::uint64_t attempt);
@@ -101,21 +104,23 @@ class MqttPublisher {
 
   const MqttConfig config_;
   MqttListener &listener_;
-  void *client_ = nullptr;  // MQTTAsync
+  void *client_ = nullptr;   // MQTTAsync, this connection's
+  void *retired_ = nullptr;  // the client of the connection before, never connected again
 
   mutable std::mutex mutex_;
   std::condition_variable wake_;
   SendQueue documents_;
   std::uint64_t delivered_ = 0;
   bool connected_ = false, connecting_ = false, everConnected_ = false, stopping_ = false;
-  bool attempted_ = false;  // the first connection attempt has ended
+  bool attempted_ = false;      // the first connection attempt has ended
+  bool replaceClient_ = false;  // the connection was lost: the next one gets a new client
   std::string lastError_;
   bool failedSinceSuccess_ = false;
   bool flapping_ = false;  // the last connection was lost soon after it was made
   std::chrono::steady_clock::time_point connectedAt_;
   std::chrono::milliseconds backoff_;
   std::chrono::steady_clock::time_point nextAttempt_, drainUntil_;
-  std::set<SendContext *> sends_;  // not yet answered by Paho; freed at stop when Paho discarded them
+  std::set<SendContext *> sends_;  // not yet answered by Paho; freed when their client is destroyed
   std::thread worker_;
 };
 
