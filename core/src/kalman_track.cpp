@@ -39,6 +39,7 @@ void KalmanTrack::newTemplate(cv::Size size) {
 void KalmanTrack::reset(const KalmanParams &params) {
   state = TrackState::Searching;
   doubted = false;
+  scoreFell = false;
   coastFrames = 0;
   unverifiedFrames = 0;
   searchFrames = 0;
@@ -83,7 +84,7 @@ void KalmanTrack::coastAt(cv::Point2d centre, int maxCoastFrames) {
 }
 
 void KalmanTrack::report(TrackOutput &out) const {
-  out.state = state == TrackState::Tracking && doubted ? TrackState::Coasting : state;
+  out.state = state == TrackState::Tracking && (doubted || scoreFell) ? TrackState::Coasting : state;
   out.id = id;
   if (!active()) return;
   out.hasBox = true;

@@ -13,6 +13,7 @@
 #include "colortrack/fused_detector.hpp"
 #include "colortrack/method_discriminative.hpp"
 #include "colortrack/redetection.hpp"
+#include "colortrack/score_fall.hpp"
 #include "colortrack/start_likeness.hpp"
 
 namespace colortrack {
@@ -151,6 +152,7 @@ class FusedMethod : public DetectionMethod {
                              double &frameScore);
   bool followUnconfirmed(const FusedDetector::Estimate &e, bool detection, TrackOutput &out);
   void waitAt(const FusedDetector::Estimate &e);
+  void noteScoreFall(TrackOutput &out);
   bool sameSize(cv::Size2d size) const {
     const double ratio = std::sqrt(size.area() / targetSize_.area());
     return ratio <= kCoastSizeFactor && ratio >= 1 / kCoastSizeFactor;
@@ -182,6 +184,7 @@ class FusedMethod : public DetectionMethod {
   bool coastingFromConfirmed_ = false;  // the track was last a confirmed detection (sizeGuarded in follow())
   bool unconfirmed_ = false;     // the track follows a re-detection that has not reached the confirmation bar
   StartLikeness startLikeness_;  // every reported score is multiplied by its factor
+  ScoreFall scoreFall_;          // of the weighted score: while fallen, a tracked frame is reported coasting
 };
 
 void FusedMethod::process(const ImageSource &frame, double dt, TrackOutput &out) {
@@ -192,6 +195,7 @@ void FusedMethod::process(const ImageSource &frame, double dt, TrackOutput &out)
       acquire(frame, out);
     // A box that no longer looks like the start ranks lower, however well it matches the adapted model.
     out.score *= startLikeness_.factor();
+    noteScoreFall(out);
     return;
   }
   colourSearch_.process(frame, dt, out);
@@ -279,6 +283,16 @@ void FusedMethod::follow(const ImageSource &frame, double dt, TrackOutput &out) 
   confirmedCentre_ = centre_;
   coastingFromConfirmed_ = true;
   noteConfidence(e);
+}
+
+// A frame the track's own rules report `tracking` whose weighted score fell (ScoreFall) is reported
+// `coasting`, its score under the detection bar like any doubted frame's. Boxes unchanged.
+void FusedMethod::noteScoreFall(TrackOutput &out) {
+  KalmanTrack &track = context_.track;
+  const bool tracked = track.state == TrackState::Tracking && !track.doubted;
+  scoreFall_.observe(out.score, tracked);
+  track.scoreFell = scoreFall_.fallen();
+  if (tracked && track.scoreFell) out.score = guessScore(out.score);
 }
 
 // A re-detection over the whole frame replaces the window's estimate `e` (and its `frameScore`) when it is
@@ -379,6 +393,8 @@ void FusedMethod::startFilters(const ImageSource &frame, const cv::Rect2d &box) 
 void FusedMethod::stopFilters() {
   fused_.stop();
   startLikeness_.reset();
+  scoreFall_.reset();
+  context_.track.scoreFell = false;
   probation_ = 0;
   jumped_ = false;
   unconfirmed_ = false;
