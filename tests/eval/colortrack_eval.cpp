@@ -128,7 +128,7 @@ int countRuns(const std::vector<Sequence> &sequences, const EvalResults &results
 
 std::string framesPath(const EvalResults &results, std::size_t t, std::size_t f, const Sequence &sequence,
                        std::size_t start) {
-  const std::string dir = slug(results.trackers[t]) + (results.runOnce[t] ? "" : "_" + results.formats[f]);
+  const std::string dir = framesFolder(results, t, f);
   const std::string name = start == 0 ? sequence.name : sequence.name + "." + results.startNames[start];
   return dir + "/" + name + ".csv";
 }
@@ -173,7 +173,7 @@ EvalResults evaluateAll(const std::vector<Sequence> &sequences, const std::vecto
             progress.finish(format("%s  FAILED: %s", label.c_str(), e.warning.c_str()));
           if (options.writeFrames)
             writeFrames(fs::path(options.outDir) / "frames" / framesPath(results, t, f, seq, i), seq,
-                        starts[i].box, e);
+                        starts[i].box, e.run);
         }
       // cvtracker's input does not depend on the format: its one run stands in every column.
       for (std::size_t f = formats; f < results.formats.size(); ++f)

@@ -92,9 +92,10 @@ void addPlainRuns(const std::vector<Sequence> &sequences, const EvalResults &res
 
 // Every injected run of every sequence, through every column; records[c] are column c's.
 void addInjectedRuns(const std::vector<Sequence> &sequences, const EvalResults &results,
-                     const cv::Point2d &offset, Progress &progress,
+                     const Options &options, Progress &progress,
                      std::vector<std::vector<RunRecord>> &records) {
   const std::vector<EvalResults::Column> columns = results.columns();
+  const cv::Point2d offset(options.startOffsetX, options.startOffsetY);
   TemporaryDirectory temporary;
   for (std::size_t s = 0; s < sequences.size(); ++s) {
     const cv::Rect start =
@@ -115,6 +116,11 @@ void addInjectedRuns(const std::vector<Sequence> &sequences, const EvalResults &
         });
         progress.finish(label + (result.error.empty() ? "" : "  FAILED: " + result.error));
         if (!result.error.empty()) continue;
+        if (options.writeFrames)
+          writeFrames(fs::path(options.outDir) / "frames" /
+                          framesFolder(results, columns[c].tracker, columns[c].format) /
+                          (sequences[s].name + "." + injection.name + ".csv"),
+                      sequences[s], start, result);
         records[c].push_back({sequences[s].name, halfOf(sequences[s].name), injection.name, injection,
                               run.truth(), reportsOf(result, start, reportsStates(result))});
       }
@@ -132,7 +138,7 @@ std::string honestySection(const std::vector<Sequence> &sequences, const EvalRes
   std::vector<std::vector<RunRecord>> records(columns.size());
   for (std::size_t c = 0; c < columns.size(); ++c)
     addPlainRuns(sequences, results, columns[c], offset, options.sre, records[c]);
-  if (options.inject) addInjectedRuns(sequences, results, offset, progress, records);
+  if (options.inject) addInjectedRuns(sequences, results, options, progress, records);
   std::string md = "\n### Honesty\n";
   for (std::size_t c = 0; c < columns.size(); ++c)
     md += "\n#### " + columns[c].label + "\n\n```\n" + honestyReport(records[c]) + "```\n";

@@ -165,14 +165,19 @@ void writeCsv(const fs::path &path, const std::vector<Sequence> &sequences, cons
     }
 }
 
-void writeFrames(const fs::path &path, const Sequence &sequence, const cv::Rect &start, const Evaluation &e) {
+std::string framesFolder(const EvalResults &results, std::size_t tracker, std::size_t format) {
+  return slug(results.trackers[tracker]) + (results.runOnce[tracker] ? "" : "_" + results.formats[format]);
+}
+
+void writeFrames(const fs::path &path, const Sequence &sequence, const cv::Rect &start,
+                 const RunResult &run) {
   fs::create_directories(path.parent_path());
   std::ofstream out(path);
-  out << "frame,gt_x,gt_y,gt_w,gt_h,x,y,w,h,iou,centre_error,state\n";
-  const std::size_t n = std::max(sequence.groundTruth.size(), e.run.boxes.size());
+  out << "frame,gt_x,gt_y,gt_w,gt_h,x,y,w,h,iou,centre_error,state,score\n";
+  const std::size_t n = std::max(sequence.groundTruth.size(), run.boxes.size());
   for (std::size_t i = 0; i < n; ++i) {
     const GroundTruthBox gt = i < sequence.groundTruth.size() ? sequence.groundTruth[i] : std::nullopt;
-    std::optional<cv::Rect2d> box = i < e.run.boxes.size() ? e.run.boxes[i] : std::nullopt;
+    std::optional<cv::Rect2d> box = i < run.boxes.size() ? run.boxes[i] : std::nullopt;
     if (i == 0) box = cv::Rect2d(start);
     out << i + 1;
     for (const auto &b : {gt, box}) {
@@ -185,7 +190,8 @@ void writeFrames(const fs::path &path, const Sequence &sequence, const cv::Rect 
       out << format(",%.4f,%.2f", overlap(*box, *gt), centreDistance(*box, *gt));
     else
       out << (gt ? ",0,inf" : ",,");
-    out << "," << (i < e.run.states.size() ? e.run.states[i] : "") << "\n";
+    out << "," << (i < run.states.size() ? run.states[i] : "");
+    out << "," << (i < run.scores.size() ? format("%.4f", run.scores[i]) : "") << "\n";
   }
 }
 

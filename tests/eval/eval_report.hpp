@@ -45,9 +45,13 @@ std::string slug(const std::string &text);
 std::string markdownTables(const std::vector<Sequence> &sequences, const EvalResults &results);
 void writeCsv(const std::filesystem::path &path, const std::vector<Sequence> &sequences,
               const EvalResults &results);
-// Per-frame boxes of one run, for looking into a tracker's failures.
+// Per-frame boxes, states and scores of one run, for looking into a tracker's failures. For an injected run
+// `sequence` is the original: its ground truth, while the run's name says where the target was cut away or
+// covered.
 void writeFrames(const std::filesystem::path &path, const Sequence &sequence, const cv::Rect &start,
-                 const Evaluation &e);
+                 const RunResult &run);
+// The folder under <out>/frames of one column's runs: the tracker's slug, and the format unless it runs once.
+std::string framesFolder(const EvalResults &results, std::size_t tracker, std::size_t format);
 // The OPE curves of every column, averaged over the sequences.
 void writeCurves(const std::filesystem::path &path, const std::vector<std::string> &labels,
                  const std::vector<SequenceScore> &means);
