@@ -1,7 +1,7 @@
 // The weighted score's sudden fall (issue 46): a tracked track whose score drops from its usual level to
-// under the low bar is in doubt until a tracked frame scores well again; a score that sinks slowly (a target
-// whose look drifts from the start) is no fall, and frames the track does not report `tracking` change
-// nothing.
+// under the low bar is in doubt until a tracked frame scores well again, and so is one that comes back from
+// untracked frames under its level; a score that sinks slowly (a target whose look drifts from the start)
+// is no fall, and frames the track does not report `tracking` change nothing else.
 #include <gtest/gtest.h>
 
 #include "colortrack/score_fall.hpp"
@@ -47,6 +47,21 @@ TEST(ScoreFall, OnlyTrackedFramesCount) {
   ASSERT_TRUE(fall.fallen());
   observe(fall, 0.9, 5, false);  // nor do untracked frames end a doubt
   EXPECT_TRUE(fall.fallen());
+}
+
+TEST(ScoreFall, AReturnFromUntrackedFramesMustComeBackNearItsLevel) {
+  ScoreFall fall;
+  observe(fall, 0.57, 20);   // a hard target's usual level
+  fall.observe(0.46, true);  // the same drop while tracked all along is no fall
+  EXPECT_FALSE(fall.fallen());
+  observe(fall, 0.57, 20);
+  observe(fall, 0.15, 8, false);  // covered; then the window's peak is taken on a neighbour
+  fall.observe(0.46, true);
+  EXPECT_TRUE(fall.fallen());
+  observe(fall, 0.6, 1);
+  observe(fall, 0.15, 8, false);
+  fall.observe(0.55, true);  // back at its level after the cover: the target
+  EXPECT_FALSE(fall.fallen());
 }
 
 TEST(ScoreFall, ResetForgetsTheDoubtAndTheLevel) {
