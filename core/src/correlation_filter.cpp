@@ -300,7 +300,7 @@ double peakToSidelobe(const cv::Mat &response, cv::Point peak, int exclude) {
          std::max(deviation[0], std::max(1e-6, std::abs(peakValue) / kMaxPeakToSidelobe));
 }
 
-double rivalPeakRatio(const cv::Mat &response, cv::Point peak, cv::Size2d halfSides, cv::Point *rivalAt) {
+double rivalPeakRatio(const cv::Mat &response, cv::Point peak, cv::Size2d halfSides) {
   cv::Mat outside(response.size(), CV_8U, cv::Scalar(255));
   // Rounded from its corner, the area can lie one element to one side when a half side ends in .5. Centring
   // it exactly moved the core harness's SRE tune mean by -0.005, within its noise; the figures in
@@ -311,9 +311,7 @@ double rivalPeakRatio(const cv::Mat &response, cv::Point peak, cv::Size2d halfSi
   if (cv::countNonZero(outside) == 0) return 0;
   const double mean = cv::mean(response, outside)[0];
   double rival = 0;
-  cv::Point at;
-  cv::minMaxLoc(response, nullptr, &rival, nullptr, &at, outside);
-  if (rivalAt) *rivalAt = at;
+  cv::minMaxLoc(response, nullptr, &rival, nullptr, nullptr, outside);
   const double peakValue = response.at<float>(peak);
   return peakValue > mean ? (rival - mean) / (peakValue - mean) : 0;
 }

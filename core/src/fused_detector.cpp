@@ -236,11 +236,8 @@ FusedDetector::Estimate FusedDetector::locate(const ImageSource &frame, cv::Poin
   e.confidence =
       peakToSidelobe(response, peak, std::max(1, cvRound(0.2 * std::min(response.cols, response.rows))));
   // The target's own area is half its size each way from the peak, in response elements.
-  cv::Point rivalAt;
-  e.rival = rivalPeakRatio(response, peak,
-                           cv::Size2d(size.width * zx / kCell / 2, size.height * zy / kCell / 2), &rivalAt);
-  e.rivalCentre = cv::Point2d(windowCentre.x + (rivalAt.x - response.cols / 2) * kCell / zx,
-                              windowCentre.y + (rivalAt.y - response.rows / 2) * kCell / zy);
+  e.rival =
+      rivalPeakRatio(response, peak, cv::Size2d(size.width * zx / kCell / 2, size.height * zy / kCell / 2));
   scaleMeasured_ = withScale;
   if (scaleMeasured_) {
     scaleSamples(frame, e.centre, size);

@@ -12,7 +12,6 @@
 #include "colortrack/color_search.hpp"
 #include "colortrack/fused_detector.hpp"
 #include "colortrack/method_discriminative.hpp"
-#include "colortrack/crossing.hpp"
 #include "colortrack/redetection.hpp"
 #include "colortrack/score_fall.hpp"
 #include "colortrack/start_likeness.hpp"
@@ -73,12 +72,6 @@ constexpr double kReachSidesPerFrame = 1.0;
 // Re-detections after a loss (acquire()) are not held to it: refusing to confirm one with a rival share of
 // 0.8 changed nothing, 0.6 lost 0.001-0.003 on each half.
 constexpr double kRivalShare = 0.8;
-// A second peak of at least this share is a look-alike whose motion Crossing follows, so that when it parts
-// from the target after meeting it, the peak that continues the target's motion is kept. Core harness, SRE +
-// injected runs at the four start offsets (docs/benchmarks.md): the copy crossing in front of the target ends
-// on it in 16 / 15 / 15 / 14 of 33 runs (12 / 14 / 12 / 12 before); SRE means within 0.01 either way
-// (tune -0.004, confirm -0.003 on average: Coke and wakeboard4 lower, wakeboard5 and bag higher).
-constexpr double kRivalSeen = 0.5;
 // A target found again where it cannot have moved to is on probation: a re-detection while coasting more than
 // kJumpSides target sides from the last confirmed place (the target does not teleport; a twin may stand
 // there) starts a new track id, and so does any re-detection after a cut to another scene (SceneCut); either
@@ -160,7 +153,6 @@ class FusedMethod : public DetectionMethod {
   bool followUnconfirmed(const FusedDetector::Estimate &e, bool detection, TrackOutput &out);
   void waitAt(const FusedDetector::Estimate &e);
   void noteScoreFall(TrackOutput &out);
-  FusedDetector::Estimate throughCrossing(const ImageSource &frame, const FusedDetector::Estimate &e);
   bool sameSize(cv::Size2d size) const {
     const double ratio = std::sqrt(size.area() / targetSize_.area());
     return ratio <= kCoastSizeFactor && ratio >= 1 / kCoastSizeFactor;
@@ -193,7 +185,6 @@ class FusedMethod : public DetectionMethod {
   bool unconfirmed_ = false;     // the track follows a re-detection that has not reached the confirmation bar
   StartLikeness startLikeness_;  // every reported score is multiplied by its factor
   ScoreFall scoreFall_;          // of the weighted score: while fallen, a tracked frame is reported coasting
-  Crossing crossing_;            // the window's two peaks through a crossing with a look-alike
 };
 
 void FusedMethod::process(const ImageSource &frame, double dt, TrackOutput &out) {
@@ -222,8 +213,8 @@ void FusedMethod::follow(const ImageSource &frame, double dt, TrackOutput &out) 
   // enough for the motion between frames, and the prediction overshoots when the target stops or turns
   // (tune half: 0.626 from the last position, 0.605 from the prediction).
   const cv::Point2d centre = centre_;
-  FusedDetector::Estimate e = throughCrossing(
-      frame, fused_.locate(frame, centre, size_, context_.model.mapper(), context_.model.likelihood()));
+  FusedDetector::Estimate e =
+      fused_.locate(frame, centre, size_, context_.model.mapper(), context_.model.likelihood());
   out.searchRegion = roundRect(centredBox(centre.x, centre.y, fused_.windowFor(size_))) & frameRect;
   double frameScore = score(e);
   // Soon after a confirmed track began to coast, whatever is found, confirmed or not, must have its size.
@@ -304,16 +295,6 @@ void FusedMethod::noteScoreFall(TrackOutput &out) {
   if (tracked && track.scoreFell) out.score = guessScore(out.score);
 }
 
-// The estimate at the window's second peak where that one, not the peak, continues the target's motion
-// through a crossing (Crossing); `e` otherwise.
-FusedDetector::Estimate FusedMethod::throughCrossing(const ImageSource &frame,
-                                                     const FusedDetector::Estimate &e) {
-  const auto rival = e.rival >= kRivalSeen ? std::optional<cv::Point2d>(e.rivalCentre) : std::nullopt;
-  const auto other = crossing_.observe(e.centre, rival, size_);
-  if (!other) return e;
-  return fused_.locate(frame, *other, size_, context_.model.mapper(), context_.model.likelihood());
-}
-
 // A re-detection over the whole frame replaces the window's estimate `e` (and its `frameScore`) when it is
 // within reach and, if `sizeGuarded`, of the target's size; under the confirmation bar it starts a guess.
 void FusedMethod::redetectWhileCoasting(const ImageSource &frame, bool sizeGuarded,
@@ -328,7 +309,6 @@ void FusedMethod::redetectWhileCoasting(const ImageSource &frame, bool sizeGuard
         jumped_ || cv::norm(found->centre - confirmedCentre_) > kJumpSides * std::sqrt(targetSize_.area());
   }
   e = *found;
-  crossing_.reset();
   frameScore = score(e);
   unconfirmed_ = unconfirmed_ || !Redetector::confirmed(e, usual());
 }
@@ -377,7 +357,6 @@ void FusedMethod::acquire(const ImageSource &frame, TrackOutput &out) {
   const Detection d = detectionOf(frame, *found);
   unconfirmed_ = !Redetector::confirmed(*found, usual());
   coastingFromConfirmed_ = false;  // a track begun after a loss is judged by the confirmation bars alone
-  crossing_.reset();
   if (unconfirmed_)
     track.startUnconfirmed(d.box, context_.settings.kalman);
   else
@@ -413,7 +392,6 @@ void FusedMethod::startFilters(const ImageSource &frame, const cv::Rect2d &box) 
 
 void FusedMethod::stopFilters() {
   fused_.stop();
-  crossing_.reset();
   startLikeness_.reset();
   scoreFall_.reset();
   context_.track.scoreFell = false;

@@ -89,8 +89,6 @@ double peakToSidelobe(const cv::Mat &response, cv::Point peak, int exclude);
 // How high the strongest response outside the peak's own area (`halfSides` cells each way) rises, as a share
 // of the peak, both above the mean of the response outside that area: near 1 when another place in the window
 // answers the filter as well as the peak (a look-alike beside the target), 0 when nothing else stands out.
-// `rivalAt`, if given, receives where that strongest response is.
-double rivalPeakRatio(const cv::Mat &response, cv::Point peak, cv::Size2d halfSides,
-                      cv::Point *rivalAt = nullptr);
+double rivalPeakRatio(const cv::Mat &response, cv::Point peak, cv::Size2d halfSides);
 
 }  // namespace colortrack

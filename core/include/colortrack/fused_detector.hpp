@@ -28,7 +28,6 @@ class FusedDetector {
     double confidence = 0;      // peak-to-sidelobe ratio of the fused response
     double colourPeak = 0;      // the mean colour likelihood of the target window at the peak
     double rival = 0;           // rivalPeakRatio of the fused response: another place nearly as good
-    cv::Point2d rivalCentre;    // ... and where it is, frame coordinates
     unsigned long window = 0;   // which locate() call measured it
   };
 
