@@ -300,7 +300,11 @@ double peakToSidelobe(const cv::Mat &response, cv::Point peak, int exclude) {
          std::max(deviation[0], std::max(1e-6, std::abs(peakValue) / kMaxPeakToSidelobe));
 }
 
-double rivalPeakRatio(const cv::Mat &response, cv::Point peak, cv::Size2d halfSides) {
+namespace {
+
+// The strongest response outside the peak's own area (`halfSides` cells each way), among local maxima only
+// if `modesOnly`, as a share of the peak, both above the mean of the response outside that area.
+double strongestOutsideShare(const cv::Mat &response, cv::Point peak, cv::Size2d halfSides, bool modesOnly) {
   cv::Mat outside(response.size(), CV_8U, cv::Scalar(255));
   // Rounded from its corner, the area can lie one element to one side when a half side ends in .5. Centring
   // it exactly moved the core harness's SRE tune mean by -0.005, within its noise; the figures in
@@ -310,10 +314,28 @@ double rivalPeakRatio(const cv::Mat &response, cv::Point peak, cv::Size2d halfSi
   outside(own & cv::Rect(cv::Point(), response.size())).setTo(0);
   if (cv::countNonZero(outside) == 0) return 0;
   const double mean = cv::mean(response, outside)[0];
-  double rival = 0;
-  cv::minMaxLoc(response, nullptr, &rival, nullptr, nullptr, outside);
+  cv::Mat candidates = outside;
+  if (modesOnly) {
+    cv::Mat grown, modes;
+    cv::dilate(response, grown, cv::Mat());  // 3 x 3: a local maximum is its neighbourhood's largest
+    cv::compare(response, grown, modes, cv::CMP_GE);
+    candidates = modes & outside;
+    if (cv::countNonZero(candidates) == 0) return 0;
+  }
+  double strongest = 0;
+  cv::minMaxLoc(response, nullptr, &strongest, nullptr, nullptr, candidates);
   const double peakValue = response.at<float>(peak);
-  return peakValue > mean ? (rival - mean) / (peakValue - mean) : 0;
+  return peakValue > mean ? std::max(0.0, (strongest - mean) / (peakValue - mean)) : 0;
+}
+
+}  // namespace
+
+double rivalPeakRatio(const cv::Mat &response, cv::Point peak, cv::Size2d halfSides) {
+  return strongestOutsideShare(response, peak, halfSides, false);
+}
+
+double secondPeakRatio(const cv::Mat &response, cv::Point peak, cv::Size2d halfSides) {
+  return strongestOutsideShare(response, peak, halfSides, true);
 }
 
 }  // namespace colortrack

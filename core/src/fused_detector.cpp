@@ -236,8 +236,9 @@ FusedDetector::Estimate FusedDetector::locate(const ImageSource &frame, cv::Poin
   e.confidence =
       peakToSidelobe(response, peak, std::max(1, cvRound(0.2 * std::min(response.cols, response.rows))));
   // The target's own area is half its size each way from the peak, in response elements.
-  e.rival =
-      rivalPeakRatio(response, peak, cv::Size2d(size.width * zx / kCell / 2, size.height * zy / kCell / 2));
+  const cv::Size2d ownArea(size.width * zx / kCell / 2, size.height * zy / kCell / 2);
+  e.rival = rivalPeakRatio(response, peak, ownArea);
+  e.secondPeak = secondPeakRatio(response, peak, ownArea);
   scaleMeasured_ = withScale;
   if (scaleMeasured_) {
     scaleSamples(frame, e.centre, size);

@@ -40,6 +40,7 @@ void KalmanTrack::reset(const KalmanParams &params) {
   state = TrackState::Searching;
   doubted = false;
   scoreFell = false;
+  lookAlikeNear = false;
   coastFrames = 0;
   unverifiedFrames = 0;
   searchFrames = 0;
@@ -84,7 +85,8 @@ void KalmanTrack::coastAt(cv::Point2d centre, int maxCoastFrames) {
 }
 
 void KalmanTrack::report(TrackOutput &out) const {
-  out.state = state == TrackState::Tracking && (doubted || scoreFell) ? TrackState::Coasting : state;
+  out.state =
+      state == TrackState::Tracking && (doubted || scoreFell || lookAlikeNear) ? TrackState::Coasting : state;
   out.id = id;
   if (!active()) return;
   out.hasBox = true;

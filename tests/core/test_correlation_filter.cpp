@@ -217,6 +217,26 @@ TEST(CorrelationFilter, RivalPeakRatioIsTheSecondPeakShare) {
   EXPECT_EQ(rivalPeakRatio(response(8, 0.5), cv::Point(8, 12), cv::Size2d(40, 40)), 0.0);
 }
 
+// A second object (another local maximum) counts for secondPeakRatio as for rivalPeakRatio; a broad peak's
+// own shoulder, past the peak's area but no maximum of its own, counts only for rivalPeakRatio.
+TEST(CorrelationFilter, SecondPeakRatioCountsObjectsNotShoulders) {
+  auto response = [](double spread, double secondHeight) {
+    cv::Mat r(24, 32, CV_32F);
+    for (int y = 0; y < r.rows; ++y)
+      for (int x = 0; x < r.cols; ++x)
+        r.at<float>(y, x) =
+            static_cast<float>(0.1 + std::exp(-(std::pow(x - 8, 2) + std::pow(y - 12, 2)) / spread) +
+                               secondHeight * std::exp(-(std::pow(x - 22, 2) + std::pow(y - 12, 2)) / 4.0));
+    return r;
+  };
+  const cv::Size2d ownArea(4, 4);
+  const cv::Mat broad = response(60, 0);
+  EXPECT_GT(rivalPeakRatio(broad, cv::Point(8, 12), ownArea), 0.5);
+  EXPECT_LT(secondPeakRatio(broad, cv::Point(8, 12), ownArea), 0.05);
+  EXPECT_NEAR(secondPeakRatio(response(4, 0.75), cv::Point(8, 12), ownArea), 0.75, 0.02);
+  EXPECT_EQ(secondPeakRatio(response(4, 0.5), cv::Point(8, 12), cv::Size2d(40, 40)), 0.0);
+}
+
 // The fused detector's shape cue alone (no colour likelihood) on a textured image: a known sub-window shift
 // is recovered to under a pixel, a known change of size to within 3 %.
 TEST(FusedDetector, RecoversKnownShiftAndScale) {

@@ -90,5 +90,8 @@ double peakToSidelobe(const cv::Mat &response, cv::Point peak, int exclude);
 // of the peak, both above the mean of the response outside that area: near 1 when another place in the window
 // answers the filter as well as the peak (a look-alike beside the target), 0 when nothing else stands out.
 double rivalPeakRatio(const cv::Mat &response, cv::Point peak, cv::Size2d halfSides);
+// The same share for the strongest local maximum outside that area: a second object in the window, where
+// rivalPeakRatio also counts the peak's own broad shoulder.
+double secondPeakRatio(const cv::Mat &response, cv::Point peak, cv::Size2d halfSides);
 
 }  // namespace colortrack

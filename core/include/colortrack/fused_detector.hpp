@@ -28,6 +28,7 @@ class FusedDetector {
     double confidence = 0;      // peak-to-sidelobe ratio of the fused response
     double colourPeak = 0;      // the mean colour likelihood of the target window at the peak
     double rival = 0;           // rivalPeakRatio of the fused response: another place nearly as good
+    double secondPeak = 0;      // secondPeakRatio of the fused response: another object nearly as good
     unsigned long window = 0;   // which locate() call measured it
   };
 

@@ -22,8 +22,10 @@ struct KalmanTrack {
   // Measured and followed, but not vouched for: reported coasting (and unverified) until the method clears
   // it. The fused method sets it when a look-alike answers beside the target (FusedMethod::follow).
   bool doubted = false;
-  // The method's score fell suddenly (ScoreFall): also reported coasting; set by the method every frame.
+  // The method's score fell suddenly (ScoreFall), or a look-alike was in view lately: also reported coasting;
+  // set by the method every frame.
   bool scoreFell = false;
+  bool lookAlikeNear = false;
   double aspect = 1.0;    // (box width / height) / (template width / height)
   cv::Size templateSize;  // boxes are measured relative to it
 
