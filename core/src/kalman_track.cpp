@@ -40,7 +40,7 @@ void KalmanTrack::reset(const KalmanParams &params) {
   state = TrackState::Searching;
   doubted = false;
   scoreFell = false;
-  lookAlikeNear = false;
+  heldBack = false;
   coastFrames = 0;
   unverifiedFrames = 0;
   searchFrames = 0;
@@ -86,7 +86,7 @@ void KalmanTrack::coastAt(cv::Point2d centre, int maxCoastFrames) {
 
 void KalmanTrack::report(TrackOutput &out) const {
   out.state =
-      state == TrackState::Tracking && (doubted || scoreFell || lookAlikeNear) ? TrackState::Coasting : state;
+      state == TrackState::Tracking && (doubted || scoreFell || heldBack) ? TrackState::Coasting : state;
   out.id = id;
   if (!active()) return;
   out.hasBox = true;

@@ -10,6 +10,7 @@
 
 #include "colortrack/box.hpp"
 #include "colortrack/color_search.hpp"
+#include "colortrack/distant_return.hpp"
 #include "colortrack/fused_detector.hpp"
 #include "colortrack/method_discriminative.hpp"
 #include "colortrack/redetection.hpp"
@@ -101,7 +102,7 @@ constexpr int kProbationFrames = 30;
 // never reported `tracking` and a robot test never drove.
 // A detection whose window's second peak (FusedDetector::Estimate::secondPeak: another local maximum, not
 // the peak's own shoulder) reaches kLookAlikeShare of the peak shows a look-alike, and the track is reported
-// `coasting` for kLookAlikeDoubtFrames frames after the last such window (KalmanTrack::lookAlikeNear). When a
+// `coasting` for kLookAlikeDoubtFrames frames after the last such window (KalmanTrack::heldBack). When a
 // look-alike crosses the target the window's peak may go over to it, and nothing in the frames after the two
 // part tells which one the track kept (following the motion from before instead lost 0.1 of SRE). A robot
 // waits while look-alikes are about. Boxes unchanged. Core harness, SRE + injected runs, offsets 0,0 / 1,0 /
@@ -168,7 +169,7 @@ class FusedMethod : public DetectionMethod {
                              double &frameScore);
   bool followUnconfirmed(const FusedDetector::Estimate &e, bool detection, TrackOutput &out);
   void waitAt(const FusedDetector::Estimate &e);
-  void noteScoreFall(TrackOutput &out);
+  void holdBack(TrackOutput &out);
   void updateDoubt(const FusedDetector::Estimate &e);
   bool sameSize(cv::Size2d size) const {
     const double ratio = std::sqrt(size.area() / targetSize_.area());
@@ -202,6 +203,7 @@ class FusedMethod : public DetectionMethod {
   bool unconfirmed_ = false;     // the track follows a re-detection that has not reached the confirmation bar
   StartLikeness startLikeness_;  // every reported score is multiplied by its factor
   ScoreFall scoreFall_;          // of the weighted score: while fallen, a tracked frame is reported coasting
+  DistantReturn distantReturn_;  // a return to `tracking` far from the last `tracking` place is held back
   int framesSinceLookAlike_ = kLookAlikeDoubtFrames + 1;  // since a window showed one (kLookAlikeShare)
 };
 
@@ -214,7 +216,7 @@ void FusedMethod::process(const ImageSource &frame, double dt, TrackOutput &out)
       acquire(frame, out);
     // A box that no longer looks like the start ranks lower, however well it matches the adapted model.
     out.score *= startLikeness_.factor();
-    noteScoreFall(out);
+    holdBack(out);
     return;
   }
   colourSearch_.process(frame, dt, out);
@@ -311,18 +313,29 @@ void FusedMethod::updateDoubt(const FusedDetector::Estimate &e) {
     track.doubted = true;
 }
 
-// A frame the track's own rules report `tracking` whose weighted score fell (ScoreFall), or that comes soon
-// after a window showed a look-alike (kLookAlikeDoubtFrames), is reported `coasting`, its score under the
-// detection bar like any doubted frame's. ScoreFall sees the same frames as without the look-alike rule:
-// when it saw none of the look-alike's frames, the fall onto a team-mate passed unseen (person11's wrong
-// frames reported `tracking` 0 -> 256 in the core harness). Boxes unchanged.
-void FusedMethod::noteScoreFall(TrackOutput &out) {
+// A frame the track's own rules report `tracking` is reported `coasting`, its score under the detection bar
+// like any doubted frame's, when its weighted score fell (ScoreFall), when it comes soon after a window
+// showed a look-alike (kLookAlikeDoubtFrames), or when the track came back to `tracking` far from where it
+// was last reported so (DistantReturn). ScoreFall sees the same frames as without the other two: when it saw
+// none of a look-alike's frames, the fall onto a team-mate passed unseen (person11's wrong frames reported
+// `tracking` 0 -> 256 in the core harness). Boxes unchanged.
+void FusedMethod::holdBack(TrackOutput &out) {
   KalmanTrack &track = context_.track;
   const bool tracked = track.state == TrackState::Tracking && !track.doubted;
   scoreFall_.observe(out.score, tracked);
   track.scoreFell = scoreFall_.fallen();
-  track.lookAlikeNear = framesSinceLookAlike_ <= kLookAlikeDoubtFrames;
-  if (tracked && (track.scoreFell || track.lookAlikeNear)) out.score = guessScore(out.score);
+  const bool lookAlikeNear = framesSinceLookAlike_ <= kLookAlikeDoubtFrames;
+  bool returnedFar = false;
+  if (!track.active()) {
+    distantReturn_.lose();
+  } else {
+    const cv::Rect2d box = track.box();
+    returnedFar = distantReturn_.observe(tracked && !track.scoreFell && !lookAlikeNear,
+                                         cv::Point2d(box.x + box.width / 2, box.y + box.height / 2),
+                                         std::sqrt(box.area()));
+  }
+  track.heldBack = lookAlikeNear || returnedFar;
+  if (tracked && (track.scoreFell || track.heldBack)) out.score = guessScore(out.score);
 }
 
 // A re-detection over the whole frame replaces the window's estimate `e` (and its `frameScore`) when it is
@@ -425,8 +438,9 @@ void FusedMethod::stopFilters() {
   startLikeness_.reset();
   scoreFall_.reset();
   framesSinceLookAlike_ = kLookAlikeDoubtFrames + 1;
+  distantReturn_.reset();
   context_.track.scoreFell = false;
-  context_.track.lookAlikeNear = false;
+  context_.track.heldBack = false;
   probation_ = 0;
   jumped_ = false;
   unconfirmed_ = false;

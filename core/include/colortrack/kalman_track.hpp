@@ -22,10 +22,11 @@ struct KalmanTrack {
   // Measured and followed, but not vouched for: reported coasting (and unverified) until the method clears
   // it. The fused method sets it when a look-alike answers beside the target (FusedMethod::follow).
   bool doubted = false;
-  // The method's score fell suddenly (ScoreFall), or a look-alike was in view lately: also reported coasting;
-  // set by the method every frame.
+  // The method's score fell suddenly (ScoreFall): also reported coasting; set by the method every frame.
   bool scoreFell = false;
-  bool lookAlikeNear = false;
+  // The method holds a detection back for other reasons (a look-alike was in view lately, the track came back
+  // far from where it was last reported tracking): also reported coasting; set every frame.
+  bool heldBack = false;
   double aspect = 1.0;    // (box width / height) / (template width / height)
   cv::Size templateSize;  // boxes are measured relative to it
 
