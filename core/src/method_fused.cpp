@@ -203,7 +203,8 @@ class FusedMethod : public DetectionMethod {
   bool unconfirmed_ = false;     // the track follows a re-detection that has not reached the confirmation bar
   StartLikeness startLikeness_;  // every reported score is multiplied by its factor
   ScoreFall scoreFall_;          // of the weighted score: while fallen, a tracked frame is reported coasting
-  DistantReturn distantReturn_;  // a return to `tracking` far from the last `tracking` place is held back
+  // A return to `tracking` further from the last `tracking` place than a jump is held back.
+  DistantReturn distantReturn_{kJumpSides};
   int framesSinceLookAlike_ = kLookAlikeDoubtFrames + 1;  // since a window showed one (kLookAlikeShare)
 };
 
@@ -327,7 +328,7 @@ void FusedMethod::holdBack(TrackOutput &out) {
   const bool lookAlikeNear = framesSinceLookAlike_ <= kLookAlikeDoubtFrames;
   bool returnedFar = false;
   if (!track.active()) {
-    distantReturn_.lose();
+    distantReturn_.reset();
   } else {
     const cv::Rect2d box = track.box();
     returnedFar = distantReturn_.observe(tracked && !track.scoreFell && !lookAlikeNear,

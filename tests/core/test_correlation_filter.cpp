@@ -194,47 +194,44 @@ TEST(CorrelationFilter, PeakToSidelobeSeparatesOnePeakFromNoise) {
   EXPECT_LT(peakToSidelobe(noise, cv::Point(10, 10), 2), 4.0);
 }
 
+namespace {
+
+// A 24 x 32 response on a floor of 0.1: a peak of height 1 at (firstX, 12) whose width grows with `spread`
+// (4: as sharp as the second), and another of `secondHeight` at (22, 12).
+cv::Mat twoPeaks(int firstX, double spread, double secondHeight) {
+  cv::Mat r(24, 32, CV_32F);
+  for (int y = 0; y < r.rows; ++y)
+    for (int x = 0; x < r.cols; ++x)
+      r.at<float>(y, x) =
+          static_cast<float>(0.1 + std::exp(-(std::pow(x - firstX, 2) + std::pow(y - 12, 2)) / spread) +
+                             secondHeight * std::exp(-(std::pow(x - 22, 2) + std::pow(y - 12, 2)) / 4.0));
+  return r;
+}
+
+}  // namespace
+
 // Two Gaussian peaks: the lower one's height, above the response's floor, as a share of the higher one's; a
 // peak's own shoulder (inside its area) does not count.
 TEST(CorrelationFilter, RivalPeakRatioIsTheSecondPeakShare) {
-  // A peak of height 1 at (firstX, 12), another of `secondHeight` at (22, 12), on a floor of 0.1.
-  auto response = [](int firstX, double secondHeight) {
-    cv::Mat r(24, 32, CV_32F);
-    for (int y = 0; y < r.rows; ++y)
-      for (int x = 0; x < r.cols; ++x)
-        r.at<float>(y, x) =
-            static_cast<float>(0.1 + std::exp(-(std::pow(x - firstX, 2) + std::pow(y - 12, 2)) / 4.0) +
-                               secondHeight * std::exp(-(std::pow(x - 22, 2) + std::pow(y - 12, 2)) / 4.0));
-    return r;
-  };
   const cv::Size2d ownArea(4, 4);
-  EXPECT_LT(rivalPeakRatio(response(8, 0), cv::Point(8, 12), ownArea), 0.02);
-  EXPECT_NEAR(rivalPeakRatio(response(8, 0.5), cv::Point(8, 12), ownArea), 0.5, 0.02);
-  EXPECT_NEAR(rivalPeakRatio(response(8, 0.95), cv::Point(8, 12), ownArea), 0.95, 0.02);
+  EXPECT_LT(rivalPeakRatio(twoPeaks(8, 4, 0), cv::Point(8, 12), ownArea), 0.02);
+  EXPECT_NEAR(rivalPeakRatio(twoPeaks(8, 4, 0.5), cv::Point(8, 12), ownArea), 0.5, 0.02);
+  EXPECT_NEAR(rivalPeakRatio(twoPeaks(8, 4, 0.95), cv::Point(8, 12), ownArea), 0.95, 0.02);
   // A peak at the response's edge: its area is clipped, the rival measured as before.
-  EXPECT_NEAR(rivalPeakRatio(response(0, 0.5), cv::Point(0, 12), ownArea), 0.5, 0.02);
+  EXPECT_NEAR(rivalPeakRatio(twoPeaks(0, 4, 0.5), cv::Point(0, 12), ownArea), 0.5, 0.02);
   // An area that takes in the whole response leaves nothing to compare with.
-  EXPECT_EQ(rivalPeakRatio(response(8, 0.5), cv::Point(8, 12), cv::Size2d(40, 40)), 0.0);
+  EXPECT_EQ(rivalPeakRatio(twoPeaks(8, 4, 0.5), cv::Point(8, 12), cv::Size2d(40, 40)), 0.0);
 }
 
 // A second object (another local maximum) counts for secondPeakRatio as for rivalPeakRatio; a broad peak's
 // own shoulder, past the peak's area but no maximum of its own, counts only for rivalPeakRatio.
 TEST(CorrelationFilter, SecondPeakRatioCountsObjectsNotShoulders) {
-  auto response = [](double spread, double secondHeight) {
-    cv::Mat r(24, 32, CV_32F);
-    for (int y = 0; y < r.rows; ++y)
-      for (int x = 0; x < r.cols; ++x)
-        r.at<float>(y, x) =
-            static_cast<float>(0.1 + std::exp(-(std::pow(x - 8, 2) + std::pow(y - 12, 2)) / spread) +
-                               secondHeight * std::exp(-(std::pow(x - 22, 2) + std::pow(y - 12, 2)) / 4.0));
-    return r;
-  };
   const cv::Size2d ownArea(4, 4);
-  const cv::Mat broad = response(60, 0);
+  const cv::Mat broad = twoPeaks(8, 60, 0);
   EXPECT_GT(rivalPeakRatio(broad, cv::Point(8, 12), ownArea), 0.5);
   EXPECT_LT(secondPeakRatio(broad, cv::Point(8, 12), ownArea), 0.05);
-  EXPECT_NEAR(secondPeakRatio(response(4, 0.75), cv::Point(8, 12), ownArea), 0.75, 0.02);
-  EXPECT_EQ(secondPeakRatio(response(4, 0.5), cv::Point(8, 12), cv::Size2d(40, 40)), 0.0);
+  EXPECT_NEAR(secondPeakRatio(twoPeaks(8, 4, 0.75), cv::Point(8, 12), ownArea), 0.75, 0.02);
+  EXPECT_EQ(secondPeakRatio(twoPeaks(8, 4, 0.5), cv::Point(8, 12), cv::Size2d(40, 40)), 0.0);
 }
 
 // The fused detector's shape cue alone (no colour likelihood) on a textured image: a known sub-window shift

@@ -9,6 +9,7 @@ using colortrack::DistantReturn;
 namespace {
 
 constexpr double kSide = 40;
+constexpr double kFarSides = 1.5;
 
 // Frames at `x` (y 100), tracked or not; returns how many were held back.
 int observe(DistantReturn &r, double x, int frames, bool tracked = true) {
@@ -20,7 +21,7 @@ int observe(DistantReturn &r, double x, int frames, bool tracked = true) {
 }  // namespace
 
 TEST(DistantReturn, AReturnFarFromTheLastTrackingPlaceIsHeldForThirtyTrackedFrames) {
-  DistantReturn r;
+  DistantReturn r(kFarSides);
   EXPECT_EQ(observe(r, 100, 20), 0);
   observe(r, 130, 5, false);           // coasting, drifting away
   EXPECT_EQ(observe(r, 170, 30), 30);  // 70 px: more than 1.5 sides
@@ -28,23 +29,23 @@ TEST(DistantReturn, AReturnFarFromTheLastTrackingPlaceIsHeldForThirtyTrackedFram
 }
 
 TEST(DistantReturn, AReturnNearTheLastTrackingPlaceIsNotHeld) {
-  DistantReturn r;
+  DistantReturn r(kFarSides);
   observe(r, 100, 20);
   observe(r, 200, 5, false);          // the box wandered while not tracked ...
   EXPECT_EQ(observe(r, 150, 10), 0);  // ... and came back 50 px from where it was: under 1.5 sides
 }
 
 TEST(DistantReturn, MovingWhileTrackedIsNoReturn) {
-  DistantReturn r;
+  DistantReturn r(kFarSides);
   int held = 0;
   for (int i = 0; i < 100; ++i) held += r.observe(true, cv::Point2d(100 + 5.0 * i, 100), kSide);
   EXPECT_EQ(held, 0);
 }
 
 TEST(DistantReturn, ATrackBegunAfterALossHasNoPlaceToReturnTo) {
-  DistantReturn r;
+  DistantReturn r(kFarSides);
   observe(r, 100, 20);
   observe(r, 100, 3, false);
-  r.lose();
+  r.reset();
   EXPECT_EQ(observe(r, 400, 10), 0);
 }

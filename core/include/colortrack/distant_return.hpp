@@ -12,14 +12,16 @@ namespace colortrack {
 
 class DistantReturn {
  public:
+  // Far is more than `farSides` sides (the square root of the box's area) from the last `tracking` place.
+  explicit DistantReturn(double farSides) : farSides_(farSides) {}
+  // Forgets the last `tracking` place (a new start, or no track: there is no place to return to).
   void reset();
   // A frame with a box: whether the other rules report it `tracking`, the box's centre and side (the square
   // root of its area). Returns whether the frame is held back.
   bool observe(bool tracked, cv::Point2d centre, double side);
-  // A frame without a track: there is no place to return to.
-  void lose() { reset(); }
 
  private:
+  double farSides_;
   std::optional<cv::Point2d> lastTracked_;  // the centre of the last frame reported `tracking`
   bool afterUntracked_ = false;             // the frame before was not reported `tracking`
   int held_ = 0;                            // tracked frames still to hold back
