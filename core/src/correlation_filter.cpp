@@ -303,8 +303,10 @@ double peakToSidelobe(const cv::Mat &response, cv::Point peak, int exclude) {
 namespace {
 
 // The strongest response outside the peak's own area (`halfSides` cells each way), among local maxima only
-// if `modesOnly`, as a share of the peak, both above the mean of the response outside that area.
-double strongestOutsideShare(const cv::Mat &response, cv::Point peak, cv::Size2d halfSides, bool modesOnly) {
+// if `modesOnly`, as a share of the peak, both above the mean of the response outside that area; `where`, if
+// given, receives its place.
+double strongestOutsideShare(const cv::Mat &response, cv::Point peak, cv::Size2d halfSides, bool modesOnly,
+                             cv::Point *where = nullptr) {
   cv::Mat outside(response.size(), CV_8U, cv::Scalar(255));
   // Rounded from its corner, the area can lie one element to one side when a half side ends in .5. Centring
   // it exactly moved the core harness's SRE tune mean by -0.005, within its noise; the figures in
@@ -323,7 +325,9 @@ double strongestOutsideShare(const cv::Mat &response, cv::Point peak, cv::Size2d
     if (cv::countNonZero(candidates) == 0) return 0;
   }
   double strongest = 0;
-  cv::minMaxLoc(response, nullptr, &strongest, nullptr, nullptr, candidates);
+  cv::Point strongestAt;
+  cv::minMaxLoc(response, nullptr, &strongest, nullptr, &strongestAt, candidates);
+  if (where) *where = strongestAt;
   const double peakValue = response.at<float>(peak);
   return peakValue > mean ? std::max(0.0, (strongest - mean) / (peakValue - mean)) : 0;
 }
@@ -334,8 +338,8 @@ double rivalPeakRatio(const cv::Mat &response, cv::Point peak, cv::Size2d halfSi
   return strongestOutsideShare(response, peak, halfSides, false);
 }
 
-double secondPeakRatio(const cv::Mat &response, cv::Point peak, cv::Size2d halfSides) {
-  return strongestOutsideShare(response, peak, halfSides, true);
+double secondPeakRatio(const cv::Mat &response, cv::Point peak, cv::Size2d halfSides, cv::Point *where) {
+  return strongestOutsideShare(response, peak, halfSides, true, where);
 }
 
 }  // namespace colortrack

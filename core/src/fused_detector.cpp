@@ -226,11 +226,15 @@ FusedDetector::Estimate FusedDetector::locate(const ImageSource &frame, cv::Poin
   if (!colour.empty()) cv::addWeighted(response, 1 - kColourWeight, colour, kColourWeight, 0, response);
   cv::Point peak;
   cv::minMaxLoc(response, nullptr, nullptr, nullptr, &peak);
+  // Where the target's centre lies when the window's response `element` is its peak.
+  const auto framePoint = [&](cv::Point2d element) {
+    return cv::Point2d(windowCentre.x + (element.x - response.cols / 2) * kCell / zx,
+                       windowCentre.y + (element.y - response.rows / 2) * kCell / zy);
+  };
   const cv::Point2d at = subCellPeak(response, peak);
   Estimate e;
   e.window = ++locates_;
-  e.centre = cv::Point2d(windowCentre.x + (at.x - response.cols / 2) * kCell / zx,
-                         windowCentre.y + (at.y - response.rows / 2) * kCell / zy);
+  e.centre = framePoint(at);
   e.size = size;
   e.colourPeak = colour.empty() ? 0 : colour.at<float>(peak);
   e.confidence =
@@ -238,7 +242,9 @@ FusedDetector::Estimate FusedDetector::locate(const ImageSource &frame, cv::Poin
   // The target's own area is half its size each way from the peak, in response elements.
   const cv::Size2d ownArea(size.width * zx / kCell / 2, size.height * zy / kCell / 2);
   e.rival = rivalPeakRatio(response, peak, ownArea);
-  e.secondPeak = secondPeakRatio(response, peak, ownArea);
+  cv::Point second = peak;
+  e.secondPeak = secondPeakRatio(response, peak, ownArea, &second);
+  e.secondCentre = framePoint(second);
   scaleMeasured_ = withScale;
   if (scaleMeasured_) {
     scaleSamples(frame, e.centre, size);

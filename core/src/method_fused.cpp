@@ -12,6 +12,7 @@
 #include "colortrack/color_search.hpp"
 #include "colortrack/distant_return.hpp"
 #include "colortrack/fused_detector.hpp"
+#include "colortrack/look_alike_takeover.hpp"
 #include "colortrack/method_discriminative.hpp"
 #include "colortrack/redetection.hpp"
 #include "colortrack/score_fall.hpp"
@@ -171,6 +172,7 @@ class FusedMethod : public DetectionMethod {
   void waitAt(const FusedDetector::Estimate &e);
   void holdBack(TrackOutput &out);
   void updateDoubt(const FusedDetector::Estimate &e);
+  void noteLookAlike(const FusedDetector::Estimate &e, double frameScore);
   bool sameSize(cv::Size2d size) const {
     const double ratio = std::sqrt(size.area() / targetSize_.area());
     return ratio <= kCoastSizeFactor && ratio >= 1 / kCoastSizeFactor;
@@ -206,6 +208,7 @@ class FusedMethod : public DetectionMethod {
   // A return to `tracking` further from the last `tracking` place than a jump is held back.
   DistantReturn distantReturn_{kJumpSides};
   int framesSinceLookAlike_ = kLookAlikeDoubtFrames + 1;  // since a window showed one (kLookAlikeShare)
+  LookAlikeTakeover lookAlikeTakeover_;  // the peak moved onto the last window's second object
 };
 
 void FusedMethod::process(const ImageSource &frame, double dt, TrackOutput &out) {
@@ -239,7 +242,7 @@ void FusedMethod::follow(const ImageSource &frame, double dt, TrackOutput &out) 
       fused_.locate(frame, centre, size_, context_.model.mapper(), context_.model.likelihood());
   out.searchRegion = roundRect(centredBox(centre.x, centre.y, fused_.windowFor(size_))) & frameRect;
   double frameScore = score(e);
-  if (isDetection(frameScore) && e.secondPeak >= kLookAlikeShare) framesSinceLookAlike_ = 0;
+  noteLookAlike(e, frameScore);
   // Soon after a confirmed track began to coast, whatever is found, confirmed or not, must have its size.
   const bool sizeGuarded =
       coastingFromConfirmed_ && track.state == TrackState::Coasting && track.coastFrames <= kCoastSizeFrames;
@@ -301,6 +304,17 @@ void FusedMethod::follow(const ImageSource &frame, double dt, TrackOutput &out) 
   confirmedCentre_ = centre_;
   coastingFromConfirmed_ = true;
   noteConfidence(e);
+}
+
+// Starts the look-alike's doubt (kLookAlikeDoubtFrames) on a detection whose window shows a second object
+// (kLookAlikeShare), or on any frame whose peak moved onto the second object of the window before
+// (LookAlikeTakeover).
+void FusedMethod::noteLookAlike(const FusedDetector::Estimate &e, double frameScore) {
+  const bool secondObject = e.secondPeak >= kLookAlikeShare;
+  const bool tookOver = lookAlikeTakeover_.observe(
+      e.centre, centre_, secondObject ? std::optional(e.secondCentre) : std::nullopt,
+      std::sqrt(size_.area()));
+  if ((isDetection(frameScore) && secondObject) || tookOver) framesSinceLookAlike_ = 0;
 }
 
 // Whether a detection is reported `tracking` or, doubted, `coasting` (KalmanTrack::doubted).
@@ -439,6 +453,7 @@ void FusedMethod::stopFilters() {
   startLikeness_.reset();
   scoreFall_.reset();
   framesSinceLookAlike_ = kLookAlikeDoubtFrames + 1;
+  lookAlikeTakeover_.reset();
   distantReturn_.reset();
   context_.track.scoreFell = false;
   context_.track.heldBack = false;

@@ -230,7 +230,9 @@ TEST(CorrelationFilter, SecondPeakRatioCountsObjectsNotShoulders) {
   const cv::Mat broad = twoPeaks(8, 60, 0);
   EXPECT_GT(rivalPeakRatio(broad, cv::Point(8, 12), ownArea), 0.5);
   EXPECT_LT(secondPeakRatio(broad, cv::Point(8, 12), ownArea), 0.05);
-  EXPECT_NEAR(secondPeakRatio(twoPeaks(8, 4, 0.75), cv::Point(8, 12), ownArea), 0.75, 0.02);
+  cv::Point second(-1, -1);
+  EXPECT_NEAR(secondPeakRatio(twoPeaks(8, 4, 0.75), cv::Point(8, 12), ownArea, &second), 0.75, 0.02);
+  EXPECT_EQ(second, cv::Point(22, 12));
   EXPECT_EQ(secondPeakRatio(twoPeaks(8, 4, 0.5), cv::Point(8, 12), cv::Size2d(40, 40)), 0.0);
 }
 

@@ -91,7 +91,9 @@ double peakToSidelobe(const cv::Mat &response, cv::Point peak, int exclude);
 // answers the filter as well as the peak (a look-alike beside the target), 0 when nothing else stands out.
 double rivalPeakRatio(const cv::Mat &response, cv::Point peak, cv::Size2d halfSides);
 // The same share for the strongest local maximum outside that area: a second object in the window, where
-// rivalPeakRatio also counts the peak's own broad shoulder.
-double secondPeakRatio(const cv::Mat &response, cv::Point peak, cv::Size2d halfSides);
+// rivalPeakRatio also counts the peak's own broad shoulder. `where`, if given, receives that maximum's place
+// (left alone when there is none).
+double secondPeakRatio(const cv::Mat &response, cv::Point peak, cv::Size2d halfSides,
+                       cv::Point *where = nullptr);
 
 }  // namespace colortrack

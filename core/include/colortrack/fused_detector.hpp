@@ -29,6 +29,7 @@ class FusedDetector {
     double colourPeak = 0;      // the mean colour likelihood of the target window at the peak
     double rival = 0;           // rivalPeakRatio of the fused response: another place nearly as good
     double secondPeak = 0;      // secondPeakRatio of the fused response: another object nearly as good
+    cv::Point2d secondCentre;   // ... and where it puts the target's centre (frame px; centre if none)
     unsigned long window = 0;   // which locate() call measured it
   };
 
