@@ -242,9 +242,9 @@ FusedDetector::Estimate FusedDetector::locate(const ImageSource &frame, cv::Poin
   // The target's own area is half its size each way from the peak, in response elements.
   const cv::Size2d ownArea(size.width * zx / kCell / 2, size.height * zy / kCell / 2);
   e.rival = rivalPeakRatio(response, peak, ownArea);
-  cv::Point second = peak;
+  cv::Point second(-1, -1);
   e.secondPeak = secondPeakRatio(response, peak, ownArea, &second);
-  e.secondCentre = framePoint(second);
+  if (e.secondPeak > 0) e.secondCentre = framePoint(subCellPeak(response, second));
   scaleMeasured_ = withScale;
   if (scaleMeasured_) {
     scaleSamples(frame, e.centre, size);

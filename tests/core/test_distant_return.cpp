@@ -49,3 +49,11 @@ TEST(DistantReturn, ATrackBegunAfterALossHasNoPlaceToReturnTo) {
   r.reset();
   EXPECT_EQ(observe(r, 400, 10), 0);
 }
+
+// The far bar is the caller's: at 2 sides, a return 70 px (1.75 sides) away is near.
+TEST(DistantReturn, TheFarBarIsTheCallers) {
+  DistantReturn r(2.0);
+  observe(r, 100, 20);
+  observe(r, 130, 5, false);
+  EXPECT_EQ(observe(r, 170, 10), 0);
+}

@@ -19,9 +19,13 @@ TEST(LookAlikeTakeover, APeakOnTheTwinSeenBeforeIsATakeover) {
   EXPECT_TRUE(t.observe(kTwin + cv::Point2d(3, 2), kTarget, std::nullopt, kSide));
 }
 
+// A twin standing close beside a target that stays (both peaks within half a side of each other): the peak is
+// near the twin's place, but it did not move there.
 TEST(LookAlikeTakeover, APeakThatStaysIsNone) {
   LookAlikeTakeover t;
-  for (int i = 0; i < 10; ++i) EXPECT_FALSE(t.observe(kTarget + cv::Point2d(i, 0), kTarget, kTwin, kSide));
+  const cv::Point2d closeTwin = kTarget + cv::Point2d(15, 0);
+  for (int i = 0; i < 10; ++i)
+    EXPECT_FALSE(t.observe(kTarget + cv::Point2d(i, 0), kTarget, closeTwin, kSide));
 }
 
 TEST(LookAlikeTakeover, AJumpElsewhereIsNone) {

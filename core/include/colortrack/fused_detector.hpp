@@ -3,6 +3,7 @@
 // (Bertinetto et al. 2016), with a DSST scale filter and a peak-to-sidelobe confidence.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -29,8 +30,8 @@ class FusedDetector {
     double colourPeak = 0;      // the mean colour likelihood of the target window at the peak
     double rival = 0;           // rivalPeakRatio of the fused response: another place nearly as good
     double secondPeak = 0;      // secondPeakRatio of the fused response: another object nearly as good
-    cv::Point2d secondCentre;   // ... and where it puts the target's centre (frame px; centre if none)
-    unsigned long window = 0;   // which locate() call measured it
+    std::optional<cv::Point2d> secondCentre;  // ... and where it puts the target's centre (frame px)
+    unsigned long window = 0;                 // which locate() call measured it
   };
 
   // Whether a colour contrast (Estimate::colourContrast) shows an object at all: the bar under which the

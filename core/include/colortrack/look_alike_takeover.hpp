@@ -13,11 +13,11 @@ namespace colortrack {
 class LookAlikeTakeover {
  public:
   void reset() { second_.reset(); }
-  // A window's outcome: where its peak puts the target's centre, where the window was centred (the last
-  // peak), where its second object puts the centre if it reached the look-alike bar, and the target's side
-  // (the square root of its area). Returns whether the peak moved onto the second object of the window
-  // before.
-  bool observe(cv::Point2d peak, cv::Point2d last, std::optional<cv::Point2d> second, double side);
+  // A window's outcome: where its peak puts the target's centre, where the window was centred (where the
+  // track last was), where its second object puts the centre if it reached the look-alike bar, and the
+  // target's side (the square root of its area). Returns whether the peak moved onto the second object of the
+  // window before.
+  bool observe(cv::Point2d peak, cv::Point2d windowCentre, std::optional<cv::Point2d> second, double side);
 
  private:
   std::optional<cv::Point2d> second_;  // the window before's second object
