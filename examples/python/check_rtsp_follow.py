@@ -20,8 +20,9 @@ import time
 # start in eight, the test's server (gst-rtsp-server, shared media fed by an appsrc) prepares the stream but
 # answers the client seconds late, and rtspsrc waits in "receive" until the follower's 6 s watchdog restarts
 # it; the next session then runs. The watchdog is what is under test there; 14 s left it no time to act (CI,
-# 2026-12-03: no frame after the restart).
-RUN_SECONDS, KILL_AT, DOWN_SECONDS = 30.0, 4.0, 1.5
+# 2026-12-03: no frame after the restart). 30 s was not enough either when two sessions in a row stalled and
+# the server came back late (CI, 2026-12-06: 5 sessions after the restart, 80 frames in all).
+RUN_SECONDS, KILL_AT, DOWN_SECONDS = 40.0, 4.0, 1.5
 
 
 def start_server(binary, port, epoch):
