@@ -206,12 +206,11 @@ class FusedMethod : public DetectionMethod {
   bool unconfirmed_ = false;     // the track follows a re-detection that has not reached the confirmation bar
   StartLikeness startLikeness_;  // every reported score is multiplied by its factor
   ScoreFall scoreFall_;          // of the weighted score: while fallen, a tracked frame is reported coasting
-  // A return to `tracking` further from the last `tracking` place than a jump is held back. With this bar of
-  // 1.5 sides, core harness, SRE + injected runs, offsets 0,0 / 1,0 / 0,1 / -1,-1 (docs/benchmarks.md):
-  // off-target frames reported `tracking` 3.0 / 2.2 / 5.0 / 9.9 % -> 1.5 / 2.1 / 2.9 / 9.2 %, AUROC 0.954 /
-  // 0.961 / 0.944 / 0.925 -> 0.957 / 0.960 / 0.948 / 0.923, recall of `tracking` 0.827 / 0.832 / 0.810 /
-  // 0.825
-  // -> 0.807 / 0.816 / 0.779 / 0.798.
+  // A return to `tracking` further from the last `tracking` place than a jump is held back. With this bar
+  // of 1.5 sides, core harness, SRE + injected runs, offsets 0,0 / 1,0 / 0,1 / -1,-1 (docs/benchmarks.md):
+  // off-target frames reported `tracking` 3.0 / 2.2 / 5.0 / 9.9 % -> 1.5 / 2.1 / 2.9 / 9.2 %, AUROC
+  // 0.954 / 0.961 / 0.944 / 0.925 -> 0.957 / 0.960 / 0.948 / 0.923, recall of `tracking`
+  // 0.827 / 0.832 / 0.810 / 0.825 -> 0.807 / 0.816 / 0.779 / 0.798.
   DistantReturn distantReturn_{kJumpSides};
   // Since a window showed a look-alike or the peak moved onto one (noteLookAlike()).
   int framesSinceLookAlike_ = kLookAlikeDoubtFrames + 1;
