@@ -6,6 +6,7 @@
 #include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "colortrack/box.hpp"
 #include "colortrack/likelihood_extent.hpp"
 
 namespace colortrack {
@@ -100,7 +101,7 @@ void FusedDetector::start(const ImageSource &frame, const cv::Rect2d &box) {
   scaleModel_ = cv::Size(std::max(2, cvRound(size.width * zs / kCell)) * kCell,
                          std::max(2, cvRound(size.height * zs / kCell)) * kCell);
   scale_.init(kScales, kScaleStep, std::sqrt(static_cast<double>(kScales)) / 4, kScaleLambda);
-  const cv::Point2d centre(box.x + box.width / 2, box.y + box.height / 2);
+  const cv::Point2d centre = boxCentre(box);
   windowFeatures(frame, centre, size);
   translation_.train(channels_, 1.0);
   scaleSamples(frame, centre, size);
@@ -114,8 +115,7 @@ void FusedDetector::windowFeatures(const ImageSource &frame, cv::Point2d centre,
 
 void FusedDetector::readWindow(const ImageSource &frame, cv::Point2d centre, cv::Size2d size) {
   const cv::Size2d window = windowFor(size);
-  const cv::Rect2d rect(centre.x - window.width / 2, centre.y - window.height / 2, window.width,
-                        window.height);
+  const cv::Rect2d rect = centredBox(centre.x, centre.y, window);
   sampler_.load(frame, rect, PatchSampler::stepFor(window, window_));
   windowRect_ = sampler_.extract(rect, window_, patch_);
   cv::cvtColor(patch_, grayBytes_, cv::COLOR_BGR2GRAY);
@@ -125,10 +125,8 @@ void FusedDetector::readWindow(const ImageSource &frame, cv::Point2d centre, cv:
 void FusedDetector::scaleSamples(const ImageSource &frame, cv::Point2d centre, cv::Size2d size) {
   const std::vector<double> &factors = scale_.factors();
   const cv::Size2d largest = size * factors.back();
-  sampler_.load(
-      frame,
-      cv::Rect2d(centre.x - largest.width / 2, centre.y - largest.height / 2, largest.width, largest.height),
-      PatchSampler::stepFor(size * factors.front(), scaleModel_));
+  sampler_.load(frame, centredBox(centre.x, centre.y, largest),
+                PatchSampler::stepFor(size * factors.front(), scaleModel_));
   sampler_.toGray();
   // One gradient pass over the region, then each candidate's cells from integral images.
   scaleIntegral_.build(sampler_.pixels());
@@ -140,9 +138,7 @@ void FusedDetector::scaleSamples(const ImageSource &frame, cv::Point2d centre, c
     thread_local std::vector<cv::Mat> channels;
     for (int i = candidates.start; i < candidates.end; ++i) {
       const cv::Size2d s = size * factors[i];
-      scaleIntegral_.features(
-          sampler_.toSampled(cv::Rect2d(centre.x - s.width / 2, centre.y - s.height / 2, s.width, s.height)),
-          cells, channels);
+      scaleIntegral_.features(sampler_.toSampled(centredBox(centre.x, centre.y, s)), cells, channels);
       float *row = scaleSamples_.ptr<float>(i);
       for (int c = 0; c < kCellChannels; ++c) {
         const cv::Mat flat = channels[c].reshape(1, 1);

@@ -51,7 +51,8 @@ void KalmanTrack::start(const cv::Rect2d &box, const KalmanParams &params) {
   searchFrames = 0;
   kalman.setParams(params);
   measureShape(box, 1.0);
-  kalman.init(box.x + box.width / 2, box.y + box.height / 2, lastScale);
+  const cv::Point2d centre = boxCentre(box);
+  kalman.init(centre.x, centre.y, lastScale);
   ++id;
   state = TrackState::Tracking;
   doubted = false;
@@ -66,7 +67,8 @@ void KalmanTrack::startUnconfirmed(const cv::Rect2d &box, const KalmanParams &pa
 
 void KalmanTrack::update(const cv::Rect2d &box) {
   measureShape(box, kAspectRate);
-  kalman.correct(box.x + box.width / 2, box.y + box.height / 2, lastScale);
+  const cv::Point2d centre = boxCentre(box);
+  kalman.correct(centre.x, centre.y, lastScale);
   state = TrackState::Tracking;
   coastFrames = 0;
 }

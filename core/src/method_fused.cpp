@@ -352,8 +352,7 @@ void FusedMethod::holdBack(TrackOutput &out) {
     lookAlikeTakeover_.reset();  // "the window before" is the last followed frame's only
   } else {
     const cv::Rect2d box = track.box();
-    returnedFar = distantReturn_.observe(tracked && !track.scoreFell && !lookAlikeNear,
-                                         cv::Point2d(box.x + box.width / 2, box.y + box.height / 2),
+    returnedFar = distantReturn_.observe(tracked && !track.scoreFell && !lookAlikeNear, boxCentre(box),
                                          std::sqrt(box.area()));
   }
   track.heldBack = lookAlikeNear || returnedFar;
@@ -446,7 +445,7 @@ void FusedMethod::startFilters(const ImageSource &frame, const cv::Rect2d &box) 
   stopFilters();
   afterCut_ = false;  // a start box is the target, wherever the picture came from
   fused_.start(frame, fitted);
-  centre_ = cv::Point2d(fitted.x + fitted.width / 2, fitted.y + fitted.height / 2);
+  centre_ = boxCentre(fitted);
   size_ = fitted.size();
   targetSize_ = size_;
   // The start box is a confirmed place (a new template mid-stream must not leave the old one's).

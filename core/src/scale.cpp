@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include "colortrack/box.hpp"
+
 namespace colortrack {
 
 namespace {
@@ -37,7 +39,7 @@ ScaleResult refineScale(const BinImage &bins, const cv::Rect2d &box, const Histo
   best.factor = 1.0;
   best.criterion = -1e9;
   const cv::Rect limits = bins.frameRect();
-  const cv::Point2d centre(box.x + box.width / 2, box.y + box.height / 2);
+  const cv::Point2d centre = boxCentre(box);
   const double step = params.step > 0 ? params.step : 1.0;
 
   // Factor 1 first, so that ties keep the current size instead of drifting.

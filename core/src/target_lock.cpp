@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "colortrack/box.hpp"
+
 namespace colortrack {
 
 namespace {
@@ -14,7 +16,7 @@ double preference(const TargetCandidate &c, LockOn policy, cv::Size frame) {
     case LockOn::Largest:
       return c.box.area();
     case LockOn::NearestCentre: {
-      const cv::Point2d centre(c.box.x + c.box.width / 2, c.box.y + c.box.height / 2);
+      const cv::Point2d centre = boxCentre(c.box);
       return -std::hypot(centre.x - frame.width / 2.0, centre.y - frame.height / 2.0);
     }
   }

@@ -16,4 +16,8 @@ inline cv::Rect2d centredBox(double cx, double cy, cv::Size2d size) {
   return cv::Rect2d(cx - size.width / 2, cy - size.height / 2, size.width, size.height);
 }
 
+inline cv::Point2d boxCentre(const cv::Rect2d &box) {
+  return cv::Point2d(box.x + box.width / 2, box.y + box.height / 2);
+}
+
 }  // namespace colortrack
