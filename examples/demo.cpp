@@ -181,7 +181,7 @@ void openRobotLog(RunState &run, const Options &options, const std::string &path
       "# sent_s: seconds since the pipeline started, when the command's bytes had been written\n"
       "# frame_s: timestamp of the video frame the command was decided on (- for a stop not decided "
       "on a frame)\n"
-      "# reason: target, no-target, start, stalled, eos, paused, ready, shutdown, reconnected\n"
+      "# reason: target, no-target, start, stalling, stalled, eos, paused, ready, shutdown, reconnected\n"
       "# n sent_s frame_s command left right reason\n",
       options.robotDevice.empty() ? options.robotOutput.c_str() : options.robotDevice.c_str());
 }

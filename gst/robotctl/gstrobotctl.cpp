@@ -36,7 +36,8 @@
  * port. The robot is sent stop on EOS, on a flush, when going from PLAYING to PAUSED and from PAUSED to
  * READY, a last one when the port is closed (READY to NULL), when no confirmed target was seen for half of
  * #GstRobotCtl:lost-timeout (the drive is held that long, never the turn), when upstream delivers no buffer
- * for all of it, and when the element is disposed. A port that fails while running (a USB adapter unplugged,
+ * for all of it (after half of it without a buffer the last decision goes out without its turn or tilt), and
+ * when the element is disposed. A port that fails while running (a USB adapter unplugged,
  * a UDP peer that stopped listening) posts a warning and is reopened with back-off; the first command after
  * reconnecting is stop. A reopen never creates a file: it waits, with a warning, for the same kind of file
  * (device, FIFO or regular file) to be back at #GstRobotCtl:location. With MAVLink over UDP, a vehicle whose
@@ -47,7 +48,7 @@
  * command (string), left and right (int, as sent; with MAVLink instead pitch-rate or vx and yaw-rate, as
  * sent: rad/s and m/s, yaw > 0 to the right), linear and angular (double), target-visible (boolean),
  * timestamp (the buffer the decision came from, or GST_CLOCK_TIME_NONE) and reason ("target", "no-target",
- * "stalled", "eos", "flush", "paused", "ready", "start", "reconnected", "link-lost", "shutdown").
+ * "stalling", "stalled", "eos", "flush", "paused", "ready", "start", "reconnected", "link-lost", "shutdown").
  *
  * ## Example launch lines
  * |[

@@ -34,6 +34,12 @@ int msUntil(Clock::time_point deadline) {
   return static_cast<int>(std::max<long long>(left, 1));
 }
 
+// Whether `output` turns (or tilts) the robot or its camera.
+bool turns(const colortrack::DriveOutput &output) {
+  return output.angular != 0 || output.tilt != 0 || output.command == colortrack::DriveCommand::Left ||
+         output.command == colortrack::DriveCommand::Right;
+}
+
 }  // namespace
 
 CommandWriter::CommandWriter(std::unique_ptr<Port> port, const WriterConfig &config, WriterListener &listener)
@@ -130,13 +136,21 @@ void CommandWriter::run() {
     }
     const bool urgent = urgent_;
     urgent_ = false;
+    const double seconds = monotonicSeconds();
     const bool stalled =
-        playing_ && bufferWatchdog_.expired(monotonicSeconds()) && !colortrack::isStill(pending_.output);
+        playing_ && bufferWatchdog_.expired(seconds) && !colortrack::isStill(pending_.output);
     if (stalled) {
       pending_ = Command{};
       pending_.reason = "stalled";
     }
-    const Command command = pending_;
+    Command command = pending_;
+    // The same rule as for a target that is not confirmed (RobotController): a decision without a fresh
+    // buffer is not turned on for more than the hold share of the stall timeout. pending_ keeps its turn, so
+    // the stall is still seen and reported at the timeout.
+    if (playing_ && !bufferWatchdog_.within(seconds, colortrack::kDriveHoldShare) && turns(command.output)) {
+      command.output = colortrack::withoutTurn(command.output);
+      command.reason = "stalling";
+    }
     const double stallTimeout = stallTimeout_;
     lock.unlock();
     if (stalled) listener_.stalled(stallTimeout);

@@ -22,9 +22,6 @@ double slew(double current, double target, double rate, double dt) {
   return current + std::clamp(target - current, -step, step);
 }
 
-// The share of lost-timeout for which an unconfirmed target's last drive is held.
-constexpr double kDriveHoldShare = 0.5;
-
 }  // namespace
 
 const char *toString(DriveCommand command) {
@@ -67,6 +64,10 @@ double verticalOffset(const cv::Rect2d &box, cv::Size frame) {
 
 bool isStill(const DriveOutput &output) {
   return output.command == DriveCommand::Stop && output.tilt == 0;
+}
+
+DriveOutput withoutTurn(const DriveOutput &output) {
+  return makeOutput(output.linear, 0, output.targetVisible);
 }
 
 double distanceCue(const cv::Rect2d &box, cv::Size frame, DistanceCue cue) {
@@ -311,7 +312,9 @@ DriveOutput RobotController::update(const Observation &o) {
       last_ = DriveOutput();
       proportional_.reset();
     }
-    return makeOutput(last_.linear, 0, false);
+    DriveOutput held = withoutTurn(last_);
+    held.targetVisible = false;
+    return held;
   }
 
   // Lost: stop, and start from standstill (slew) and the centre zones (hysteresis) when it comes back.

@@ -156,27 +156,65 @@ GST_START_TEST(test_pause_then_play_again_follows_at_once) {
 }
 GST_END_TEST;
 
-GST_START_TEST(test_stop_when_upstream_stalls) {
-  Ctl ctl("rate=100 lost-timeout=300");
-  fail_unless_equals_int(ctl.decide({roi(kRight)}).back(), 'R');
+// With no buffer after `ctl`'s last decision (`held`): the ms until the first stop on the pty, every byte
+// before it `held`.
+long long msUntilStallStop(Ctl &ctl, char held, const char *what) {
   const auto pushed = Clock::now();
   Bytes before;
-  fail_unless(ctl.pty.waitForByte('S', 2000, &before) >= 0);
+  fail_unless(ctl.pty.waitForByte('S', 2000, &before) >= 0, "%s: no stop within 2 s", what);
   const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - pushed).count();
-  std::printf("stalled upstream: stop %lld ms after the last buffer (lost-timeout 300)\n",
+  std::printf("%s: stop %lld ms after the last buffer (lost-timeout 300)\n", what,
               static_cast<long long>(ms));
-  fail_unless(ms >= 280 && ms <= 600, "stop after %lld ms", static_cast<long long>(ms));
-  for (std::uint8_t b : before) fail_unless_equals_int(b, 'R');
+  for (std::uint8_t b : before) fail_unless_equals_int(b, held);
+  return ms;
+}
+
+// A drive (no turn) is held for all of lost-timeout without buffers, then stopped.
+GST_START_TEST(test_stop_when_upstream_stalls) {
+  Ctl ctl("rate=100 lost-timeout=300");
+  fail_unless_equals_int(ctl.decide({roi(kCentreFar)}).back(), 'F');
+  const long long ms = msUntilStallStop(ctl, 'F', "stalled upstream");
+  fail_unless(ms >= 280 && ms <= 600, "stop after %lld ms", ms);
+}
+GST_END_TEST;
+
+// A turn is not repeated for all of lost-timeout when buffers stop: after half of it the zone law's turn
+// becomes stop ("stalling"), and at lost-timeout the stall is reported ("stalled").
+GST_START_TEST(test_stalled_turn_ends_at_the_hold_share) {
+  Ctl ctl("rate=100 lost-timeout=300");
+  fail_unless_equals_int(ctl.decide({roi(kRight)}).back(), 'R');
+  const long long ms = msUntilStallStop(ctl, 'R', "stalled upstream while turning");
+  // Measured from when the decision was seen sent, a tick or more after the buffer came.
+  fail_unless(ms >= 100 && ms < 300, "turn stopped after %lld ms", ms);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  std::vector<std::string> reasons;
+  while (GstMessage *m = gst_bus_pop_filtered(ctl.bus, GST_MESSAGE_ELEMENT)) {
+    const GstStructure *st = gst_message_get_structure(m);
+    if (gst_structure_has_name(st, "robotctl")) {
+      const std::string command = gst_structure_get_string(st, "command");
+      const std::string reason = gst_structure_get_string(st, "reason");
+      fail_unless(command == "stop" || command == "right", "%s (%s)", command.c_str(), reason.c_str());
+      fail_unless(command == "right" || reason != "target", "a stop for the target");
+      reasons.push_back(reason);
+    }
+    gst_message_unref(m);
+  }
+  const auto stalling = std::find(reasons.begin(), reasons.end(), "stalling");
+  fail_unless(stalling != reasons.end(), "no turnless command while stalling");
+  fail_unless(std::find(stalling, reasons.end(), "stalled") != reasons.end(), "no stall after it");
+  for (const auto &after : {"target", "no-target"})
+    fail_unless(std::find(stalling, reasons.end(), after) == reasons.end(), "%s after the stall began",
+                after);
 }
 GST_END_TEST;
 
 GST_START_TEST(test_lost_timeout_change_reaches_the_stall_watchdog) {
   Ctl ctl("rate=100 lost-timeout=5000");
-  fail_unless_equals_int(ctl.decide({roi(kRight)}).back(), 'R');
+  fail_unless_equals_int(ctl.decide({roi(kCentreFar)}).back(), 'F');
   GstElement *element = gst_harness_find_element(ctl.h, "robotctl");
   g_object_set(element, "lost-timeout", 300u, nullptr);
   gst_object_unref(element);
-  fail_unless_equals_int(ctl.decide({roi(kRight)}).back(), 'R');  // the change applies from this buffer
+  fail_unless_equals_int(ctl.decide({roi(kCentreFar)}).back(), 'F');  // the change applies from this buffer
   const auto pushed = Clock::now();
   fail_unless(ctl.pty.waitForByte('S', 2000) >= 0, "no stop within 2 s");
   const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - pushed).count();
@@ -428,6 +466,7 @@ Suite *robotctl_suite(bool withCvtracker) {
   tcase_add_test(tc, test_stop_on_eos_flush_pause_and_ready);
   tcase_add_test(tc, test_pause_then_play_again_follows_at_once);
   tcase_add_test(tc, test_stop_when_upstream_stalls);
+  tcase_add_test(tc, test_stalled_turn_ends_at_the_hold_share);
   tcase_add_test(tc, test_lost_timeout_change_reaches_the_stall_watchdog);
   tcase_add_test(tc, test_stop_after_lost_timeout_of_stream_time);
   tcase_add_test(tc, test_roi_selection);

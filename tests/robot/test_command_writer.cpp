@@ -67,6 +67,7 @@ struct Wire {
   std::string received;  // every byte the port took, in order
   std::vector<std::string> sentReasons;
   std::vector<std::string> sentLines;
+  std::vector<std::pair<Clock::time_point, colortrack::DriveOutput>> sentOutputs;  // when each went out
   int lost = 0, reconnected = 0, stalled = 0;
   std::vector<bool> reopenFailures;  // newReason of each failed reopen
 
@@ -183,6 +184,7 @@ class Recorder : public WriterListener {
     record([&] {
       wire_.sentReasons.push_back(command.reason);
       wire_.sentLines.push_back(lineOf(command));
+      wire_.sentOutputs.emplace_back(Clock::now(), command.output);
     });
   }
   void stalled(double) override {
@@ -357,6 +359,41 @@ TEST(CommandWriter, StallStopsAMovingRobot) {
   const std::string text = rig.received();
   EXPECT_EQ(text.substr(text.rfind(lineOf(kForward)) + lineOf(kForward).size(), kStopLine.size()), kStopLine);
   EXPECT_EQ(rig.wire.read([&] { return rig.wire.stalled; }), 1);
+}
+
+// A stalled stream is not turned on for long: the last decision goes out as it was for the hold share of the
+// stall timeout, then without its turn (a zone turn becomes stop, a turning drive a straight one), then the
+// stall stops the robot.
+TEST(CommandWriter, StallDropsTheTurnAfterTheHoldShare) {
+  constexpr double kTimeout = 0.4;
+  const auto hold = std::chrono::duration<double>(colortrack::kDriveHoldShare * kTimeout);
+  const colortrack::DriveOutput turningDrive = colortrack::makeOutput(0.4, 0.3, true);
+  for (const colortrack::DriveOutput &decision : {kLeft.output, turningDrive}) {
+    WriterConfig config = textConfig(200);
+    config.stallTimeout = kTimeout;
+    Rig rig(config);
+    rig.writer->setPlaying(true);
+    const Clock::time_point lastBuffer = Clock::now();
+    rig.writer->submit(commandOf(decision));
+    ASSERT_TRUE(rig.wire.waitFor([&] { return rig.wire.stalled == 1; }));
+    const auto reasons = rig.wire.read([&] { return rig.wire.sentReasons; });
+    const auto outputs = rig.wire.read([&] { return rig.wire.sentOutputs; });
+    const auto firstOf = [&](const char *reason) {
+      return std::find(reasons.begin(), reasons.end(), std::string(reason)) - reasons.begin();
+    };
+    const std::size_t stalling = firstOf("stalling"), stalled = firstOf("stalled");
+    ASSERT_LT(stalling, stalled) << "no turnless command before the stall's stop";
+    EXPECT_LT(firstOf("target"), stalling) << "the decision itself went out first";
+    EXPECT_GE(outputs[stalling].first - lastBuffer, hold);
+    EXPECT_GE(outputs[stalled].first - lastBuffer, std::chrono::duration<double>(kTimeout));
+    for (std::size_t i = stalling; i < outputs.size(); ++i) {
+      const colortrack::DriveOutput &o = outputs[i].second;
+      EXPECT_EQ(o.angular, 0) << reasons[i];
+      EXPECT_TRUE(o.command != colortrack::DriveCommand::Left &&
+                  o.command != colortrack::DriveCommand::Right);
+      EXPECT_EQ(o.linear, i < stalled ? decision.linear : 0) << reasons[i];
+    }
+  }
 }
 
 // MAVLink's heartbeat keeps its own 1 Hz clock: with a command every 2 s, and a stop that restarts the

@@ -110,6 +110,13 @@ struct DriveOutput {
 
 // Nothing moves: stop, and no tilt either.
 bool isStill(const DriveOutput &output);
+// The same drive (forward or backward speed) with no turn and no tilt: what is held while the decision's
+// ground is gone (a coasting target, a stalled stream), since a held turn swings the camera off the target.
+DriveOutput withoutTurn(const DriveOutput &output);
+
+// The share of lost-timeout for which a drive is held without a fresh decision: no confirmed target
+// (RobotController), or no buffer at all (robotctl's writer). Then the robot stands still.
+constexpr double kDriveHoldShare = 0.5;
 
 // Horizontal offset and relative distance error of a box (see the conventions above); error > 0 = too far.
 double horizontalOffset(const cv::Rect2d &box, cv::Size frame);
