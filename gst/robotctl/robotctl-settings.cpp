@@ -244,6 +244,16 @@ const Def kProperties[] = {
      setValue<&Settings::controller, &ControllerSettings::setPoint>},
     {Apply::Live, kVersioned,
      [](GParamFlags f) {
+       return g_param_spec_boolean("set-point-at-start", "Set-point at start",
+                                   "Keep the distance cue the target had when first confirmed (after start, "
+                                   "a flush, or turning this on) instead of set-point: the robot holds the "
+                                   "distance it was at, whatever share of the object the box covers",
+                                   ControllerSettings{}.setPointAtStart, f);
+     },
+     getValue<&Settings::controller, &ControllerSettings::setPointAtStart>,
+     setValue<&Settings::controller, &ControllerSettings::setPointAtStart>},
+    {Apply::Live, kVersioned,
+     [](GParamFlags f) {
        return g_param_spec_double("turn-deadband", "Turn deadband",
                                   "Horizontal offset (fraction of half the frame width) within "
                                   "which the target counts as centred",

@@ -236,6 +236,7 @@ void RobotController::setSettings(const ControllerSettings &controller, const Fa
     zone_.reset();
     proportional_.reset();
   }
+  if (controller.setPointAtStart != settings_.setPointAtStart) startCue_.reset();
   settings_ = controller;
   failsafe_ = failsafe;
   zone_.setSettings(controller);
@@ -256,6 +257,17 @@ void RobotController::reset() {
   last_ = DriveOutput();
   lastOffset_ = 0;
   lastErrors_.reset();
+  startCue_.reset();
+}
+
+double RobotController::setPointFor(const Observation &confirmed) {
+  if (!settings_.setPointAtStart) return settings_.setPoint;
+  // Within set-point's own range: a box filling the frame (or a sliver) at the start must not stand for an
+  // impossible distance.
+  if (!startCue_)
+    startCue_ =
+        std::clamp(distanceCue(*confirmed.box, confirmed.frameSize, settings_.distanceCue), 0.01, 1.0);
+  return *startCue_;
 }
 
 DriveOutput RobotController::failsafeOutput() const {
@@ -272,7 +284,7 @@ DriveOutput RobotController::update(const Observation &o) {
     watchdog_.feed(o.time);
     Errors e;
     e.offset = horizontalOffset(*o.box, o.frameSize);
-    e.distance = distanceError(*o.box, o.frameSize, settings_.distanceCue, settings_.setPoint);
+    e.distance = distanceError(*o.box, o.frameSize, settings_.distanceCue, setPointFor(o));
     e.vertical = verticalOffset(*o.box, o.frameSize);
     if (lastErrors_ && dt > 0) {
       // Rates by differences, smoothed over ~0.1 s: the boxes come rounded to whole pixels.

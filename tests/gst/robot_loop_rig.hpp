@@ -73,7 +73,19 @@ struct Scenario {
   bool runAfterStop = false;
   const char *extra = "";          // more robotctl properties
   const char *mode = "threshold";  // colortrack's mode (init-box on the ball either way)
+  // The init-box: the ball's box scaled by initBoxShare about its centre (a box drawn inside the ball), or,
+  // when initBoxSquare > 0, a square of that many px at the ball's centre (what a click gives).
+  double initBoxShare = 1.0;
+  int initBoxSquare = 0;
 };
+
+// The init-box `sc` asks for, on the ball's box `ball` at the start.
+inline cv::Rect2d initBoxFor(const Scenario &sc, const cv::Rect2d &ball) {
+  const cv::Point2d centre(ball.x + ball.width / 2, ball.y + ball.height / 2);
+  const cv::Size2d size = sc.initBoxSquare > 0 ? cv::Size2d(sc.initBoxSquare, sc.initBoxSquare)
+                                               : cv::Size2d(ball.width, ball.height) * sc.initBoxShare;
+  return cv::Rect2d(centre.x - size.width / 2, centre.y - size.height / 2, size.width, size.height);
+}
 
 // One colortrack ROI as robotctl received it.
 struct Roi {
@@ -139,7 +151,7 @@ inline LoopResult runLoop(const Scenario &sc) {
   CommandDecoder decoder(sc.decoding, kMaxLinear, kMaxAngular, 255);
 
   Pty pty;
-  const cv::Rect2d first = robot.ballBox();
+  const cv::Rect2d first = initBoxFor(sc, robot.ballBox());
   char launch[1024];
   std::snprintf(launch, sizeof launch,
                 "appsrc name=src format=time caps=video/x-raw,format=BGR,width=%d,height=%d,framerate=%d/1 ! "

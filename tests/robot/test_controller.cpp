@@ -527,5 +527,31 @@ TEST(RobotController, SetSettingsWithAnotherKindStartsFromStandstill) {
   EXPECT_NEAR(robot.update(seen(0.3, 0.0, 24)).linear, 0.2, 1e-12);  // ramps again from 0
 }
 
+// set-point-at-start: the first confirmed box's distance cue is the set-point (a box of 30 px at 240 would
+// be "far" against the default 0.3); a coasting box before it does not count. A box 20 % smaller is then too
+// far and 20 % larger too near. Turning it off goes back to set-point; on again, or a reset, takes the next
+// confirmed box.
+TEST(RobotController, SetPointAtStartHoldsTheFirstConfirmedDistance) {
+  ControllerSettings c;
+  c.setPointAtStart = true;
+  RobotController robot(c, FailsafeSettings());
+  EXPECT_EQ(robot.update(seen(0.9, 0.0, 80, TrackState::Coasting)).command, DriveCommand::Stop);
+  EXPECT_EQ(robot.update(seen(1.0, 0.0, 30)).command, DriveCommand::Stop);
+  EXPECT_EQ(robot.update(seen(1.1, 0.0, 30)).command, DriveCommand::Stop);
+  EXPECT_EQ(robot.update(seen(1.2, 0.0, 24)).command, DriveCommand::Forward);
+  EXPECT_EQ(robot.update(seen(1.3, 0.0, 30)).command, DriveCommand::Stop);
+  EXPECT_EQ(robot.update(seen(1.4, 0.0, 36)).command, DriveCommand::Backward);
+
+  ControllerSettings fixed = c;
+  fixed.setPointAtStart = false;
+  robot.setSettings(fixed, FailsafeSettings());
+  EXPECT_EQ(robot.update(seen(1.5, 0.0, 36)).command, DriveCommand::Forward);  // 36 / 240 is under 0.3
+  robot.setSettings(c, FailsafeSettings());
+  EXPECT_EQ(robot.update(seen(1.6, 0.0, 36)).command, DriveCommand::Stop);
+  EXPECT_EQ(robot.update(seen(1.7, 0.0, 30)).command, DriveCommand::Forward);
+  robot.reset();
+  EXPECT_EQ(robot.update(seen(1.8, 0.0, 30)).command, DriveCommand::Stop);
+}
+
 }  // namespace
 }  // namespace colortrack

@@ -67,7 +67,11 @@ struct ControllerSettings {
   ControllerKind kind = ControllerKind::Auto;
   ControlAxes axes = ControlAxes::TurnDrive;  // PanTilt: always proportional (lawFor)
   DistanceCue distanceCue = DistanceCue::Size;
-  double setPoint = 0.3;          // wanted distance cue (fraction of the frame height)
+  double setPoint = 0.3;  // wanted distance cue (fraction of the frame height)
+  // Instead of setPoint, the distance cue of the first confirmed target (after start, a reset, or this
+  // turning on): the distance the robot was at when tracking began is kept, whatever share of the object
+  // the box covers (a box drawn inside it, a click's square), as follow-me drones do.
+  bool setPointAtStart = false;
   double turnDeadband = 0.1;      // |offset| below which the target counts as centred
   double distanceDeadband = 0.1;  // |relative distance error| below which the distance counts as right
   double hysteresis = 0.07;       // zone: a border zone is left only once this far inside the deadband
@@ -247,6 +251,7 @@ class RobotController {
 
  private:
   DriveOutput failsafeOutput() const;
+  double setPointFor(const Observation &confirmed);
   ControllerSettings settings_;
   FailsafeSettings failsafe_;
   ZoneController zone_;
@@ -257,6 +262,7 @@ class RobotController {
   double lastOffset_ = 0;
   // The errors of the previous confirmed frame and their smoothed rates (cleared when the target is lost).
   std::optional<Errors> lastErrors_;
+  std::optional<double> startCue_;  // setPointAtStart: the first confirmed target's distance cue
 };
 
 }  // namespace colortrack
