@@ -37,12 +37,16 @@ int TargetLock::choose(const std::vector<TargetCandidate> &candidates, cv::Size 
   }
   if (locked_) {
     const int kept = indexOf(*locked_);
-    if (kept >= 0) return kept;
+    if (kept >= 0) {
+      for (const TargetCandidate &c : candidates)
+        if (c.id != *locked_ && c.state != TrackState::Lost) others_.insert(c.id);
+      return kept;
+    }
     locked_.reset();
   }
   int best = -1;
   for (int i = 0; i < static_cast<int>(candidates.size()); ++i) {
-    if (candidates[i].state == TrackState::Lost) continue;
+    if (candidates[i].state == TrackState::Lost || others_.count(candidates[i].id)) continue;
     if (best < 0 || preference(candidates[i], policy_, frame) > preference(candidates[best], policy_, frame))
       best = i;
   }

@@ -6,8 +6,9 @@
  * the "colortrack" ROIs, see #GstRobotCtl:roi-type) gives where the target is. With several tracks,
  * robotctl locks onto one (#GstRobotCtl:lock-on: the oldest, the largest or the one nearest the centre, or a
  * fixed #GstRobotCtl:target-id) and keeps following it while its track lives, even when another object
- * passes in front; it chooses again only when that track is lost or gone; a controller turns that into a
- * drive command and the command goes out on a serial port
+ * passes in front; it chooses again only when that track is lost or gone, and then never a track it saw
+ * beside the followed one (another object, such as a decoy that hid the target); a controller turns that into
+ * a drive command and the command goes out on a serial port
  * (#GstRobotCtl:device) or to a file, FIFO, pseudo-terminal or stdout (#GstRobotCtl:location).
  *
  * Two controllers (#GstRobotCtl:controller): "zone" splits the frame into left / centre / right by the

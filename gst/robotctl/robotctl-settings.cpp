@@ -444,7 +444,8 @@ const Def kProperties[] = {
      [](GParamFlags f) {
        return g_param_spec_enum("lock-on", "Lock on",
                                 "With target-id=-1, which region to follow when there is none yet or the "
-                                "followed one is lost or gone; the choice is kept while its track lives",
+                                "followed one is lost or gone (never a region seen beside the followed "
+                                "one); the choice is kept while its track lives",
                                 GST_TYPE_ROBOT_CTL_LOCK_ON, static_cast<gint>(Settings{}.lockOn), f);
      },
      getValue<&Settings::lockOn>, setValue<&Settings::lockOn>},

@@ -34,14 +34,22 @@ TEST(TargetLock, HoldsTheLockedTrackUntilItIsGone) {
   std::swap(tracks[0], tracks[1]);
   EXPECT_EQ(lock.choose(tracks, kFrame), 1);
   EXPECT_EQ(lock.locked(), 1);
-  // Coasting still counts; lost or gone does not, and a new lock is taken by the policy.
+  // Coasting still counts; lost or gone does not, and a new lock is taken by the policy, but never on
+  // track 2, seen beside track 1: it is another object (the decoy that hid the target). A new track is
+  // taken.
   tracks[1].state = TrackState::Coasting;
   EXPECT_EQ(lock.choose(tracks, kFrame), 1);
   tracks[1].state = TrackState::Lost;
-  EXPECT_EQ(lock.choose(tracks, kFrame), 0);
-  EXPECT_EQ(lock.locked(), 2);
+  EXPECT_EQ(lock.choose(tracks, kFrame), -1);
+  EXPECT_FALSE(lock.locked().has_value());
+  tracks.push_back(candidate(3, 100, 100, 40));
+  EXPECT_EQ(lock.choose(tracks, kFrame), 2);
+  EXPECT_EQ(lock.locked(), 3);
   EXPECT_EQ(lock.choose({}, kFrame), -1);
   EXPECT_FALSE(lock.locked().has_value());
+  // After a release (a flush) every track may be taken again.
+  lock.release();
+  EXPECT_EQ(lock.choose({candidate(2, 120, 110, 80)}, kFrame), 0);
 }
 
 TEST(TargetLock, AFixedIdIsFollowedAndNothingElse) {

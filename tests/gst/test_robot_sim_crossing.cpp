@@ -43,6 +43,8 @@ struct Crossing {
   double passedBy = 0;
 };
 
+constexpr int kMaxCoastFrames = 10;  // colortrack's default max-coast-frames
+
 // Behind the ball (1.8 m from the robot, the ball 1.16 m), still visible beside it, at `speed`.
 Crossing behind(double speed) {
   return Crossing{speed, cv::Point2d(1.8, -1.25), 12 * kDeg};
@@ -127,7 +129,9 @@ void checkCrossing(const char *controller, const char *extra = "", const Crossin
       unmeasured, idBefore, idAfter, maxBearing / kDeg, minDistance, maxDistance, setPointDistance(),
       longestAway, centredFrom, left ? centredFrom - leaves : -1);
   fail_unless(left, "%s: the distractor never left the view", controller);
-  fail_unless(idBefore > 0 && (idAfter == idBefore || (templateMode && idAfter > 0)),
+  // A ball hidden for longer than a track coasts (max-coast-frames, 10) comes back under a new id.
+  const bool hiddenLong = unmeasured > kMaxCoastFrames;
+  fail_unless(idBefore > 0 && (idAfter == idBefore || ((templateMode || hiddenLong) && idAfter > 0)),
               "%s: the ball's track was %d before the crossing, %d after", controller, idBefore, idAfter);
   fail_unless(maxBearing < 10 * kDeg, "%s: turned %.1f deg off the ball", controller, maxBearing / kDeg);
   // In front, 3 frames at max-angular are 8.6 degrees. Behind, the distractor stays beside the ball for up to
@@ -137,8 +141,11 @@ void checkCrossing(const char *controller, const char *extra = "", const Crossin
   const int awayLimit = c.passedBy > 0 ? 6 : 3;
   fail_unless(longestAway <= awayLimit, "%s: turned away from the ball for %d frames", controller,
               longestAway);
-  fail_unless(std::abs(minDistance / setPointDistance() - 1) <= 0.15 &&
-                  std::abs(maxDistance / setPointDistance() - 1) <= 0.15,
+  // While the ball is hidden for long the robot waits (it sees no ball of its own) and the ball rolls on
+  // away from it; one that follows the decoy backs away far more (see above).
+  const double distanceBound = hiddenLong ? 0.2 : 0.15;
+  fail_unless(std::abs(minDistance / setPointDistance() - 1) <= distanceBound &&
+                  std::abs(maxDistance / setPointDistance() - 1) <= distanceBound,
               "%s: distance %.3f-%.3f m during the crossing", controller, minDistance, maxDistance);
   fail_unless(centredFrom - leaves <= kSettleAfter,
               "%s: not centred on the ball %d frames after the crossing", controller, kSettleAfter);
@@ -177,11 +184,12 @@ GST_END_TEST;
 // Issue 25: while the robot turns to follow the ball's drift, both laws keep the ball when the distractor
 // passes in front at 0.2 and 0.5 m/s (0.3 and 0.4 above; before follow-camera and the hold without a turn,
 // the zone robot at 0.2 m/s turned 37 degrees off and lost the ball), and when it passes behind the ball at
-// 0.1, 0.2, 0.3 and 0.5 m/s. (In front at 0.1 m/s it hides the ball for 8 s: the track is lost, and the lock
-// moves on to the only ball in view, as lock-on says.)
+// 0.1, 0.2, 0.3 and 0.5 m/s. Issue 47: in front at 0.1 m/s the decoy hides the ball for about 3 s, and the
+// ball's track is lost; robotctl's lock does not move on to the decoy (a track seen beside the target), the
+// robot waits, and it takes the ball's new track when the ball is back (before, it followed the decoy).
 GST_START_TEST(test_keeps_the_ball_at_every_crossing_speed) {
   for (const char *controller : {"zone", "proportional"}) {
-    for (const double speed : {0.2, 0.5}) checkCrossing(controller, "", Crossing{speed});
+    for (const double speed : {0.1, 0.2, 0.5}) checkCrossing(controller, "", Crossing{speed});
     for (const double speed : {0.1, 0.2, 0.3, 0.5}) checkCrossing(controller, "", behind(speed));
   }
 }
@@ -196,7 +204,7 @@ GST_END_TEST;
 // frame before the track coasted, and the zone law's last command was forward.
 GST_START_TEST(test_template_mode_keeps_the_ball_when_another_crosses) {
   for (const char *controller : {"zone", "proportional"}) {
-    for (const double speed : {0.2, 0.3, 0.4, 0.5})
+    for (const double speed : {0.1, 0.2, 0.3, 0.4, 0.5})
       checkCrossing(controller, "", Crossing{speed}, "template");
     for (const double speed : {0.1, 0.2, 0.3, 0.5}) checkCrossing(controller, "", behind(speed), "template");
   }

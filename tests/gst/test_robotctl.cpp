@@ -284,12 +284,14 @@ GST_START_TEST(test_lock_on_keeps_the_target_until_its_track_ends) {
     coasting.state = "coasting";
     fail_unless_equals_int(ctl.decide({roi(kLeft, 3), coasting}).back(), 'S');
     fail_unless_equals_int(ctl.decide({roi(kLeft, 3), roi(kRight, 5)}).back(), 'R');
-    // Lost: the lock moves on, to the oldest of the others.
+    // Lost: the lock moves on, to the oldest track not seen beside it: 7, not 3 (another object, like a
+    // decoy that hid the target).
     Roi lost = roi(kRight, 5);
     lost.state = "lost";
-    fail_unless_equals_int(ctl.decide({roi(kLeft, 3), lost, roi(kRight, 7)}).back(), 'L');
-    // Gone, then back under its old id: the lock stays on the new choice.
-    fail_unless_equals_int(ctl.decide({roi(kRight, 5), roi(kLeft, 3)}).back(), 'L');
+    fail_unless_equals_int(ctl.decide({roi(kLeft, 3), lost, roi(kRight, 7)}).back(), 'R');
+    // With only 3 in view the robot follows nothing (and does not turn); 5 back under its old id is taken.
+    fail_unless_equals_int(ctl.decide({roi(kLeft, 3)}).back(), 'S');
+    fail_unless_equals_int(ctl.decide({roi(kLeft, 5), roi(kRight, 3)}).back(), 'L');
   }
   {
     Ctl ctl("rate=100 lock-on=largest");

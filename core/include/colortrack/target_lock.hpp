@@ -4,6 +4,7 @@
 #pragma once
 
 #include <optional>
+#include <set>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -39,15 +40,25 @@ class TargetLock {
 
   // The index in `candidates` of the target to follow this frame, or -1 when there is none. `fixedId` >= 0
   // follows that id only. Otherwise the locked id while it is among the candidates; when it is gone, a new
-  // lock by the policy. Candidates that are `lost` are never chosen.
+  // lock by the policy, among the tracks never seen beside a locked one. Candidates that are `lost` are
+  // never chosen.
   int choose(const std::vector<TargetCandidate> &candidates, cv::Size frame, int fixedId = -1);
 
   std::optional<int> locked() const { return locked_; }
-  void release() { locked_.reset(); }
+  // Forgets the lock and the tracks seen beside it (a flush: what comes next may be another scene).
+  void release() {
+    locked_.reset();
+    others_.clear();
+  }
 
  private:
   LockOn policy_ = LockOn::FirstConfirmed;
   std::optional<int> locked_;
+  // Ids seen at the same time as a locked track: other objects. A same-coloured ball that rolled in front of
+  // the target and hid it is such a track, and taking it when the target's track ended is how the robot
+  // went after the decoy (issue 47). The robot waits instead (lost-timeout stops it) for a track that is
+  // not one of them: the target back from behind the decoy.
+  std::set<int> others_;
 };
 
 }  // namespace colortrack
