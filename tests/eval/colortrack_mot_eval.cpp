@@ -6,7 +6,7 @@
 //                       [--min-mota X] [--min-idf1 X] [--per-scene]
 //
 // Prints one row per scene and the mean. --scene runs the scenes whose name starts with NAME, --exclude
-// leaves out those whose name starts with NAME;
+// leaves out those whose name starts with NAME (either may be given more than once);
 // --no-follow-camera leaves the camera's motion in the predictions (follow-camera=false); --frames-out writes
 // each scene's per-frame tracks and ground truth as CSV. With --min-mota / --min-idf1 (the test suite's
 // regression guard) it exits 1 when a mean (--per-scene: any scene) falls below them or when any reported box
@@ -74,7 +74,8 @@ SceneResult runScene(const MotScene &scene, const std::string &framesOut, bool f
 }
 
 struct Options {
-  std::string framesOut, scenePrefix, excludePrefix;
+  std::string framesOut;
+  std::vector<std::string> scenePrefixes, excludePrefixes;  // each option may be given more than once
   double minMota = 0, minIdf1 = 0;
   bool guard = false, perScene = false, followCamera = true;
 };
@@ -86,9 +87,9 @@ bool parseOptions(int argc, char **argv, Options &o) {
     if (arg == "--frames-out" && hasValue) {
       o.framesOut = argv[++i];
     } else if (arg == "--scene" && hasValue) {
-      o.scenePrefix = argv[++i];
+      o.scenePrefixes.push_back(argv[++i]);
     } else if (arg == "--exclude" && hasValue) {
-      o.excludePrefix = argv[++i];
+      o.excludePrefixes.push_back(argv[++i]);
     } else if (arg == "--no-follow-camera") {
       o.followCamera = false;
     } else if (arg == "--per-scene") {
@@ -116,12 +117,17 @@ int main(int argc, char **argv) {
   Options o;
   if (!parseOptions(argc, argv, o)) return 2;
   std::vector<MotScene> scenes = motScenes();
-  scenes.erase(std::remove_if(scenes.begin(), scenes.end(),
-                              [&](const MotScene &s) {
-                                return s.name.rfind(o.scenePrefix, 0) != 0 ||
-                                       (!o.excludePrefix.empty() && s.name.rfind(o.excludePrefix, 0) == 0);
-                              }),
-               scenes.end());
+  const auto startsWithAny = [](const std::string &name, const std::vector<std::string> &prefixes) {
+    return std::any_of(prefixes.begin(), prefixes.end(),
+                       [&](const std::string &prefix) { return name.rfind(prefix, 0) == 0; });
+  };
+  scenes.erase(
+      std::remove_if(scenes.begin(), scenes.end(),
+                     [&](const MotScene &s) {
+                       return (!o.scenePrefixes.empty() && !startsWithAny(s.name, o.scenePrefixes)) ||
+                              startsWithAny(s.name, o.excludePrefixes);
+                     }),
+      scenes.end());
   if (scenes.empty()) {
     std::fprintf(stderr, "no scene left to run\n");
     return 2;

@@ -1,6 +1,7 @@
 #include "mot_scenes.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 
 #include <opencv2/imgproc.hpp>
@@ -134,26 +135,72 @@ std::vector<cv::Point> jerkyCamera(cv::RNG &rng, cv::Size scene, cv::Size frame,
   return path;
 }
 
-// Six red balls bounce in a scene larger than the frame while the camera pans and jerks over it, within the
-// part of the scene every view of the camera holds: an object that changes id changed it because the camera
-// moved, not because it left the view.
-MotScene panningCamera(int seed) {
+// The same camera with a shake of up to 1.5 px (rounded to whole px) on every frame, still spells included:
+// a robot's camera on a vibrating base (issue 47).
+std::vector<cv::Point> shakyCamera(cv::RNG &rng, cv::Size scene, cv::Size frame, int frames) {
+  std::vector<cv::Point> path = jerkyCamera(rng, scene, frame, frames);
+  const cv::Point limit(scene.width - frame.width, scene.height - frame.height);
+  for (cv::Point &p : path) {
+    p.x = std::clamp(p.x + cvRound(rng.uniform(-1.5, 1.5)), 0, limit.x);
+    p.y = std::clamp(p.y + cvRound(rng.uniform(-1.5, 1.5)), 0, limit.y);
+  }
+  return path;
+}
+
+// A slow pan (0.4 px a frame to the right) with two jerks of a quarter of the frame each way in one frame
+// (a bump, a gimbal that snaps): there at frame 100, back at frame 200 (issue 47).
+std::vector<cv::Point> snappingCamera(cv::Size frame, int frames) {
+  const cv::Point jerk(frame.width / 4, frame.height / 4);
+  std::vector<cv::Point> path;
+  for (int f = 0; f < frames; ++f)
+    path.push_back(cv::Point(cvRound(0.4 * f), 0) + (f >= 100 && f < 200 ? jerk : cv::Point()));
+  return path;
+}
+
+// Six red balls bounce in a scene larger than the frame while the camera moves over it (`cameraPath` of the
+// scene size and frame count), within the part of the scene every view of the camera holds: an object that
+// changes id changed it because the camera moved, not because it left the view.
+MotScene movingCamera(
+    const std::string &name, int seed, cv::Size sceneSize,
+    const std::function<std::vector<cv::Point>(cv::RNG &, const balls::BallSceneConfig &, int)> &cameraPath) {
   balls::BallSceneConfig config;
   config.seed = 16 + seed;
-  config.sceneSize = cv::Size(760, 570);
-  const cv::Size travel = config.sceneSize - config.frameSize;
-  const cv::Rect arena(cv::Point(travel), config.frameSize - travel);
+  config.sceneSize = sceneSize;
   constexpr int kFrames = 300;
   cv::RNG rng(seed);
-  config.cameraPath = jerkyCamera(rng, config.sceneSize, config.frameSize, kFrames);
+  config.cameraPath = cameraPath(rng, config, kFrames);
+  const cv::Size travel = config.sceneSize - config.frameSize;
+  const cv::Rect arena(cv::Point(travel), config.frameSize - travel);
   std::vector<balls::Ball> list;
   for (int i = 0; i < 6; ++i) {
     const double radius = rng.uniform(14.0, 26.0);
     list.push_back(ball(kRed, radius, bouncingPath(rng, arena, radius, kFrames)));
   }
-  MotScene s = makeScene("panning-camera-" + std::to_string(seed), config, list, std::vector<bool>(6, true));
+  MotScene s = makeScene(name, config, list, std::vector<bool>(6, true));
   s.frames = kFrames;
   return s;
+}
+
+MotScene panningCamera(int seed) {
+  return movingCamera("panning-camera-" + std::to_string(seed), seed, cv::Size(760, 570),
+                      [](cv::RNG &rng, const balls::BallSceneConfig &c, int frames) {
+                        return jerkyCamera(rng, c.sceneSize, c.frameSize, frames);
+                      });
+}
+
+MotScene shakyCameraScene(int seed) {
+  return movingCamera("shaky-camera-" + std::to_string(seed), seed, cv::Size(760, 570),
+                      [](cv::RNG &rng, const balls::BallSceneConfig &c, int frames) {
+                        return shakyCamera(rng, c.sceneSize, c.frameSize, frames);
+                      });
+}
+
+MotScene snappingCameraScene() {
+  // The scene is as large as the path's reach (pan 120 px, jerk 160 px across and 120 down).
+  return movingCamera("snapping-camera", 4, cv::Size(640 + 240, 480 + 120),
+                      [](cv::RNG &, const balls::BallSceneConfig &c, int frames) {
+                        return snappingCamera(c.frameSize, frames);
+                      });
 }
 
 }  // namespace
@@ -206,8 +253,9 @@ cv::Mat MotScene::render(int index, MotFrame &truth, double minVisibleFraction, 
 }
 
 std::vector<MotScene> motScenes() {
-  return {crossing(),    eightAtRandom(),  enterLeaveBehindBoard(), lightingAndShadow(),
-          distractors(), panningCamera(1), panningCamera(2),        panningCamera(3)};
+  return {crossing(),          eightAtRandom(),     enterLeaveBehindBoard(), lightingAndShadow(),
+          distractors(),       panningCamera(1),    panningCamera(2),        panningCamera(3),
+          shakyCameraScene(1), shakyCameraScene(2), snappingCameraScene()};
 }
 
 }  // namespace colortrack::eval
