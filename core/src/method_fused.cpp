@@ -9,6 +9,7 @@
 #include <opencv2/core/utility.hpp>
 
 #include "colortrack/box.hpp"
+#include "colortrack/camera_jerk.hpp"
 #include "colortrack/color_search.hpp"
 #include "colortrack/distant_return.hpp"
 #include "colortrack/fused_detector.hpp"
@@ -174,6 +175,7 @@ class FusedMethod : public DetectionMethod {
   void holdBack(TrackOutput &out);
   void updateDoubt(const FusedDetector::Estimate &e);
   void noteLookAlike(const FusedDetector::Estimate &e, double frameScore);
+  void followJerk(const ImageSource &frame, cv::Point2d jerk, FusedDetector::Estimate &e, double &frameScore);
   bool sameSize(cv::Size2d size) const {
     const double ratio = std::sqrt(size.area() / targetSize_.area());
     return ratio <= kCoastSizeFactor && ratio >= 1 / kCoastSizeFactor;
@@ -215,6 +217,7 @@ class FusedMethod : public DetectionMethod {
   // Since a window showed a look-alike or the peak moved onto one (noteLookAlike()).
   int framesSinceLookAlike_ = kLookAlikeDoubtFrames + 1;
   LookAlikeTakeover lookAlikeTakeover_;  // the peak moved onto the last window's second object
+  CameraJerk cameraJerk_;                // the picture jumped further than the window reaches
 };
 
 void FusedMethod::process(const ImageSource &frame, double dt, TrackOutput &out) {
@@ -248,6 +251,8 @@ void FusedMethod::follow(const ImageSource &frame, double dt, TrackOutput &out) 
       fused_.locate(frame, centre, size_, context_.model.mapper(), context_.model.likelihood());
   out.searchRegion = roundRect(centredBox(centre.x, centre.y, fused_.windowFor(size_))) & frameRect;
   double frameScore = score(e);
+  const std::optional<cv::Point2d> jerk = cameraJerk_.observe(frame, track.box(), std::sqrt(size_.area()));
+  if (jerk && !isDetection(frameScore)) followJerk(frame, *jerk, e, frameScore);
   noteLookAlike(e, frameScore);
   // Soon after a confirmed track began to coast, whatever is found, confirmed or not, must have its size.
   const bool sizeGuarded =
@@ -311,6 +316,24 @@ void FusedMethod::follow(const ImageSource &frame, double dt, TrackOutput &out) 
   confirmedCentre_ = centre_;
   coastingFromConfirmed_ = true;
   noteConfidence(e);
+}
+
+// The camera jerked and the window lost the target: it is sought where the jerk took it. Found there with a
+// re-detection's confidence, every place the track remembers moves with the picture: the same track, no jump
+// (a quarter-frame snap: 14 frames off the ball and then 30 held back before;
+// tests/core/test_camera_jerk.cpp).
+void FusedMethod::followJerk(const ImageSource &frame, cv::Point2d jerk, FusedDetector::Estimate &e,
+                             double &frameScore) {
+  const FusedDetector::Estimate moved =
+      fused_.locate(frame, centre_ + jerk, size_, context_.model.mapper(), context_.model.likelihood());
+  if (!isDetection(score(moved)) || !Redetector::confirmed(moved, usual())) return;
+  context_.track.kalman.translate(jerk.x, jerk.y);
+  centre_ += jerk;
+  confirmedCentre_ += jerk;
+  distantReturn_.shift(jerk);
+  lookAlikeTakeover_.shift(jerk);
+  e = moved;
+  frameScore = score(moved);
 }
 
 // Starts the look-alike's doubt (kLookAlikeDoubtFrames) on a detection whose window shows a second object
@@ -414,6 +437,7 @@ bool FusedMethod::followUnconfirmed(const FusedDetector::Estimate &e, bool detec
 void FusedMethod::acquire(const ImageSource &frame, TrackOutput &out) {
   KalmanTrack &track = context_.track;
   out.searchRegion = cv::Rect(cv::Point(), frame.size());
+  cameraJerk_.reset();  // the frames it would compare are not consecutive once the track follows again
   if (track.searchFrames++ % kRedetectPeriod != 0) return;
   auto found = redetect(frame, true);
   if (!found) return;
@@ -461,6 +485,7 @@ void FusedMethod::stopFilters() {
   framesSinceLookAlike_ = kLookAlikeDoubtFrames + 1;
   lookAlikeTakeover_.reset();
   distantReturn_.reset();
+  cameraJerk_.reset();
   context_.track.scoreFell = false;
   context_.track.heldBack = false;
   probation_ = 0;

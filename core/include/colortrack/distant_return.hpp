@@ -19,6 +19,10 @@ class DistantReturn {
   // A frame with a box: whether the other rules report it `tracking`, the box's centre and side (the square
   // root of its area). Returns whether the frame is held back.
   bool observe(bool tracked, cv::Point2d centre, double side);
+  // The camera jerked (CameraJerk): the place moves with the picture.
+  void shift(cv::Point2d by) {
+    if (lastTracked_) *lastTracked_ += by;
+  }
 
  private:
   double farSides_;

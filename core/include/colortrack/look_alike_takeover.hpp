@@ -18,6 +18,10 @@ class LookAlikeTakeover {
   // target's side (the square root of its area). Returns whether the peak moved onto the second object of the
   // window before.
   bool observe(cv::Point2d peak, cv::Point2d windowCentre, std::optional<cv::Point2d> second, double side);
+  // The camera jerked (CameraJerk): the second object's place moves with the picture.
+  void shift(cv::Point2d by) {
+    if (second_) *second_ += by;
+  }
 
  private:
   std::optional<cv::Point2d> second_;  // the window before's second object
