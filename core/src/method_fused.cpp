@@ -251,8 +251,9 @@ void FusedMethod::follow(const ImageSource &frame, double dt, TrackOutput &out) 
       fused_.locate(frame, centre, size_, context_.model.mapper(), context_.model.likelihood());
   out.searchRegion = roundRect(centredBox(centre.x, centre.y, fused_.windowFor(size_))) & frameRect;
   double frameScore = score(e);
-  const std::optional<cv::Point2d> jerk = cameraJerk_.observe(frame, track.box(), std::sqrt(size_.area()));
-  if (jerk && !isDetection(frameScore)) followJerk(frame, *jerk, e, frameScore);
+  const std::optional<cv::Point2d> jerk =
+      cameraJerk_.observe(frame, track.box(), std::sqrt(size_.area()), !isDetection(frameScore));
+  if (jerk) followJerk(frame, *jerk, e, frameScore);
   noteLookAlike(e, frameScore);
   // Soon after a confirmed track began to coast, whatever is found, confirmed or not, must have its size.
   const bool sizeGuarded =

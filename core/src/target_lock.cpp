@@ -1,6 +1,7 @@
 #include "colortrack/target_lock.hpp"
 
 #include <cmath>
+#include <iterator>
 
 #include "colortrack/box.hpp"
 
@@ -23,6 +24,9 @@ double preference(const TargetCandidate &c, LockOn policy, cv::Size frame) {
   return 0;
 }
 
+// An object not seen for this many frames (30 s at 30 fps) is forgotten: it may be locked again.
+constexpr long kForgetCalls = 900;
+
 }  // namespace
 
 int TargetLock::choose(const std::vector<TargetCandidate> &candidates, cv::Size frame, int fixedId) {
@@ -35,23 +39,28 @@ int TargetLock::choose(const std::vector<TargetCandidate> &candidates, cv::Size 
     locked_ = fixedId;
     return indexOf(fixedId);
   }
-  if (locked_) {
-    const int kept = indexOf(*locked_);
-    if (kept >= 0) {
-      for (const TargetCandidate &c : candidates)
-        if (c.id != *locked_ && c.state != TrackState::Lost) others_.insert(c.id);
-      return kept;
-    }
+  ++calls_;
+  // Forgotten: unseen by more than kForgetCalls calls before this one.
+  for (auto it = others_.begin(); it != others_.end();)
+    it = calls_ - 1 - it->second > kForgetCalls ? others_.erase(it) : std::next(it);
+  int chosen = locked_ ? indexOf(*locked_) : -1;
+  if (chosen < 0) {
     locked_.reset();
+    for (int i = 0; i < static_cast<int>(candidates.size()); ++i) {
+      if (candidates[i].state == TrackState::Lost || others_.count(candidates[i].id)) continue;
+      if (chosen < 0 ||
+          preference(candidates[i], policy_, frame) > preference(candidates[chosen], policy_, frame))
+        chosen = i;
+    }
+    if (chosen >= 0) locked_ = candidates[chosen].id;
   }
-  int best = -1;
-  for (int i = 0; i < static_cast<int>(candidates.size()); ++i) {
-    if (candidates[i].state == TrackState::Lost || others_.count(candidates[i].id)) continue;
-    if (best < 0 || preference(candidates[i], policy_, frame) > preference(candidates[best], policy_, frame))
-      best = i;
+  // Every other track in view beside the locked one is another object; one known stays known while in view,
+  // locked or not.
+  for (const TargetCandidate &c : candidates) {
+    const bool beside = locked_ && c.id != *locked_ && c.state != TrackState::Lost;
+    if (beside || others_.count(c.id)) others_[c.id] = calls_;
   }
-  if (best >= 0) locked_ = candidates[best].id;
-  return best;
+  return chosen;
 }
 
 }  // namespace colortrack

@@ -58,3 +58,17 @@ TEST(TargetLock, AFixedIdIsFollowedAndNothingElse) {
   EXPECT_EQ(lock.choose(tracks, kFrame, 4), 1);
   EXPECT_EQ(lock.choose(tracks, kFrame, 7), -1);
 }
+
+// A track seen beside the target stays another object while it is in view, however long the robot waits;
+// one out of view for 900 frames (30 s at 30 fps) is forgotten, so a long run's memory stays bounded.
+TEST(TargetLock, AnotherObjectIsForgottenOnlyOnceOutOfViewForLong) {
+  TargetLock lock;
+  const TargetCandidate target = candidate(1, 100, 100, 40), other = candidate(2, 300, 200, 40);
+  ASSERT_EQ(lock.choose({target, other}, kFrame), 0);
+  for (int i = 0; i < 1000; ++i) ASSERT_EQ(lock.choose({other}, kFrame), -1) << "frame " << i;
+  for (int i = 0; i < 900; ++i) lock.choose({}, kFrame);
+  EXPECT_EQ(lock.choose({other}, kFrame), -1);  // seen 900 frames ago: still known
+  for (int i = 0; i < 901; ++i) lock.choose({}, kFrame);
+  EXPECT_EQ(lock.choose({other}, kFrame), 0);
+  EXPECT_EQ(lock.locked(), 2);
+}

@@ -1,9 +1,10 @@
 // A camera that jerks: the whole picture jumps further in one frame than the fused method's window reaches (a
-// bump, a gimbal that snaps, a robot that turns in bursts). GlobalMotion measures how the background moved;
-// a shift of more than kJerkSides target sides is a jerk, and FusedMethod then looks for the target where the
-// jerk took it. GlobalMotion alone is not trusted to move the track: on real footage its shift is more than
-// 2 px off a feature-based reference on 16 % of the frames (colortrack-motion-eval, docs/benchmarks.md), and
-// following it every frame lost accuracy (issue 21); the target must be found where the jerk says.
+// bump, a gimbal that snaps, a robot that turns in bursts). On a frame where the window lost the target,
+// GlobalMotion compares a small copy of it with the frame before's; a shift of more than kJerkSides target
+// sides is a jerk, and FusedMethod then looks for the target where the jerk took it. GlobalMotion alone is
+// not trusted to move the track: on real footage its shift is more than 2 px off a feature-based reference
+// on 16 % of the frames (colortrack-motion-eval, docs/benchmarks.md), and following it every frame lost
+// accuracy (issue 21); the target must be found where the jerk says.
 #pragma once
 
 #include <optional>
@@ -17,17 +18,18 @@ namespace colortrack {
 
 class CameraJerk {
  public:
-  // Every frame the track follows: the frame, the target's last box (left out: it moves on its own) and its
-  // side (the square root of its area). Returns the background's shift since the last frame when it is a
-  // jerk.
-  std::optional<cv::Point2d> observe(const ImageSource &frame, const cv::Rect2d &target, double side);
+  // Every frame the track follows: the frame, the target's last box (left out: it moves on its own), its side
+  // (the square root of its area) and whether the window lost the target on this frame. Returns the
+  // background's shift since the frame before when the target was lost and the shift is a jerk. Only such
+  // frames are measured: every frame keeps a small copy for the next one, which costs a tenth of measuring.
+  std::optional<cv::Point2d> observe(const ImageSource &frame, const cv::Rect2d &target, double side,
+                                     bool lost);
   // The next frame starts afresh (a new track, another scene).
-  void reset() { motion_.reset(); }
+  void reset() { previous_.release(); }
 
  private:
-  // A copy 64 px wide: a jerk needs a side's precision, not GlobalMotion's 2 px, and at its default 214 px
-  // the measure cost 0.6-0.8 ms a 1080p frame, about as much as the tracking itself (64: 0.08-0.11 ms).
-  GlobalMotion motion_{64};
+  cv::Mat previous_, current_;  // small BGR copies of the frame before and this one
+  GlobalMotion motion_;
 };
 
 }  // namespace colortrack

@@ -4,7 +4,7 @@
 #pragma once
 
 #include <optional>
-#include <set>
+#include <map>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -57,8 +57,10 @@ class TargetLock {
   // Ids seen at the same time as a locked track: other objects. A same-coloured ball that rolled in front of
   // the target and hid it is such a track, and taking it when the target's track ended is how the robot
   // went after the decoy (issue 47). The robot waits instead (lost-timeout stops it) for a track that is
-  // not one of them: the target back from behind the decoy.
-  std::set<int> others_;
+  // not one of them: the target back from behind the decoy. Each id maps to the choose() call that last
+  // saw it; one unseen for kForgetCalls calls is forgotten, so a long run's memory stays bounded.
+  std::map<int, long> others_;
+  long calls_ = 0;
 };
 
 }  // namespace colortrack
