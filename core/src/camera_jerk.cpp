@@ -14,8 +14,8 @@ namespace {
 constexpr double kJerkSides = 1.0;
 // The copies are about this many px wide (GlobalMotion halves them again): a jerk needs a side's precision,
 // not GlobalMotion's 2 px. Measuring every frame at GlobalMotion's default 214 px cost 0.6-0.8 ms a 1080p
-// frame, as much as the tracking, and 0.09 ms at 64 px on 640x360 took DragonBaby's element rate under 10x
-// CSRT's.
+// frame, as much as the tracking (at 64 px, 0.09 ms on 640x360); keeping the copy costs 0.04-0.08 ms a
+// 1080p frame (bench-tracker) and nothing measurable on DragonBaby in BGRx (docs/benchmarks.md).
 constexpr int kCopyWidth = 128;
 
 }  // namespace
