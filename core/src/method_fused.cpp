@@ -321,7 +321,7 @@ void FusedMethod::follow(const ImageSource &frame, double dt, TrackOutput &out) 
 
 // The camera jerked and the window lost the target: it is sought where the jerk took it. Found there with a
 // re-detection's confidence, every place the track remembers moves with the picture: the same track, no jump
-// (a quarter-frame snap: 14 frames off the ball and then 30 held back before;
+// (a quarter-frame snap: before, 14 frames off the ball and then held back to the end of the run;
 // tests/core/test_camera_jerk.cpp).
 void FusedMethod::followJerk(const ImageSource &frame, cv::Point2d jerk, FusedDetector::Estimate &e,
                              double &frameScore) {
