@@ -10,6 +10,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "colortrack/mavlink.hpp"
@@ -375,13 +376,22 @@ TEST(CommandWriter, StallDropsTheTurnAfterTheHoldShare) {
     rig.writer->setPlaying(true);
     const Clock::time_point lastBuffer = Clock::now();
     rig.writer->submit(commandOf(decision));
-    ASSERT_TRUE(rig.wire.waitFor([&] { return rig.wire.stalled == 1; }));
-    const auto reasons = rig.wire.read([&] { return rig.wire.sentReasons; });
-    const auto outputs = rig.wire.read([&] { return rig.wire.sentOutputs; });
+    // The stall's stop is reported stalled before it is sent: wait for the stop itself.
+    const auto sentStalled = [&] {
+      const auto &r = rig.wire.sentReasons;
+      return std::find(r.begin(), r.end(), std::string("stalled")) != r.end();
+    };
+    ASSERT_TRUE(rig.wire.waitFor(sentStalled));
+    // Both read under one lock, so they describe the same commands.
+    const auto [reasons, outputs] =
+        rig.wire.read([&] { return std::make_pair(rig.wire.sentReasons, rig.wire.sentOutputs); });
+    ASSERT_EQ(reasons.size(), outputs.size());
     const auto firstOf = [&](const char *reason) {
-      return std::find(reasons.begin(), reasons.end(), std::string(reason)) - reasons.begin();
+      return static_cast<std::size_t>(std::find(reasons.begin(), reasons.end(), std::string(reason)) -
+                                      reasons.begin());
     };
     const std::size_t stalling = firstOf("stalling"), stalled = firstOf("stalled");
+    ASSERT_LT(stalled, reasons.size());
     ASSERT_LT(stalling, stalled) << "no turnless command before the stall's stop";
     EXPECT_LT(firstOf("target"), stalling) << "the decision itself went out first";
     EXPECT_GE(outputs[stalling].first - lastBuffer, hold);
