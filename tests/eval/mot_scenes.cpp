@@ -167,13 +167,15 @@ std::vector<cv::Point> snappingCamera(cv::Size frame, int frames) {
 // changes id changed it because the camera moved, not because it left the view.
 MotScene movingCamera(
     const std::string &name, int seed, cv::Size sceneSize,
-    const std::function<std::vector<cv::Point>(cv::RNG &, const balls::BallSceneConfig &, int)> &cameraPath) {
+    const std::function<std::vector<cv::Point>(cv::RNG &, const balls::BallSceneConfig &, int)> &cameraPath,
+    const std::function<void(balls::BallSceneConfig &, int)> &turnAndZoom = {}) {
   balls::BallSceneConfig config;
   config.seed = 16 + seed;
   config.sceneSize = sceneSize;
   constexpr int kFrames = 300;
   cv::RNG rng(seed);
   config.cameraPath = cameraPath(rng, config, kFrames);
+  if (turnAndZoom) turnAndZoom(config, kFrames);
   const cv::Size travel = config.sceneSize - config.frameSize;
   const cv::Rect arena(cv::Point(travel), config.frameSize - travel);
   std::vector<balls::Ball> list;
@@ -184,6 +186,23 @@ MotScene movingCamera(
   MotScene s = makeScene(name, config, list, std::vector<bool>(6, true));
   s.frames = kFrames;
   return s;
+}
+
+// A drone's camera: the bursts of jerkyCamera, a yaw that swings +-4 degrees (a period of 120 frames) and a
+// climb that zooms out and back, 1.2 times to 1 and back to 1.2 at 0.5 % a frame (issue 47).
+MotScene turningCameraScene(int seed) {
+  return movingCamera(
+      "turning-camera-" + std::to_string(seed), seed, cv::Size(760, 570),
+      [](cv::RNG &rng, const balls::BallSceneConfig &c, int frames) {
+        return jerkyCamera(rng, c.sceneSize, c.frameSize, frames);
+      },
+      [](balls::BallSceneConfig &c, int frames) {
+        for (int f = 0; f < frames; ++f) {
+          c.cameraTurn.push_back(4.0 * std::sin(2 * CV_PI * f / 120.0));
+          const double climb = std::clamp(std::abs(f - frames / 2.0) / 40.0, 0.0, 1.0);  // 0 at the middle
+          c.cameraZoom.push_back(1.0 + 0.2 * climb);
+        }
+      });
 }
 
 MotScene panningCamera(int seed) {
@@ -268,7 +287,9 @@ std::vector<MotScene> motScenes() {
                                   panningCamera(3),
                                   shakyCameraScene(1),
                                   shakyCameraScene(2),
-                                  snappingCameraScene()};
+                                  snappingCameraScene(),
+                                  turningCameraScene(1),
+                                  turningCameraScene(2)};
   for (int seed = 1; seed <= kHeldOutRandomScenes; ++seed)
     scenes.push_back(eightAtRandom("random-eight-" + std::to_string(seed), static_cast<uint64_t>(seed)));
   return scenes;

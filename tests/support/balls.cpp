@@ -102,13 +102,16 @@ BallScene::BallScene(const BallSceneConfig &config, std::vector<Ball> balls)
 BallTruth BallScene::truthOf(int ball, int index) const {
   const Ball &b = balls_[ball];
   BallTruth t;
-  t.centre = positionAt(b, index) - cv::Point2d(cameraAt(index));
-  t.radius = b.radius;
+  const cv::Matx23d toFrame = sceneToFrame(index);
+  const cv::Point2d scene = positionAt(b, index);
+  t.centre = cv::Point2d(toFrame(0, 0) * scene.x + toFrame(0, 1) * scene.y + toFrame(0, 2),
+                         toFrame(1, 0) * scene.x + toFrame(1, 1) * scene.y + toFrame(1, 2));
+  t.radius = b.radius * std::hypot(toFrame(0, 0), toFrame(1, 0));
   const cv::Size s = config_.frameSize;
-  t.fullyVisible = t.centre.x - b.radius >= 0 && t.centre.y - b.radius >= 0 &&
-                   t.centre.x + b.radius <= s.width - 1 && t.centre.y + b.radius <= s.height - 1;
-  t.visible = t.centre.x + b.radius >= 0 && t.centre.y + b.radius >= 0 &&
-              t.centre.x - b.radius <= s.width - 1 && t.centre.y - b.radius <= s.height - 1;
+  t.fullyVisible = t.centre.x - t.radius >= 0 && t.centre.y - t.radius >= 0 &&
+                   t.centre.x + t.radius <= s.width - 1 && t.centre.y + t.radius <= s.height - 1;
+  t.visible = t.centre.x + t.radius >= 0 && t.centre.y + t.radius >= 0 &&
+              t.centre.x - t.radius <= s.width - 1 && t.centre.y - t.radius <= s.height - 1;
   return t;
 }
 
@@ -116,6 +119,25 @@ cv::Point BallScene::cameraAt(int index) const {
   const std::vector<cv::Point> &path = config_.cameraPath;
   if (path.empty()) return cv::Point();
   return path[std::clamp(index, 0, static_cast<int>(path.size()) - 1)];
+}
+
+namespace {
+double valueAt(const std::vector<double> &values, int index, double none) {
+  if (values.empty()) return none;
+  return values[std::clamp(index, 0, static_cast<int>(values.size()) - 1)];
+}
+}  // namespace
+
+cv::Matx23d BallScene::sceneToFrame(int index) const {
+  const cv::Point2d centre(config_.frameSize.width / 2.0, config_.frameSize.height / 2.0);
+  cv::Mat m = cv::getRotationMatrix2D(centre, valueAt(config_.cameraTurn, index, 0),
+                                      valueAt(config_.cameraZoom, index, 1));
+  cv::Matx23d toFrame(m);
+  const cv::Point2d corner(cameraAt(index));
+  // First from the scene to the untransformed view (minus the corner), then the turn and zoom.
+  toFrame(0, 2) -= toFrame(0, 0) * corner.x + toFrame(0, 1) * corner.y;
+  toFrame(1, 2) -= toFrame(1, 0) * corner.x + toFrame(1, 1) * corner.y;
+  return toFrame;
 }
 
 cv::Rect BallScene::boxOf(int ball, int index) const {
@@ -128,27 +150,33 @@ cv::Rect BallScene::boxOf(int ball, int index) const {
 }
 
 cv::Mat BallScene::render(int index, std::vector<BallTruth> *truth) const {
-  cv::Mat frame = background_(cv::Rect(cameraAt(index), config_.frameSize)).clone();
+  cv::Mat frame;
+  if (config_.cameraTurn.empty() && config_.cameraZoom.empty())
+    frame = background_(cv::Rect(cameraAt(index), config_.frameSize)).clone();
+  else
+    cv::warpAffine(background_, frame, cv::Mat(sceneToFrame(index)), config_.frameSize, cv::INTER_LINEAR,
+                   cv::BORDER_REFLECT);
   const cv::Rect inside(cv::Point(), frame.size());
   if (truth) truth->clear();
   for (int i = 0; i < static_cast<int>(balls_.size()); ++i) {
     const Ball &b = balls_[i];
     const BallTruth t = truthOf(i, index);
     if (truth) truth->push_back(t);
-    const cv::Rect area = cv::Rect(cv::Point(static_cast<int>(std::floor(t.centre.x - b.radius - 1)),
-                                             static_cast<int>(std::floor(t.centre.y - b.radius - 1))),
-                                   cv::Point(static_cast<int>(std::ceil(t.centre.x + b.radius + 2)),
-                                             static_cast<int>(std::ceil(t.centre.y + b.radius + 2)))) &
+    const double radius = t.radius;
+    const cv::Rect area = cv::Rect(cv::Point(static_cast<int>(std::floor(t.centre.x - radius - 1)),
+                                             static_cast<int>(std::floor(t.centre.y - radius - 1))),
+                                   cv::Point(static_cast<int>(std::ceil(t.centre.x + radius + 2)),
+                                             static_cast<int>(std::ceil(t.centre.y + radius + 2)))) &
                           inside;
-    const cv::Point2d spot = t.centre + cv::Point2d(-0.35 * b.radius, -0.35 * b.radius);
+    const cv::Point2d spot = t.centre + cv::Point2d(-0.35 * radius, -0.35 * radius);
     for (int y = area.y; y < area.y + area.height; ++y) {
       cv::Vec3b *row = frame.ptr<cv::Vec3b>(y);
       for (int x = area.x; x < area.x + area.width; ++x) {
         const double r = std::hypot(x - t.centre.x, y - t.centre.y);
-        const double coverage = std::clamp(b.radius + 0.5 - r, 0.0, 1.0);  // anti-aliased rim
+        const double coverage = std::clamp(radius + 0.5 - r, 0.0, 1.0);  // anti-aliased rim
         if (coverage <= 0) continue;
         // Shaded towards the rim, like a lit sphere: V varies, hue and saturation do not.
-        const double shade = 1.0 - 0.35 * std::min(1.0, (r * r) / (b.radius * b.radius));
+        const double shade = 1.0 - 0.35 * std::min(1.0, (r * r) / (radius * radius));
         cv::Vec3d colour = cv::Vec3d(bgrOfHsv(b.hue, b.saturation, b.value * shade));
         if (b.highlight > 0) {
           const double h = std::clamp(b.highlight + 0.5 - std::hypot(x - spot.x, y - spot.y), 0.0, 1.0);

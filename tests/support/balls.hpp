@@ -39,6 +39,10 @@ struct BallSceneConfig {
   // top-left corner is cameraPath[index] (the last one after the end; empty: the origin).
   cv::Size sceneSize;
   std::vector<cv::Point> cameraPath;
+  // The camera also turns and zooms about the frame's centre: frame `index` shows the scene turned by
+  // cameraTurn[index] degrees (counter-clockwise) and magnified cameraZoom[index] times (each the last one
+  // after the end; empty: 0 and 1). Balls stay discs, their radius magnified too.
+  std::vector<double> cameraTurn, cameraZoom;
 };
 
 struct BallTruth {
@@ -58,8 +62,10 @@ class BallScene {
   cv::Mat render(int index, std::vector<BallTruth> *truth = nullptr) const;
   // In frame coordinates.
   BallTruth truthOf(int ball, int index) const;
-  // The top-left corner of frame `index` in the scene.
+  // The top-left corner of frame `index` in the scene (before the turn and the zoom).
   cv::Point cameraAt(int index) const;
+  // Scene coordinates to frame `index`'s, a similarity (2x3).
+  cv::Matx23d sceneToFrame(int index) const;
   // The ball's bounding box in frame `index`, rounded to whole pixels (an init-box a user would draw).
   cv::Rect boxOf(int ball, int index) const;
 
