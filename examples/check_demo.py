@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Test of the demo (examples/run-demo.sh runs the same binary): 90 frames of the built-in scene in a temporary
 directory; the demo must exit 0, track most frames with a mean IoU of at least 0.7, and leave the annotated
 video, the robot's commands (robotctl's text protocol, ending with stops) and their log.

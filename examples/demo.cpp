@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // colortrack-demo: runs the colortrack element on the built-in synthetic scene (and scores it against the
 // scene's ground truth) or on a camera, a file or a stream, and writes the annotated video to an AVI file.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 #include "demo_run.hpp"
 
 #include <gst/video/video.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The demo's command line and its output files: what colortrack-demo was asked to do, checked, and files
 // written under a temporary name and renamed over their targets only when the run succeeds.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // What the demo's pipeline shares between its threads (RunState), and the callbacks that fill it: the scene
 // source, the probe on the tracker's output, the decoded pads, the bus (the robot's log), Ctrl-C.
 #pragma once

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-2.1-or-later
 # One command for the demo: installs what the demo needs (only what is missing), builds the plugin and the
 # demo, then runs colortrack on the built-in synthetic scene (or on the device / URL / file given as
 # argument) and writes an annotated video.

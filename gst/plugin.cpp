@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The colortrack plugin: one module, one registration function per element.
 #include <gst/gst.h>
 

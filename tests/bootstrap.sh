@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-2.1-or-later
 # Installs the Debian packages the project needs (only those missing) and builds it into build/.
 # Used by the README's two commands:
 #   tests/bootstrap.sh demo   (examples/run-demo.sh) the demo's packages; builds the plugin and the demo only

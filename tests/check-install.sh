@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-2.1-or-later
 # The install test (meson test install): `meson install --destdir` puts the build into a staging root, and
 # gst-inspect-1.0 must find colortrack, robotctl and trackpublish there, loaded from the staged file: GST_PLUGIN_PATH into
 # the staging root, no system plugin directory, a private registry.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """The size limits of the developers' guide, kept by the suite: a source file under 600 lines, a function
 under 80 lines (120 in tests/), no GStreamer or GLib include in core/ and no GStreamer include in robot/. Function extents come from
 Universal Ctags (Debian: universal-ctags); without it the check says SKIPPED (exit code 77).

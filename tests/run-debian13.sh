@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-2.1-or-later
 # The project's tests (tests/run-tests.sh) on Debian 13 (trixie, GStreamer 1.26: the analytics meta is built
 # and tested there, see gst/colortrack/analytics-meta.h), in a chroot, from any Debian machine where we are root:
 #   1. debootstrap --variant=minbase trixie into the chroot if it has no Debian 13 yet (debootstrap is

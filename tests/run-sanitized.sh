@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-2.1-or-later
 # The core and element tests again, built with AddressSanitizer and UndefinedBehaviorSanitizer in a second
 # build directory (build-asan/), so memory and UB errors fail CI. Run by .ci/run after the README's test
 # command (which installs the packages). The examples suite is left out: python3 cannot load an ASan-built

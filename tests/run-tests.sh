@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: LGPL-2.1-or-later
 # One command for every test: installs what is missing, builds, runs the core and element tests.
 set -uo pipefail
 cd "$(dirname "$0")/.."

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Method::Discriminative: the colour search with the learnt colour likelihood as its cue.
 #include "colortrack/method_discriminative.hpp"
 

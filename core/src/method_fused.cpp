@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Method::Fused: the colour search (with the likelihood cue) until the first detection, then a correlation
 // filter over orientation cells fused with the colour likelihood (FusedDetector), judged by its
 // peak-to-sidelobe confidence against the track's usual one, with re-detection over the whole frame.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Method::Indexing: the colour search with the template histogram as its cue.
 #include "colortrack/method_indexing.hpp"
 

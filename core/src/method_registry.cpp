@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The registry of detection methods: adding a method is its file (with its factory) and a row below (the
 // factory's declaration and the descriptor).
 #include <stdexcept>

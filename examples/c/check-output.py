@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Runs colortrack-app on videotestsrc's ball and checks its output: every line parses, one line per frame,
 and the printed box follows the ball, whose centre videotestsrc computes exactly (see ball_centre)."""
 import math

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 /* colortrack-app: the smallest useful C application around the colortrack element.
  *
  * Builds   SOURCE ! videoconvert ! colortrack ! appsink

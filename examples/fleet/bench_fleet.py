@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """How many 720p30 camera pipelines one core sustains with colortrack: K gst-launch-1.0 pipelines pinned to one
 core (taskset), decoding included (H.264 and MJPEG clips) and excluded (raw I420 frames from a file).
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Test of colortrack_app.py: runs it on videotestsrc's ball and checks its JSON lines (one per frame, every
 field there with its type) and that the box follows the ball; then in threshold mode, that each frame's
 "objects" list (read through python3-gst-1.0's overrides) holds the ball. Exit code 77 (meson: skipped)

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Test of rtsp_follow.py against a camera that restarts: the RTSP test's server (tests/gst/test_rtsp.cpp run
 with --serve) serves the synthetic scene as H.264 on 127.0.0.1; after 4 s it is killed (SIGKILL, as a camera
 losing power), stays away 1.5 s and comes back on the same port, its scene having moved on. Checks that the

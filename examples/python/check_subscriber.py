@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Test of track_subscriber.py against a real broker: starts Debian's mosquitto on a free loopback port with its
 own config, runs gst-launch-1.0 pipelines that publish with trackpublish (the build tree's plugin, through
 GST_PLUGIN_PATH_1_0), and checks what the subscriber prints: every frame once, in order, with the document's

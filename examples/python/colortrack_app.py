@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """colortrack from Python (PyGObject): one JSON object per frame on stdout.
 
     {"time": 0.4, "frame": 12, "id": 1, "box": [201, 143, 40, 40], "state": "tracking", "score": 0.91,

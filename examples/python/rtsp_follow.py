@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Follow a target on an IP camera that may restart: only the RTSP source is rebuilt, the track survives.
 
     rtsp_follow.py rtsp://192.0.2.10:554/stream --init-box 280,200,80,80

@@ -1,4 +1,5 @@
 #!/usr/bin/python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """A consumer of trackpublish's documents: subscribes to an MQTT broker, drops repeats, one line per document.
 
     track_subscriber.py --host broker.local                      # every camera (colortrack/#), until Ctrl-C

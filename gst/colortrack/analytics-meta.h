@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // GStreamer's analytics meta (GstAnalyticsRelationMeta, gstreamer-analytics-1.0, GStreamer 1.24 and newer):
 // per reported track an object-detection mtd (type "colortrack", the ROI meta's box, the score clamped to
 // 0..1) and a tracking mtd (track id, first and last seen, lost) related to it, so that analytics elements

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // ElementSink: the modes' one way into the element's private data.
 #include "colortrack-element-sink.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // What a mode may do to the element (colortrack-mode.h): post messages, tell it the target changed or
 // stopped (its trails and idle state), take a pending reset, and write back the two properties the streaming
 // thread ever writes (a learnt colour range, a refused template-location).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // A tracking mode behind the element: template and threshold mode each own their tracker, bring it up to date
 // with a frame's settings and requests (prepare), say whether it can take the frame, and track. They reach
 // the element only through an ElementSink (messages, the target's life, the property writes back), never its

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // colortrack's mailbox: what the application thread asks of the next frame (an init-box, a click) and what
 // the streaming thread tells the property checks (the frame size). Under the object lock, in the store.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // colortrack's private data, shared by the files of the element: the property store (settings and requests,
 // under the object lock) and what the streaming thread owns.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // What both modes do alike: where a target comes from (the init-box, the click-to-track square), a reset
 // and a stop.
 #include <cmath>

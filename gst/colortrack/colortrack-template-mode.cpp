@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Template mode: the template tracker, brought up to date with the properties and the requests before it
 // tracks a frame; the template file read at start and again when template-location changes.
 #include <exception>

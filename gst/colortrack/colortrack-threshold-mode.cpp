@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Threshold mode: the threshold tracker, brought up to date with the properties before it tracks a frame, and
 // a colour range learnt from an init-box or a click.
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // GstColorTrack: the `colortrack` element, a GstVideoFilter that tracks a coloured object in place.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Drawing the track on a mapped frame, in place, in every supported format.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The picture colortrack draws on a frame from its report, the same for both modes: the threshold mask, the
 // search window, and per track its trail, box and label.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // What colortrack tells the rest of the pipeline about a frame's tracks, in either mode: one ROI meta (with
 // its parameters) per track with a box, and the element message. Field names come from colortrack-meta.h,
 // the header applications read them with.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 /* Names of what the colortrack and robotctl elements attach to buffers and post on the bus, so an
  * application can read them without spelling field names by hand. Plain C, no dependency beyond the
  * preprocessor: include it next to <gst/video/video.h>. docs/api.md lists every field with its type.

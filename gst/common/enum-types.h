@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Registration of the elements' enum and flags GTypes: an enum type is generated from the core table that
 // declares its values; a flags type (colortrack's draw) is its list of values.
 #pragma once

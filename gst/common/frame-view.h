@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Read access to a mapped GstVideoFrame for the tracker: converts only the rectangles the tracker asks for.
 #pragma once
 

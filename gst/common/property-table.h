@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // An element's properties declared once, in a table that installs them, sets and gets them and applies the
 // rule for a refused value: an error at start when it was set before, a warning that keeps the old value when
 // it is set while streaming.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Track parameters that survive videoconvert and videoscale.
 //
 // GStreamer 1.22's transform of GstVideoRegionOfInterestMeta (run by videoconvert, videoscale and buffer

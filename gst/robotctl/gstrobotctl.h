@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // GstRobotCtl: the `robotctl` element, a GstBaseSink that turns track metadata into robot drive commands.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // robotctl's view of its command writer: the writer's events as the element's bus messages, warnings and log.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // What robotctl's properties say about its output, in the terms of the core's encoder and the serial port:
 // the mapping from the property units (degrees, per-property ids) to the encoder's, in one place.
 #pragma once

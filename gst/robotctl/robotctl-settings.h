@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // robotctl's settings, what its properties say, and the table that declares those properties.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // trackpublish's file side: documents handed over by the streaming thread, appended one line each by a
 // worker thread, so a slow disk, a full pty or a FIFO whose reader stops reading never holds the video (as
 // MQTT's queue does for the network). The queue is bounded like MQTT's: past `maxQueued` documents waiting

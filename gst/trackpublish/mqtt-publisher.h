@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // trackpublish's MQTT side: documents handed over by the streaming thread, delivered in order by a worker
 // thread through Eclipse Paho's asynchronous C client, with a bounded queue that keeps everything while the
 // broker is unreachable (the oldest are dropped, and counted, past `maxQueued`) and drains in order after

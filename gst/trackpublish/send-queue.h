@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The MQTT publisher's documents, from the streaming thread's hand-over to the broker's acknowledgement:
 // waiting ones and ones in flight, both in sequence order. One rule holds everything together: whatever goes
 // back to waiting (a failed send, every send of a lost connection) is merged by sequence, so the next sends

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // One JSON document per frame from the region-of-interest metas on a buffer, in DL Streamer's gvametaconvert
 // schema (timestamp in stream time, source, resolution, tags, objects[] with roi_type, a pixel box and a
 // normalised detection.bounding_box, confidence, label, label_id) plus what a tracker adds (id, state,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // trackpublish's file output (location): JSON lines to a file, a FIFO, a character device or stdout, written
 // by DocumentFile's thread, never the streaming thread.
 #include <fcntl.h>

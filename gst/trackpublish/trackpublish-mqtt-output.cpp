@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // trackpublish's MQTT output (address, topic, ...): MqttPublisher's queue and thread, its news as the
 // element's warnings, and the settings checked before connecting.
 #include <unistd.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // trackpublish's outputs behind one interface: each kind (a file, an MQTT broker) is one file and one row of
 // outputKinds(); the element opens every kind its settings ask for and hands each document to all of them.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The table of trackpublish's output kinds: adding one is its file (a DocumentOutput and its open function)
 // and a row here.
 #include "trackpublish-output.h"

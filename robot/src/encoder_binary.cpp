@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // protocol=binary: a framed, numbered packet per command: start byte, sequence, length, payload (command,
 // flags, left and right as int16 little-endian), CRC-8 of everything after the start byte.
 #include "colortrack/protocol.hpp"

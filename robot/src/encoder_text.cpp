@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // protocol=text: one line "L=<int> R=<int>\n" per command, the wheel speeds scaled by outputScale.
 #include <cstdio>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // protocol=zone-char: one byte per command, the command's character (the paper's robot).
 #include "colortrack/protocol.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 #include "colortrack/heartbeat_watch.hpp"
 
 #include "colortrack/mavlink.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 #include "colortrack/port_choice.hpp"
 
 #include "colortrack/udp_port.hpp"

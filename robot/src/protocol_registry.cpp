@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The registry of robot protocols: adding a protocol is a value of Protocol, its encoder's file (with its
 // factory) and a row below (the factory's declaration and the descriptor).
 #include "colortrack/protocol.hpp"

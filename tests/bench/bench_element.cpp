@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Throughput of the colortrack element inside a pipeline, against `identity` as the cost of the pipeline
 // itself: appsrc (pre-rendered BGR frames) ! colortrack|identity ! fakesink sync=false.
 //

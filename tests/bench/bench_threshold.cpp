@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Per-frame cost of threshold mode on one thread: segmentation through the range table, opening/closing,
 // connected components, the camera's motion (follow-camera) and the multi-object tracker, at three frame
 // sizes with 1 and 8 balls, read from BGR and from I420 planes (as the element reads them, without converting

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Per-frame cost of colortrack::Tracker on one thread, at three frame sizes, for every search method and
 // the two regimes that bound the element's cost: following a track (search window around the prediction)
 // and searching the whole frame (no track). Accuracy is printed from the same run, so a fast but wrong

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // What trackpublish costs the streaming thread per frame, with 8 tracks on every buffer: appsrc (buffers made
 // beforehand, each with 8 colortrack ROI metas and their parameters) ! X ! fakesink, X being identity (the
 // pipeline itself), trackpublish writing JSON lines to /dev/null, and trackpublish publishing to an MQTT

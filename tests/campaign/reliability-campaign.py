@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: LGPL-2.1-or-later
 """Hostile-user reliability campaign for colortrack, robotctl and trackpublish (issue 22): several hundred bad
 or edge inputs, each in its own process group with a hard timeout and a fresh empty working directory; tallies
 error / warning / silent-accept / hang / crash, refusals not naming the property, stray files. Before-start
@@ -22,7 +23,6 @@ BAD = b'\xff\xfe'.decode('utf-8', 'surrogateescape')  # invalid UTF-8, carried i
 # What a careful user expects: refused; accepted; 'either' = judge by hand; 'defer' = a valid start-time
 # property changed while playing: a warning naming it, applied at the next start.
 R, A, E, D = 'refuse', 'accept', 'either', 'defer'
-
 
 # ---- fixtures
 def png_bytes(w, h, alpha=False, with_data=True):

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The window the fused method cuts every frame is shrunk by shrinkByArea: it must average as OpenCV's
 // INTER_AREA does, whatever the ratio, the channel count or the row padding of the source.
 #include <gtest/gtest.h>

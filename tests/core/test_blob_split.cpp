@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Sharing one blob between touching objects: each share follows the pixels nearest its seed, and the pixels
 // no other seed could claim tell a visible object from one wholly behind another.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Threshold mode's pixel side: "h,s,v" parsing, hue ranges that wrap, the range lookup table against the
 // exact HSV test, sampling of packed and YUV frames, opening/closing, blob measures, learning a range.
 #include <gtest/gtest.h>

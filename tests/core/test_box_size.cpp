@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The default (fused) method's box size against the target's (issue 21): a box that holds a ring of
 // background is brought back onto the target by the colour map; a target whose colours fill only a part of
 // its box keeps the box it was given.

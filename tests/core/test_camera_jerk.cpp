@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Template mode when the camera snaps: a red ball on a textured scene, and the whole view jumps by a quarter
 // of the frame in one frame (a bump, a gimbal that snaps), there and back (issue 47). Before CameraJerk the
 // box was off the ball for 8 and 6 frames after the snaps, and the track, found again far away, was held

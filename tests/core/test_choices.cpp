@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The core's choice tables (colortrack/choice.hpp) and the method registry, from which the elements' enum
 // types are generated: each row's value is its position (so a property's number never changes when a row is
 // added at the end), and each nick is a distinct, non-empty name gst-launch-1.0 can take.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // RGB -> HSV, bin lookup tables and the vectorised whole-image mapping against the exact per-pixel path.
 #include <gtest/gtest.h>
 

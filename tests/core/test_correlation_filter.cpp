@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The shape cue of the fused method: gradient-orientation cell features, the translation and scale
 // correlation filters, the peak-to-sidelobe confidence, and the fused detector on synthetic images with a
 // known shift and scale.

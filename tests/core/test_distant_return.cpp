@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // A return to `tracking` far from the last `tracking` place (issue 46): held back for 30 tracked frames; a
 // return near it, a track that never stopped being tracked, and a track begun after a loss are not.
 #include <gtest/gtest.h>

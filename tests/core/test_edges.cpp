@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Edge density / energy verification on the synthetic object, and checks of the synthetic scene itself.
 #include <cmath>
 #include <cstdint>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The interface the element drives: both trackers, seen only as FrameTracker, report what their own outputs
 // say, with the primary target among the tracks, and forget their tracks on reset().
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // GlobalMotion: the background's shift between frames of the synthetic scene, whatever the object does.
 #include <gtest/gtest.h>
 

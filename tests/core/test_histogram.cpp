@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Histograms, masks, clipping and the weighted intersection, checked against values worked out by hand.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // KalmanFilter9: convergence on a constant-acceleration track, lead of the prediction over the last
 // measurement, noise reduction, fractional and non-unit time steps, covariance health.
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Object-versus-surroundings colour likelihood: hand-computed cases.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The colour extent vote: on a likelihood map holding one object-like rectangle, the box it picks.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The peak moving onto the second object of the window before (issue 46): taken for a takeover by a
 // look-alike; a peak that stays, that moves elsewhere, or a second object that comes to the peak is not.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Look-alikes and the default (fused) method (issue 21): a twin of the target in the search window is a rival
 // (the frame is ambiguous, not a detection); a twin far away is not taken while the target is briefly hard to
 // see.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The detection-method registry: every Method value makes its method, and a made method follows a target
 // it was started on, through the DetectionMethod interface alone.
 #include <gtest/gtest.h>

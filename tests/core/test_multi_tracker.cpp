@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Threshold mode's tracking side: the assignment solver against brute force, tentative tracks, and ids that
 // hold through crossings and short exits on rendered ball scenes.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Re-acquisition by the default (fused) method: the target is taken back soon after it is in view again,
 // and nothing else is taken for it meanwhile (issue 21).
 #include <functional>

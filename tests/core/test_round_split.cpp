@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Telling several round objects in one blob from one object: balls that touch or overlap are split into a
 // disc each; one ball, a ball cut by an edge, and long or irregular shapes are not.
 #include <gtest/gtest.h>

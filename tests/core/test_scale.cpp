@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Dynamic scale: the box must hold its size on a still object and follow one that grows or shrinks,
 // without the slow collapse a raw intersection maximum causes.
 #include <gtest/gtest.h>

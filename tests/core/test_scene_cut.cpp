@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // A cut to another scene (issue 46): SceneCut tells it from a pan, a change of light and a moving object, and
 // the template tracker declares its track lost on the cut's first frame, then takes the target back after
 // the cut back.

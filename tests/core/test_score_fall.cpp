@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The weighted score's sudden fall (issue 46): a tracked track whose score drops from its usual level to
 // under the low bar is in doubt until a tracked frame scores well again, and so is one that comes back from
 // untracked frames under its level; a score that sinks slowly (a target whose look drifts from the start)

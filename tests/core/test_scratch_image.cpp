@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // ScratchImage: views of the asked size and type, in memory that is kept while it is large enough.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The fast window search (coarse cell grid, then running histograms) against the brute-force reference.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Parsing and formatting of the user-facing setting strings.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The never-updated start appearance (issue 46): the template's histogram matches the object where it started
 // and not the background beside it, and StartLikeness turns the match into a factor on the score that falls
 // with the match, relative to the start's own and never above 1.

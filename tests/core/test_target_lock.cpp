@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // robotctl's choice of target among several tracks: each policy picks as it says, and a lock holds while its
 // track is there, whatever the other tracks do.
 #include <gtest/gtest.h>

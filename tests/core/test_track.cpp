@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Track states as text: parseTrackState reads back what toString writes.
 #include <gtest/gtest.h>
 

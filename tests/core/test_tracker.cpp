@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The whole tracker on the synthetic scene, without GStreamer: accuracy under motion, rotation, scale and
 // lighting; decoys; loss and re-acquisition; bad input.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // YUV frames read as BGR (yuvToBgr): the colorimetry's matrix against OpenCV's, the bytes videoconvert gives,
 // every layout and siting, and the promise behind it: the same frame delivered as RGB or as YUV gives the
 // tracker the same image, the same histogram and the same track. (tests/gst/test_frame_view.cpp checks the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // colortrack-core-eval: accuracy and per-frame cost of colortrack::Tracker on OTB-layout sequences, without
 // GStreamer. Meant for quick tuning loops: it runs the core tracker directly on the decoded JPEGs, several
 // sequences at once.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // colortrack-eval: accuracy and speed of GStreamer tracker elements on OTB-layout sequences, side by side.
 //
 //   colortrack-eval [options] SEQUENCE_DIR... --tracker FRAGMENT [--tracker FRAGMENT ...]

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Threshold mode's multi-object accuracy: the ThresholdTracker (what the element runs, default settings) on
 // the scenes of mot_scenes.hpp, scored with CLEAR-MOT and IDF1 (IoU >= 0.3). Also counts reported boxes that
 // break the element's promises: outside the frame, or smaller than min-area allows.

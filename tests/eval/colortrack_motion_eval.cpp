@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // What the camera-motion estimate (GlobalMotion: phase correlation of small grey copies, translation only;
 // threshold mode's follow-camera runs on it) gets right and wrong on real footage. The reference is a
 // similarity transform (shift, rotation, zoom) fitted with RANSAC to ORB features of consecutive frames

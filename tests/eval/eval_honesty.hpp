@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // colortrack-eval's honesty section (issue 46): for every tracker and format, the honesty report
 // (honesty.hpp) over its plain runs and, with --inject, over runs with failures injected (injection.hpp).
 // An injected run's frames are written once, as JPEG, to a temporary sequence folder that every tracker and

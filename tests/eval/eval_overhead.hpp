@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // colortrack-eval --overhead: what the tracker costs at 1920x1080 next to identity, on a synthetic sequence.
 #pragma once
 

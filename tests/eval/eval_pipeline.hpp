@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // colortrack-eval's pipelines: one sequence through a tracker element, its boxes, states and timings.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // OTB-style success and precision plots (OpenCV drawing, legend sorted by score).
 #pragma once
 

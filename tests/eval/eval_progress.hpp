@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The lines a colortrack-eval user sees: a live progress line on a terminal, one line per finished run
 // otherwise.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // colortrack-eval's results and what is written from them: the markdown tables, results.csv, curves.csv,
 // the per-frame files, and the robustness summary's table.
 #pragma once

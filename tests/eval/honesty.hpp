@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Whether a tracker knows when it is wrong (issue 46): how often it says `tracking` while its box is off the
 // target, how well its per-frame score separates on-target from off-target frames (AUROC, no threshold), and
 // what it does through each injected failure (injection.hpp). Plain text, no GStreamer.

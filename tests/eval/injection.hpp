@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Failures injected into real footage, with exact truth (issue 46). Eighteen sequences hold few failures to
 // learn from, so runs are made from them in which the truth of "the target is not there" and "the target is
 // back" is known to the frame:

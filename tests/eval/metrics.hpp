@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // One-pass evaluation (OPE) metrics of the OTB benchmark (Wu, Lim, Yang, CVPR 2013), plus the parsing of an
 // OTB-layout sequence folder. No GStreamer here, so the unit test can check the figures on hand-made boxes.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Multi-object tracking metrics: CLEAR-MOT (Bernardin & Stiefelhagen 2008: MOTA, MOTP, identity switches)
 // and the identity measures of Ristani et al. 2016 (IDF1, IDP, IDR). No GStreamer here, so the unit test
 // checks the figures on hand-made tracks.

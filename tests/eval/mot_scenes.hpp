@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Threshold-mode scenes with exact multi-object ground truth, the kinds an outside test found hard: balls
 // crossing (a small one over a big one), eight balls at random, balls entering, leaving and passing behind a
 // board, a lighting ramp with a shadow band, red balls among orange and magenta objects and red specks. The

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The robustness summary both evaluation tools print: OPE and SRE per sequence and per half, how far the
 // scores move between pixel formats and between starts, and whether the tracker's own state can be trusted
 // (alarm and re-acquisition figures). Plain text, no GStreamer.

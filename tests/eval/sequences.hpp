@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // OTB-layout sequence folders (img/<n>.jpg + groundtruth.txt), as both evaluation tools read them.
 #pragma once
 

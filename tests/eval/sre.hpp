@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Spatial robustness evaluation (SRE, Wu, Lim, Yang, CVPR 2013): the same sequence started from slightly
 // wrong boxes, so a score does not rest on one lucky initialisation.
 #pragma once

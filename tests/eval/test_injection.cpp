@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The injected failures (injection.hpp) and the honesty figures (honesty.hpp), on a synthetic sequence whose
 // target is a red square on grey and a second sequence that is plain blue.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The evaluation metrics on hand-made boxes, with the expected figures worked out by hand from the OTB
 // definitions (success: IoU > t for t = 0, 0.05, ..., 1; precision: centre error <= t px).
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The multi-object metrics on hand-made tracks whose MOTA and IDF1 are worked out by hand.
 #include <gtest/gtest.h>
 

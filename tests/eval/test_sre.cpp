@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The SRE start boxes, worked out by hand on a box whose 10 % steps are whole pixels, and the start offset
 // the tools take.
 #include <gtest/gtest.h>

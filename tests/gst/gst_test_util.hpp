@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Helpers shared by the gst-check element tests: buffers from cv::Mat frames, caps strings, a harness with
 // its own bus, ROI meta and bus-message reading, and preloading plugins before check forks the tests.
 // Include it before the GStreamer headers of a test: gstcheck.h defines macros (fail, ...) that clash with

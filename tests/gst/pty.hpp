@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // A pseudo-terminal standing in for a serial port: robotctl writes to its slave, the test reads the master.
 // Shared by the robotctl tests and the closed-loop robot simulation; include it after gstcheck.h (it uses
 // fail_unless).

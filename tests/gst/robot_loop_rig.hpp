@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The closed loop of the robot simulations (test_robot_sim*.cpp): a simulated robot's camera view goes
 // through appsrc ! colortrack ! robotctl, the commands come back over a pseudo-terminal and move the robot.
 // Each frame is pushed, then the loop waits for the command decided on that frame (robotctl's message

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // robotctl in a harness writing to a pseudo-terminal, and the frames with ROI metas the robotctl tests push:
 // shared by test_robotctl.cpp, test_robotctl_port.cpp and test_robotctl_settings.cpp. Include it after
 // gstcheck.h (it uses fail_unless).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The RTSP test's camera: gst-rtsp-server on 127.0.0.1 serving the synthetic scene as MJPEG or H.264, each
 // frame carrying its index in its top rows (so a client matches frames to ground truth whatever the latency),
 // and the scene clock shared across a restart. Run as `test-gst-rtsp --serve PORT EPOCH_NS CODEC` (see

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // GStreamer's analytics meta (1.24 and newer; built only when meson finds gstreamer-analytics-1.0):
 // colortrack mode=threshold on balls crossing, leaving and coming into the frame, followed by
 // objectdetectionoverlay (gst-plugins-bad), which draws the od mtds. Downstream of both, on every buffer: one

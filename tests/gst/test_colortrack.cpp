@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Element tests of colortrack on synthetic scenes with exact ground truth: tracking quality, dynamic scale,
 // template files, decoys, re-acquisition, ROI meta and bus messages, meta through videoscale, the reset
 // signal. C++ headers first: gstcheck.h defines macros (fail, ...) that clash with names in the standard

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Click to track: mouse-button presses sent upstream as GstNavigation events, the way a video sink's window
 // sends them, through "colortrack ! videoscale ! half-size caps". The clicks are given in the half-size
 // coordinates a user would click in the window, so the tests only pass when videoscale maps them back to

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // colortrack's handling of bad input: every case ends in a clear error (or, for a bad value set while
 // playing, a warning and the old value) on the bus naming the property or file; never a crash or a hang.
 // C++ headers first: gstcheck.h defines macros (fail, ...) that clash with names in the standard library.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // colortrack in every caps format and at odd sizes: the frame is read through the real strides (tracking
 // works), the overlay has the right colour in that format, and nothing else in the frame changes.
 // C++ headers first: gstcheck.h defines macros (fail, ...) that clash with names in the standard library.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // colortrack mode=threshold as an element: a red ball on clutter (one ROI meta with area, the message's
 // objects list), three balls crossing in I420 (ids held, one meta each), init-box learning a range that holds
 // under +-30% brightness, the mask overlay, and bad settings (clear errors; warnings and old values while

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // trackpublish's DocumentFile alone (GoogleTest, no GStreamer): whole lines in order, a reader that stops
 // reading fills the bounded queue (the oldest dropped and counted) and never holds write() or stop() past its
 // drain time, and a write that fails is reported.

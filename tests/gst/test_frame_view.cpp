@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // FrameView against videoconvert: a decoded frame in I420, NV12 or YUY2, read by colortrack, is byte for byte
 // the image videoconvert makes of it in BGRx (what a user with an RGB pipeline hands colortrack), for the
 // colorimetries decoders give: jpegdec's full range with centred chroma, and limited-range BT.601 and BT.709

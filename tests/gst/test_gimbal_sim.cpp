@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Closed loop through MAVLink: a simulated camera on a rate-limited two-axis gimbal (tests/support/
 // gimbal_sim.hpp) renders its view, appsrc ! colortrack ! robotctl protocol=mavlink mavlink-mode=gimbal
 // sends GIMBAL_MANAGER_SET_PITCHYAW to a UDP socket on loopback, and the test turns the gimbal at the rates

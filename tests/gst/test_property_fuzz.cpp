@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Property fuzz: random strings into every text property of colortrack, robotctl and trackpublish. Each value
 // is set in the NULL state; every so often the element is started (PAUSED) behind a two-frame source. Nothing
 // may crash or hang, and a start refused because of a value must name the property in its error.

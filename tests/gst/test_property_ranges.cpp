@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // gst-inspect tells the truth: every numeric property of colortrack, robotctl and trackpublish accepts its
 // declared minimum and maximum (set in the NULL state, read back unchanged) and GLib refuses a value just
 // outside them, and no property hides one of a base class (trackpublish's MQTT QoS once hid

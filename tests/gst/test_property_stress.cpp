@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Property stress: stress threads flip properties of colortrack (template and threshold mode; also its
 // targets: init-box, bins, and mode, which is refused while started), robotctl and trackpublish between valid
 // values while buffers flow. No element may crash, stop producing output, lose the meta it owes a tracked

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // gstglue::PropertyTable on an element of its own (three properties, one of each kind of apply): a value
 // refused before start is remembered (and, for text, kept so it reads back) for the start to fail on; a
 // value refused while started warns, names the property and keeps the old one; a read-at-start property

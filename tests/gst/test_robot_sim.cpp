@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Closed loop: a simulated robot's camera view goes through appsrc ! colortrack ! robotctl, the commands
 // come back over a pseudo-terminal and move the robot. Each frame is pushed, then the test waits for the
 // command decided on that frame (robotctl's message carries the frame's timestamp) and reads the bytes from

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Closed loop (robot_loop_rig.hpp): a second ball of the same colour crosses while the robot follows the
 // ball, in front of it and behind it, at several speeds, for both controllers.
 // C++ headers first: gstcheck.h defines macros (fail, ...) that clash with names in the standard library.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Closed loop (robot_loop_rig.hpp), issue 46: "robotctl acts on the new confidence: a test shows the robot
 // stopping, not following, when a cut or a distractor takes the box away". colortrack in template mode
 // (init-box on the ball), both controllers. The robot drives at its ball from 3 m, 12 degrees to the right

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // robotctl on a pseudo-terminal: exact bytes of every protocol and decision, the stops (EOS, flush, pause,
 // stop, stalled upstream, lost target), ROI selection (also from cvtracker), bus messages, MAVLink's stop
 // form, UDP. Ports that fail are in test_robotctl_port.cpp, bad settings in test_robotctl_settings.cpp.

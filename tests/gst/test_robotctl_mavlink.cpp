@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // robotctl protocol=mavlink over UDP on loopback, in a running pipeline (appsrc ! colortrack ! robotctl):
 // the stream captured and decoded field by field by node-mavlink (tests/support/node_mavlink.hpp), an
 // implementation independent of ours: every CRC valid, sequence numbers consecutive, our ids, heartbeats at

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // robotctl when its port fails: an unplugged adapter behind a symlink, a device link or FIFO that disappears
 // and comes back (never replaced by a regular file), a reader that stops reading, frames cut by a slow port.
 // C++ headers first: gstcheck.h defines macros (fail, ...) that clash with names in the standard library.

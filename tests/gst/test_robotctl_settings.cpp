@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // robotctl's settings: start-time settings changed while running, clear errors naming the property for bad
 // values, URL-like locations that are never files, a bad field of view while running.
 // C++ headers first: gstcheck.h defines macros (fail, ...) that clash with names in the standard library.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // robotctl over UDP when the peer goes away and comes back (a flight controller or robot restarting): the
 // connected socket sees the ICMP "port unreachable", robotctl warns once (not at every retry), and the first
 // datagram the peer hears when it is back is stop, as over a serial link. With MAVLink, a vehicle whose

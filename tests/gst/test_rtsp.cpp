@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // End-to-end test with a real RTSP server: a child process (this binary with --serve) runs gst-rtsp-server on
 // 127.0.0.1, serving the synthetic scene as MJPEG or H.264 (what nearly every IP camera sends: openh264 from
 // gst-plugins-bad) over RTP; the test runs

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // trackpublish's SendQueue alone (GoogleTest, no broker): the order in which documents go to the broker
 // whatever order Paho answers in. A failed send followed by the loss of its connection once put the later
 // documents in flight ahead of the failed one (frame 61 reached a subscriber before frame 60).

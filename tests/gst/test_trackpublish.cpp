@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // trackpublish: the JSON document of every frame against the ROI metas of the same buffer (file output), and
 // MQTT against a real broker the test starts: Debian's mosquitto on a free loopback port with its own config,
 // read back by a subscriber (Paho). Covers delivery in order at QoS 1, eight sources at once, a broker

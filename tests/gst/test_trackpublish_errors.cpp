@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // trackpublish when things go wrong: bad addresses, topics, client ids and TLS files refused naming the
 // property, a password never shown, an unreachable broker drained once at EOS, a full queue that says how
 // many it dropped, and a peer that takes the connection but is no working broker. C++ headers first:

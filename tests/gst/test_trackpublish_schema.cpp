@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // trackpublish's documents read by a consumer written against DL Streamer's gvametaconvert schema, field by
 // field as DL Streamer documents it (objects[] with detection {bounding_box {x_min, y_min, x_max, y_max},
 // confidence, label, label_id}, x, y, w, h, roi_type; resolution {width, height}; source; timestamp in

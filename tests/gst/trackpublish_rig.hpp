@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // What the trackpublish tests share: frames with ROI metas and the documents expected of them, a broker
 // (Debian's mosquitto on a free loopback port), a subscriber (Paho) and a publishing pipeline. Included by
 // test_trackpublish.cpp and test_trackpublish_errors.cpp, after gstcheck.h (it uses fail_unless).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // A UDP socket on loopback for the MAVLink tests: robotctl sends to its port (location=udp://127.0.0.1:PORT)
 // and the test takes the datagrams with their arrival times.
 #pragma once

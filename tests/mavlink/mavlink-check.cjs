@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The tests' independent MAVLink implementation: node-mavlink (npm, installed here by tests/bootstrap.sh),
 // so robotctl's frames are checked against someone else's reading of the MAVLink definitions.
 //   node mavlink-check.cjs encode < cases    one JSON case a line in, one frame as hex a line out:

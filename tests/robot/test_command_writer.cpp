@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // robotctl's CommandWriter against a fake port: the exact bytes the robot would receive when the port cuts
 // frames, fails and comes back, and how stop, pause and flush gate what is sent. No GStreamer.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The zone and proportional controllers and the failsafe, on exact figures (no I/O, given times).
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // MAVLink 2 frames: byte for byte against node-mavlink (an independent implementation, see
 // tests/support/node_mavlink.hpp), the CRC's check value, the protocol encoder's signs, units and stops, and
 // the parser the simulators use. Without node the node-mavlink test is skipped and the run reports "skipped"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Wire formats: exact bytes of every protocol.
 #include <gtest/gtest.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Where robotctl (and trackpublish) may send: udp://HOST:PORT parsed exactly, URL-like and drive-letter
 // strings never taken for file names, output paths judged without opening anything, and a FIFO without a
 // reader refused at once. GoogleTest, no GStreamer.

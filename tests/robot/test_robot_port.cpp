@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The ports robotctl writes through (robot/src/robot_port.cpp), without the element: a regular file, a FIFO
 // with and without a reader, a file that changes kind between opens, a directory, a serial port that is not
 // there, and which port the settings name.

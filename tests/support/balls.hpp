@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Synthetic scenes for threshold mode: shaded balls of given colours moving along piecewise-linear paths over
 // a cluttered background, with optional salt-and-pepper noise, a specular highlight (a hole in the colour
 // blob) and a global brightness change. Exact ground truth per ball and frame.

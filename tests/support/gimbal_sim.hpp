@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // A simulated camera on a two-axis gimbal (yaw and pitch, each rate-limited) looking at a red ball far away
 // in a given direction. It renders what the camera sees (pinhole model) and turns at the rates a
 // GIMBAL_MANAGER_SET_PITCHYAW asks for, so robotctl's MAVLink gimbal mode can be tested in a closed loop.

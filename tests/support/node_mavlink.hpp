@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The tests' way to node-mavlink, an independent MAVLink implementation (tests/mavlink/mavlink-check.cjs,
 // installed by tests/bootstrap.sh): frames it encodes, and its decoding of captured datagrams. meson gives
 // the paths in the environment (MAVLINK_NODE, MAVLINK_CHECK).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Smooth random texture for detector tests: uniform noise blurred and stretched to the full grey range.
 #pragma once
 

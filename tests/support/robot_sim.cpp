@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 #include "robot_sim.hpp"
 
 #include <cmath>

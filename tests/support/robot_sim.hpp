@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // A simulated differential-drive robot with a forward camera, in a flat world with one coloured ball (and,
 // optionally, a second ball of the same colour that rolls across: a distractor), seen against a checkered
 // floor and the sky or, after a cut, against another place's mottled floor and wall. It renders what the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Synthetic scene with exact ground truth: a coloured, textured object on a textured background that
 // moves, turns, grows and shrinks while the lighting changes. One generator serves the tests, the demo and
 // the benchmarks, so every figure is produced on the same kind of input.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Shrinking an 8-bit image by area averaging, as cv::resize's INTER_AREA does, for the search window the
 // fused method cuts every frame.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Threshold mode: sharing one blob between several tracked objects. Two balls of one colour that touch or
 // pass over each other make one connected blob; each ball's pixels are still the ones nearest it.
 #pragma once

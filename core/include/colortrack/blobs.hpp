@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Threshold mode, pixel side: HSV range segmentation through a lookup table, morphological clean-up and
 // connected components ("blobs"), plus learning a range from the pixels of a box.
 #pragma once

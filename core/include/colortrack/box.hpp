@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Box arithmetic shared by the template tracker's parts.
 #pragma once
 

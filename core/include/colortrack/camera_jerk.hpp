@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // A camera that jerks: the whole picture jumps further in one frame than the fused method's window reaches (a
 // bump, a gimbal that snaps, a robot that turns in bursts). On a frame where the window lost the target,
 // GlobalMotion compares a small copy of it with the frame before's; a shift of more than kJerkSides target

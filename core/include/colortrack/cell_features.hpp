@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Gradient-orientation cell features (HOG-like) and intensity: the shape cue of the correlation filter.
 //
 // Written here rather than taken from dlib's FHOG: dlib is a large header library whose fhog works on its own

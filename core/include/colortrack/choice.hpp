@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // One value of an enumerated choice (a controller, a protocol, a lock-on rule...), declared once as a row of
 // its enum's table: the value, the short name a user types and what it means. The elements' enum types
 // (gst-inspect-1.0, gst-launch-1.0 names) are generated from these tables, so a new value is one row.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Colour spaces and per-pixel bin indices: the first step of colour indexing.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The colour methods' frame loop (indexing, discriminative, and fused until its filters start): search
 // around the Kalman prediction while tracking, over the whole frame while searching, and now and then over
 // the whole frame for a verified target while the track is colour-only. What scores the windows is a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Multi-channel discriminative correlation filter (MOSSE / DSST / Staple's translation filter), learnt online
 // in the Fourier domain over any feature channels of a fixed-size patch, and the 1-D variant over scales.
 #pragma once

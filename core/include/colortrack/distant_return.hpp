@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // A track reported `tracking` again, after frames it was not, far from where it was last reported `tracking`
 // (issue 46): whatever it followed meanwhile (a coast's unconfident peaks, a look-alike's doubt, a fallen
 // score) led it there, and it may be on something else. Its next tracked frames are held back (reported

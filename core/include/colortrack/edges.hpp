@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Edge density / edge energy verification: rejects same-colour false positives.
 #pragma once
 

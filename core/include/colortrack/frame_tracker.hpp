@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The one interface the element drives, whatever the mode: a frame in, the tracks it reports out. The
 // template tracker (tracker.hpp) and the threshold tracker (threshold_tracker.hpp) implement it, so the
 // element writes its metadata, messages, overlay and trails once for both.

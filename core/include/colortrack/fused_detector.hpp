@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The fused method's detector: a correlation filter over gradient-orientation cells and intensity (shape) and
 // the object-versus-surroundings colour likelihood (colour), their response maps summed as in Staple
 // (Bertinetto et al. 2016), with a DSST scale filter and a peak-to-sidelobe confidence.

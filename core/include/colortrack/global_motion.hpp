@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The frame's global motion: how the background (the camera's view) moved in the image since the last frame,
 // from the phase correlation of small grey copies of consecutive frames, the target's box left out.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Per-channel normalised histograms and the weighted histogram-intersection match value.
 #pragma once
 

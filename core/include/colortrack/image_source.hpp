@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Where the tracker reads pixels from: lets the GStreamer layer convert only the regions the tracker
 // asks for (a search window while tracking) instead of whole frames.
 #pragma once

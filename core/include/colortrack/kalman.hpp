@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // 9-state constant-acceleration Kalman filter over (x, y, scale).
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The template tracker's one track: a Kalman filter on centre and scale, the box's aspect, the state and the
 // counters every detection method moves. Plain data with the steps all methods share.
 #pragma once

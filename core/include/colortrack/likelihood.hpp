@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Object-versus-surroundings colour likelihood: P(object | colour) from joint colour histograms of the
 // target box and of the ring around it (the idea behind DAT, Possegger et al. 2015). Colours the
 // surroundings share count less, which is what a plain template histogram cannot express.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The target's extent read off a colour likelihood map: the box whose inside is most object-like and whose
 // surroundings are least (DAT, Possegger et al. 2015, sizes its box from the same map). The fused method's
 // scale filter compares gradient patterns at a few sizes and lags a target that shrinks or changes shape;

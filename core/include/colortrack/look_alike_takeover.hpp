@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The window's peak moving onto the place where the window before showed a second object (issue 46): the
 // target does not jump to where its twin stood, so the track has most likely gone over to the look-alike. The
 // frame before need not have been a detection: a twin beside a target that is briefly hard to see lowers the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Method::Discriminative's colour cue, which the fused method also searches with until its filters start.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Method::Indexing's colour cue, which the discriminative method falls back on until it has learnt its
 // likelihood.
 #pragma once

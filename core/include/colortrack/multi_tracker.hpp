@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Threshold mode, tracking side: one Kalman track per object, blobs assigned to tracks frame to frame, stable
 // ids through crossings and short disappearances.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Output files (robotctl's and trackpublish's location): opened for writing without ever blocking the thread
 // that opens them.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The fused method's re-detection over the whole frame: the colour likelihood proposes places at a few sizes,
 // the correlation filter and its scale filter judge them, and only a confident one restarts the track.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // A search region read at reduced resolution as colour bins: `f` full-resolution pixels make one local pixel
 // (nearest neighbour: a sample of the pixels is enough for histograms and likelihoods), local coordinates
 // start at the padded region's corner. Boxes are reduced to a smaller side of about kReducedWindowSide

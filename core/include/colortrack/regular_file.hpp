@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Input files read without ever blocking: a path named as an image to read must be a regular file.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Threshold mode: one blob that is several round objects side by side. Balls that touch or overlap when they
 // first appear make one blob, and no track yet tells them apart; their shape does (a disc each, joined by a
 // narrower neck).

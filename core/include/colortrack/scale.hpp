@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Dynamic scale: pick the best box size around a detection.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // A cut to another scene: the picture's colours change as a whole between two frames (a camera switched, a
 // stream that jumps, an edited video). The target cannot be where it was then, so the track is lost at once
 // instead of coasting on the new scene.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // A sudden fall of the reported score (issue 46: a track that went over to a look-alike, or slid off its
 // target, keeps its usual peak and colour cues; what falls is the score weighted by the start's look,
 // StartLikeness). A tracked frame whose score falls well under its recent level and under a low bar puts the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Image buffers that keep their memory from one frame to the next.
 #pragma once
 

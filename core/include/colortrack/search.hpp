@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Sweeping a window over a search region: the fast path (cell integral histograms on a coarse grid,
 // then running histograms at full resolution) and the brute-force reference.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Parsing of the user-facing setting strings. Errors come back as text naming what is wrong, so the
 // GStreamer layer can report them against the property.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // How much the tracked box still looks like the target at the start (issue 46: a check against the
 // never-updated first appearance beside the adapted model). The learners adapt to whatever the box holds, so
 // a track that slid onto a team-mate or a passer-by keeps its usual peak and colour cues; the start's colour

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Which of several tracked objects a robot follows, and keeping to it: once locked onto a track, robotctl
 // follows that track's id until the track is gone, instead of switching whenever another object becomes the
 // lowest id or the largest.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // What the template tracker knows about the target's looks: the template image, its colour histogram, its
 // edges, and the object-versus-surroundings colour likelihood the colour-learning methods share.
 #pragma once

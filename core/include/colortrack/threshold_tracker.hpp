@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Threshold mode as one tracker: the frame segmented into blobs (blobs.hpp), the blobs followed by the
 // multi-object tracker (multi_tracker.hpp).
 #pragma once

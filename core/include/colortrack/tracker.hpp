@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // The one entry point the element uses: settings in, frame in, track out.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // YUV frames read as BGR byte for byte as GStreamer's videoconvert converts them to RGB (the frame's own
 // matrix and range in videoconvert's integer maths, each chroma sample covering its block of pixels), so that
 // the tracker sees the same image whether a source delivers YUV or RGB converted upstream.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // robotctl's writer: a thread that sends the newest drive command to a Port at a fixed rate (and the
 // protocol's heartbeat once a second, MAVLink's), stops the robot when buffers stall, reconnects a lost port
 // with back-off and completes frames a slow port cut. It knows no GStreamer: what happens is reported to a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Robot following: from where the target is in the frame to drive commands for a differential-drive base.
 // Pure logic (no I/O, no clock): every input, including the time, is given by the caller, so the
 // behaviour is exactly reproducible in tests.

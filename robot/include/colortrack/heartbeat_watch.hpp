@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Whether the vehicle at the other end of a MAVLink link still answers: the MAVLink convention that a link
 // is lost when no HEARTBEAT came from that system for a while (3 s is usual). Bytes and clock in, state out;
 // no I/O, no GStreamer.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // MAVLink 2 frames of the three messages robotctl sends (bytes out, no I/O), and the parsing of a frame for
 // the tests' simulators.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Which port a robot's settings name, decided in one place: a serial device when one is given, else a UDP
 // destination (udp://HOST:PORT), else a file, FIFO, pty or stdout ("-").
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Wire formats of drive commands (bytes out; no I/O). Layouts are documented in docs/robotctl.md.
 #pragma once
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // Where robotctl's bytes go: a file, FIFO, pseudo-terminal, stdout or a serial port, behind one interface
 // the command writer uses (tests give it a fake).
 #pragma once

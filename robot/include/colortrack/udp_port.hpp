@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
 // robotctl's UDP transport (location=udp://HOST:PORT): each command a datagram to a flight controller,
 // mavlink-router or a ground station, through GIO's sockets. No GStreamer, like the other ports.
 #pragma once
