@@ -2,12 +2,14 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """Test of colortrack_app.py: runs it on videotestsrc's ball and checks its JSON lines (one per frame, every
 field there with its type) and that the box follows the ball; then in threshold mode, that each frame's
-"objects" list (read through python3-gst-1.0's overrides) holds the ball. Exit code 77 (meson: skipped)
-without PyGObject."""
+"objects" list (read through python3-gst-1.0's overrides) holds the ball, with the default range and, on a
+red ball in a file, with the range learnt from --init-box. Exit code 77 (meson: skipped) without PyGObject."""
 import json
 import math
+import os
 import subprocess
 import sys
+import tempfile
 
 FRAMES = 150
 WIDTH, HEIGHT, RADIUS = 320, 240, 20
@@ -67,18 +69,41 @@ def main():
     if with_meta != tracked and tracked:
         errors.append("boxes without a ROI meta")
     errors += check_threshold_objects()
+    errors += check_threshold_init_box(Gst)
     for e in errors[:10]:
         print("FAIL:", e)
     return 1 if errors else 0
 
 
-def check_threshold_objects():
+def write_red_ball_file(Gst, path):
+    """The test pattern's ball in red (the app's default range is green), as Motion JPEG in AVI."""
+    Gst.init(None)
+    pipeline = Gst.parse_launch(
+        f"videotestsrc pattern=ball foreground-color=0xffe02020 num-buffers={FRAMES} ! "
+        f"video/x-raw,width={WIDTH},height={HEIGHT},framerate=30/1 ! jpegenc quality=95 ! avimux ! "
+        f"filesink location={path}")
+    pipeline.set_state(Gst.State.PLAYING)
+    message = pipeline.get_bus().timed_pop_filtered(30 * Gst.SECOND, Gst.MessageType.EOS | Gst.MessageType.ERROR)
+    pipeline.set_state(Gst.State.NULL)
+    return message is not None and message.type == Gst.MessageType.EOS
+
+
+def check_threshold_init_box(Gst):
+    """Threshold mode on a file with --init-box (issue 48: it used to be ignored for the default range)."""
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, "red-ball.avi")
+        if not write_red_ball_file(Gst, path):
+            return ["could not write the red ball's file (jpegenc and avimux, gstreamer1.0-plugins-good)"]
+        return check_threshold_objects(["--init-box", "140,100,40,40", path], "with --init-box")
+
+
+def check_threshold_objects(extra=(), what="default range"):
     """Threshold mode: the ball is among the objects of nearly every frame (it is confirmed from frame 2)."""
-    out = subprocess.run([sys.executable, sys.argv[1], "--frames", str(FRAMES), "--mode", "threshold"],
+    out = subprocess.run([sys.executable, sys.argv[1], "--frames", str(FRAMES), "--mode", "threshold", *extra],
                          capture_output=True, text=True, timeout=60)
     sys.stderr.write(out.stderr)
     if out.returncode != 0:
-        return [f"colortrack_app.py --mode threshold exited with {out.returncode}"]
+        return [f"colortrack_app.py --mode threshold {' '.join(extra)} exited with {out.returncode}"]
     on_ball = 0
     for number, line in enumerate(out.stdout.splitlines()):
         objects = json.loads(line).get("objects")
@@ -87,8 +112,10 @@ def check_threshold_objects():
         cx, cy = ball_centre(number)
         on_ball += any(math.hypot(o["box"][0] + o["box"][2] / 2 - cx, o["box"][1] + o["box"][3] / 2 - cy) <= 6
                        for o in objects)
-    print(f"threshold mode: the ball among the objects in {on_ball}/{FRAMES} frames")
-    return [] if on_ball >= 0.9 * FRAMES else [f"threshold mode: the ball listed in only {on_ball} frames"]
+    print(f"threshold mode ({what}): the ball among the objects in {on_ball}/{FRAMES} frames")
+    if on_ball < 0.9 * FRAMES:
+        return [f"threshold mode ({what}): the ball listed in only {on_ball} frames"]
+    return []
 
 
 if __name__ == "__main__":

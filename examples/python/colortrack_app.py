@@ -23,7 +23,8 @@ and a note goes to stderr.
 Usage: colortrack_app.py [--frames N] [--init-box X,Y,W,H] [--mode threshold [--hsv-lower H,S,V --hsv-upper
 H,S,V]] [FILE-OR-URI]
 Without FILE-OR-URI: videotestsrc's green ball on black, 320x240 at 30 fps, init-box on the ball at frame 0
-(threshold mode: the ball's green range instead).
+(threshold mode: the ball's green range instead). In threshold mode --init-box learns the colour range from
+the object in the box on the first frame, and --hsv-lower/--hsv-upper give the range instead.
 Needs Debian's python3-gi, gir1.2-gstreamer-1.0 and gir1.2-gst-plugins-base-1.0 (and python3-gst-1.0 for
 threshold mode's objects), hence /usr/bin/python3 above (a pyenv or venv python3 first in PATH usually has no
 gi); another Python with PyGObject runs it as `that-python colortrack_app.py`.
@@ -56,6 +57,9 @@ def build_pipeline(args):
     tracker = pipeline.get_by_name("tracker")
     if args.mode == "threshold":
         tracker.set_property("mode", "threshold")
+        if args.init_box:  # the element learns the colour range from the box on the first frame
+            tracker.set_property("init-box", args.init_box)
+            return pipeline
         lower, upper = (args.hsv_lower, args.hsv_upper) if args.hsv_lower else BALL_HSV
         tracker.set_property("hsv-lower", lower)
         tracker.set_property("hsv-upper", upper)
@@ -110,6 +114,13 @@ def main():
     parser.add_argument("--hsv-upper", help='threshold mode: "h,s,v" upper end of the range')
     parser.add_argument("input", nargs="?", help="video file or URI (default: videotestsrc's ball)")
     args = parser.parse_args()
+    if (args.hsv_lower is None) != (args.hsv_upper is None):
+        parser.error("--hsv-lower and --hsv-upper go together")
+    if args.hsv_lower and args.mode != "threshold":
+        parser.error("--hsv-lower/--hsv-upper are for --mode threshold")
+    if args.hsv_lower and args.init_box:
+        parser.error("in threshold mode --init-box learns the colour range from the box: give it or "
+                     "--hsv-lower/--hsv-upper, not both")
 
     Gst.init(None)
     try:
