@@ -35,6 +35,26 @@ std::string textOf(const char *text, int code) {
   return known ? known : "error " + std::to_string(code);
 }
 
+// A broker that answered and refused says why in its CONNACK return code (MQTT 3.1.1, 1-5), which Paho
+// gives as the failure's code; its own errors are negative.
+ConnectFailure failureOf(const MQTTAsync_failureData *data) {
+  if (!data) return {"connection failed", ConnectFault::Unreachable};
+  switch (data->code) {
+    case 1:
+      return {"the broker refused MQTT 3.1.1 (CONNACK return code 1)", ConnectFault::Broker};
+    case 2:
+      return {"the broker rejected the client id (CONNACK return code 2)", ConnectFault::ClientId};
+    case 3:
+      return {"the broker's MQTT service is unavailable (CONNACK return code 3)", ConnectFault::Broker};
+    case 4:
+      return {"bad user name or password (CONNACK return code 4)", ConnectFault::Credentials};
+    case 5:
+      return {"not authorised (CONNACK return code 5)", ConnectFault::Credentials};
+    default:
+      return {textOf(data->message, data->code), ConnectFault::Unreachable};
+  }
+}
+
 }  // namespace
 
 std::string brokerUri(const std::string &address) {
@@ -119,11 +139,10 @@ struct MqttPublisher::Callback {
   using Send = SendContext;
 
   static void connected(void *context, MQTTAsync_successData *) {
-    static_cast<MqttPublisher *>(context)->connectDone(true, "");
+    static_cast<MqttPublisher *>(context)->connectDone(true);
   }
   static void connectFailed(void *context, MQTTAsync_failureData *data) {
-    static_cast<MqttPublisher *>(context)->connectDone(
-        false, data ? textOf(data->message, data->code) : "connection failed");
+    static_cast<MqttPublisher *>(context)->connectDone(false, failureOf(data));
   }
   static void lost(void *context, char *cause) {
     static_cast<MqttPublisher *>(context)->lost(cause && *cause ? cause : "the broker closed the connection");
@@ -200,12 +219,15 @@ void MqttPublisher::destroyClient(void *&client) {
   client = nullptr;
 }
 
-bool MqttPublisher::waitFirstAttempt(milliseconds timeout, std::string &why) {
+bool MqttPublisher::waitFirstAttempt(milliseconds timeout, ConnectFailure &failure) {
   std::unique_lock<std::mutex> lock(mutex_);
   wake_.wait_for(lock, timeout, [this] { return attempted_ || connected_; });
-  why = connected_
-            ? ""
-            : (attempted_ ? lastError_ : "no answer within " + std::to_string(timeout.count()) + " ms");
+  if (connected_)
+    failure = {};
+  else if (attempted_)
+    failure = lastFailure_;
+  else
+    failure = {"no answer within " + std::to_string(timeout.count()) + " ms", ConnectFault::Unreachable};
   return connected_;
 }
 
@@ -295,7 +317,7 @@ void MqttPublisher::connect(std::unique_lock<std::mutex> &lock) {
   lock.lock();
   if (rc != MQTTASYNC_SUCCESS) {
     lock.unlock();
-    connectDone(false, textOf(nullptr, rc));
+    connectDone(false, {textOf(nullptr, rc), ConnectFault::Unreachable});
     lock.lock();
   }
 }
@@ -313,7 +335,7 @@ bool MqttPublisher::replaceClient(std::unique_lock<std::mutex> &lock) {
   client_ = nullptr;
   std::string why;
   const bool made = createClient(why);
-  if (!made) connectDone(false, why);
+  if (!made) connectDone(false, {why, ConnectFault::Unreachable});
   lock.lock();
   return made;
 }
@@ -364,7 +386,7 @@ void MqttPublisher::sendFailed(std::uint64_t sequence, std::uint64_t attempt) {
   wake_.notify_all();
 }
 
-void MqttPublisher::connectDone(bool ok, const std::string &why) {
+void MqttPublisher::connectDone(bool ok, const ConnectFailure &failure) {
   bool again = false, first = false;
   milliseconds retryIn{0};
   {
@@ -380,7 +402,7 @@ void MqttPublisher::connectDone(bool ok, const std::string &why) {
       // A peer that keeps dropping the connection soon after it is made is retried less and less often.
       if (!flapping_) backoff_ = kFirstBackoff;
     } else {
-      lastError_ = why;
+      lastFailure_ = failure;
       first = !failedSinceSuccess_;
       failedSinceSuccess_ = true;
       retryIn = backoff_;
@@ -392,7 +414,7 @@ void MqttPublisher::connectDone(bool ok, const std::string &why) {
   if (ok)
     listener_.connected(redactedAddress(config_.address), again);
   else
-    listener_.connectFailed(redactedAddress(config_.address), why, first, retryIn);
+    listener_.connectFailed(redactedAddress(config_.address), failure, first, retryIn);
 }
 
 void MqttPublisher::lost(const std::string &why) {

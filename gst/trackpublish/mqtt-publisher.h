@@ -30,13 +30,22 @@ struct MqttConfig {
   std::size_t maxQueued = 1000;  // documents waiting for the broker, beyond which the oldest are dropped
 };
 
+// What a failed connection points at: the network or address, or a broker that answered and refused (its
+// CONNACK return code says why).
+enum class ConnectFault { Unreachable, Credentials, ClientId, Broker };
+
+struct ConnectFailure {
+  std::string why;
+  ConnectFault fault = ConnectFault::Unreachable;
+};
+
 // What the publisher reports, from its own threads (never the streaming thread).
 class MqttListener {
  public:
   virtual ~MqttListener() = default;
   virtual void connected(const std::string &address, bool again) = 0;
   // `first`: the first failure since the last success (later ones repeat the same news).
-  virtual void connectFailed(const std::string &address, const std::string &why, bool first,
+  virtual void connectFailed(const std::string &address, const ConnectFailure &failure, bool first,
                              std::chrono::milliseconds retryIn) = 0;
   // `first`: not the repeat of a connection that keeps failing soon after it is made (a peer that answers
   // CONNECT and then nothing an MQTT client understands): that news is given once.
@@ -75,7 +84,7 @@ class MqttPublisher {
   // cannot work at all (a bad address).
   bool start(std::string &why);
   // Waits up to `timeout` for the first connection attempt to end; true when connected.
-  bool waitFirstAttempt(std::chrono::milliseconds timeout, std::string &why);
+  bool waitFirstAttempt(std::chrono::milliseconds timeout, ConnectFailure &failure);
   // Queues a document; never waits for the network.
   void publish(std::string topic, std::string payload);
   // Waits up to `timeout` until everything queued has been delivered; true when it has.
@@ -99,7 +108,7 @@ class MqttPublisher {
   void send(std::unique_lock<std::mutex> &lock);
   void sent(std::uint64_t sequence, std::uint64_t attempt);
   void sendFailed(std::uint64_t sequence, std::uint64_t attempt);
-  void connectDone(bool ok, const std::string &why);
+  void connectDone(bool ok, const ConnectFailure &failure = {});
   void lost(const std::string &why);
   void abandonUnanswered(std::unique_lock<std::mutex> &lock);
 
@@ -115,7 +124,7 @@ class MqttPublisher {
   bool connected_ = false, connecting_ = false, everConnected_ = false, stopping_ = false;
   bool attempted_ = false;      // the first connection attempt has ended
   bool replaceClient_ = false;  // the connection was lost: the next one gets a new client
-  std::string lastError_;
+  ConnectFailure lastFailure_;
   bool failedSinceSuccess_ = false;
   bool flapping_ = false;  // the last connection was lost soon after it was made
   std::chrono::steady_clock::time_point connectedAt_;

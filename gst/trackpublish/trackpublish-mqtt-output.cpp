@@ -23,6 +23,30 @@ std::string replaceAll(std::string text, const std::string &what, const std::str
   return text;
 }
 
+// "Cannot reach MQTT broker ADDRESS (the properties at fault): why", or "MQTT broker ADDRESS refused the
+// connection (...)" when it answered: what a failed connection says, as a warning or an error.
+std::string describeFailure(const std::string &address, const ConnectFailure &failure) {
+  const std::string shown = gstglue::validUtf8(address);
+  switch (failure.fault) {
+    case ConnectFault::Credentials:
+      return "MQTT broker " + shown +
+             " refused the connection (properties 'username' and 'password'): " + failure.why;
+    case ConnectFault::ClientId:
+      return "MQTT broker " + shown + " refused the connection (property 'client-id'): " + failure.why;
+    case ConnectFault::Broker:
+      return "MQTT broker " + shown +
+             " refused the connection (the broker at property 'address'): " + failure.why;
+    case ConnectFault::Unreachable:
+      break;
+  }
+  // Over TLS a CA that does not sign the broker's certificate, or a certificate that does not match its
+  // key, fails the same way as a wrong address: the message names every property that may be at fault.
+  const char *suspects = usesTls(address) ? "property 'address', or the TLS settings 'tls-ca-file', "
+                                            "'tls-cert-file', 'tls-key-file', 'tls-verify'"
+                                          : "property 'address'";
+  return "Cannot reach MQTT broker " + shown + " (" + suspects + "): " + failure.why;
+}
+
 // The publisher's news as the element's warnings and log.
 class ElementMqttListener : public MqttListener {
  public:
@@ -32,21 +56,14 @@ class ElementMqttListener : public MqttListener {
     GST_INFO_OBJECT(element_, "%s MQTT broker %s", again ? "reconnected to" : "connected to",
                     address.c_str());
   }
-  void connectFailed(const std::string &address, const std::string &why, bool first,
+  void connectFailed(const std::string &address, const ConnectFailure &failure, bool first,
                      milliseconds retryIn) override {
-    GST_DEBUG_OBJECT(element_, "cannot reach %s: %s; retrying in %lld ms", address.c_str(), why.c_str(),
-                     static_cast<long long>(retryIn.count()));
+    GST_DEBUG_OBJECT(element_, "cannot connect to %s: %s; retrying in %lld ms", address.c_str(),
+                     failure.why.c_str(), static_cast<long long>(retryIn.count()));
     if (!first) return;
-    // Over TLS a CA that does not sign the broker's certificate, or a certificate that does not match its
-    // key, fails the same way as a wrong address: the message names every property that may be at fault.
-    const char *suspects = usesTls(address)
-                               ? "property 'address', or the TLS settings 'tls-ca-file', 'tls-cert-file', "
-                                 "'tls-key-file', 'tls-verify'"
-                               : "property 'address'";
     GST_ELEMENT_WARNING(element_, RESOURCE, OPEN_WRITE,
-                        ("Cannot reach MQTT broker %s (%s): %s. Retrying; documents are queued (up to "
-                         "max-queued=%u).",
-                         gstglue::validUtf8(address).c_str(), suspects, why.c_str(), maxQueued_),
+                        ("%s. Retrying; documents are queued (up to max-queued=%u).",
+                         describeFailure(address, failure).c_str(), maxQueued_),
                         (nullptr));
   }
   void connectionLost(const std::string &address, const std::string &why, std::size_t queued,
@@ -216,11 +233,12 @@ std::unique_ptr<DocumentOutput> openMqttOutput(const OutputContext &c) {
     return nullptr;
   }
   // The client's own connect timeout is 5 s; a little more so its answer arrives first.
-  if (s.failOnConnect && !output->publisher().waitFirstAttempt(milliseconds(6000), why)) {
-    GST_ELEMENT_ERROR(c.element, RESOURCE, OPEN_WRITE,
-                      ("Cannot reach MQTT broker %s (property 'address', fail-on-connect=true): %s.",
-                       gstglue::validUtf8(redactedAddress(s.address)).c_str(), why.c_str()),
-                      (nullptr));
+  ConnectFailure failure;
+  if (s.failOnConnect && !output->publisher().waitFirstAttempt(milliseconds(6000), failure)) {
+    GST_ELEMENT_ERROR(
+        c.element, RESOURCE, OPEN_WRITE,
+        ("%s (fail-on-connect=true).", describeFailure(redactedAddress(s.address), failure).c_str()),
+        (nullptr));
     output->publisher().stop(milliseconds(0));
     return nullptr;
   }

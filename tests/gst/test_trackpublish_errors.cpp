@@ -259,6 +259,44 @@ GST_START_TEST(test_false_broker_that_talks_garbage_warns_once) {
 }
 GST_END_TEST;
 
+// A broker that wants a password (issue 48): a wrong one is reported as refused, naming 'username' and
+// 'password' rather than the address, as a warning and, with fail-on-connect, as the start's error; the
+// password itself is never shown. The right one delivers every document.
+GST_START_TEST(test_wrong_password_names_the_credentials) {
+  const int port = freePort();
+  Broker broker(port, 0, "alice", "right-secret");
+  const std::string credentials = "refused the connection (properties 'username' and 'password')";
+  {
+    Publisher p("address=" + broker.address() + " username=alice password=wrong-secret drain-timeout=0");
+    fail_unless(p.play() != GST_STATE_CHANGE_FAILURE);
+    for (int i = 0; i < 10; ++i) p.push(i);
+    fail_unless(
+        Subscriber::waitFor([&] { return anyContains(p.messages(GST_MESSAGE_WARNING), credentials); }, 7),
+        "no warning naming the credentials");
+    p.endAndWait();
+    const std::vector<std::string> warnings = p.messages(GST_MESSAGE_WARNING);
+    for (const std::string &w : warnings) std::printf("wrong password: %s\n", w.c_str());
+    fail_unless_equals_int(countContaining(warnings, credentials), 1);
+    fail_unless_equals_int(countContaining(warnings, "property 'address'"), 0);
+    fail_unless_equals_int(countContaining(warnings, "wrong-secret"), 0);
+  }
+  {
+    Publisher p("address=" + broker.address() + " username=alice password=wrong-secret fail-on-connect=true");
+    fail_unless_equals_int(p.play(), GST_STATE_CHANGE_FAILURE);
+    fail_unless(anyContains(p.messages(GST_MESSAGE_ERROR), credentials),
+                "the start's error does not name them");
+  }
+  {
+    Publisher p("address=" + broker.address() + " username=alice password=right-secret fail-on-connect=true");
+    fail_unless(p.play() != GST_STATE_CHANGE_FAILURE);
+    for (int i = 0; i < 10; ++i) p.push(i);
+    p.endAndWait();
+    fail_unless(p.messages(GST_MESSAGE_WARNING).empty(),
+                "warnings with the right password (documents lost?)");
+  }
+}
+GST_END_TEST;
+
 }  // namespace
 
 static Suite *trackpublish_errors_suite(void) {
@@ -272,6 +310,7 @@ static Suite *trackpublish_errors_suite(void) {
   tcase_add_test(tc, test_full_queue_drops_the_oldest_and_says_how_many);
   tcase_add_test(tc, test_false_broker_that_goes_silent_is_reported);
   tcase_add_test(tc, test_false_broker_that_talks_garbage_warns_once);
+  tcase_add_test(tc, test_wrong_password_names_the_credentials);
   return s;
 }
 

@@ -155,19 +155,27 @@ inline int freePort() {
 
 // Debian's mosquitto on 127.0.0.1:`port`, persistent (a restart keeps the subscriber's session and the
 // messages queued for it), in a directory of its own. With `tlsPort`, also a TLS listener there, with a
-// certificate for 127.0.0.1 signed by a certificate authority of the test's own (ca.pem in dir()).
+// certificate for 127.0.0.1 signed by a certificate authority of the test's own (ca.pem in dir()). With
+// `user`, only that user with `password` may connect (mosquitto_passwd's password file).
 class Broker {
  public:
-  explicit Broker(int port, int tlsPort = 0) : port_(port) {
+  explicit Broker(int port, int tlsPort = 0, const std::string &user = "", const std::string &password = "")
+      : port_(port) {
     gchar *dir = g_dir_make_tmp("trackpublish-broker-XXXXXX", nullptr);
     dir_ = dir;
     g_free(dir);
     const std::string config = dir_ + "/mosquitto.conf";
     std::ofstream out(config);
     // `user`: started by root, mosquitto would switch to its own user, which cannot write our directory.
-    out << "user " << g_get_user_name() << "\nlistener " << port
-        << " 127.0.0.1\nallow_anonymous true\npersistence true\n"
+    out << "user " << g_get_user_name() << "\nlistener " << port << " 127.0.0.1\nallow_anonymous "
+        << (user.empty() ? "true" : "false") << "\npersistence true\n"
         << "persistence_location " << dir_ << "/\nmax_queued_messages 100000\n";
+    if (!user.empty()) {
+      const std::string command = "mosquitto_passwd -b -c '" + dir_ + "/passwords' '" + user + "' '" +
+                                  password + "' > /dev/null 2>&1";
+      fail_unless(std::system(command.c_str()) == 0, "mosquitto_passwd (package mosquitto) failed");
+      out << "password_file " << dir_ << "/passwords\n";
+    }
     if (tlsPort) {
       makeCertificates();
       out << "listener " << tlsPort << " 127.0.0.1\ncafile " << dir_ << "/ca.pem\ncertfile " << dir_
