@@ -297,6 +297,31 @@ GST_START_TEST(test_wrong_password_names_the_credentials) {
 }
 GST_END_TEST;
 
+// A peer that takes the TCP connection and never answers the CONNECT (a listening socket nobody accepts
+// on): a warning within the client's connect timeout, not only the count at EOS (issue 48).
+GST_START_TEST(test_silent_peer_is_reported_within_the_connect_timeout) {
+  const int port = freePort();
+  const int fd = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  address.sin_port = htons(static_cast<std::uint16_t>(port));
+  fail_unless(bind(fd, reinterpret_cast<sockaddr *>(&address), sizeof address) == 0 && listen(fd, 8) == 0);
+  Publisher p("address=tcp://127.0.0.1:" + std::to_string(port) + " drain-timeout=0");
+  fail_unless(p.play() != GST_STATE_CHANGE_FAILURE);
+  const auto start = Clock::now();
+  for (int i = 0; i < 10; ++i) p.push(i);
+  fail_unless(
+      Subscriber::waitFor(
+          [&] { return anyContains(p.messages(GST_MESSAGE_WARNING), "Cannot reach MQTT broker"); }, 8),
+      "no warning within 8 s");
+  std::printf("silent peer: warned after %.1f s\n",
+              std::chrono::duration<double>(Clock::now() - start).count());
+  p.endAndWait();
+  close(fd);
+}
+GST_END_TEST;
+
 }  // namespace
 
 static Suite *trackpublish_errors_suite(void) {
@@ -311,6 +336,7 @@ static Suite *trackpublish_errors_suite(void) {
   tcase_add_test(tc, test_false_broker_that_goes_silent_is_reported);
   tcase_add_test(tc, test_false_broker_that_talks_garbage_warns_once);
   tcase_add_test(tc, test_wrong_password_names_the_credentials);
+  tcase_add_test(tc, test_silent_peer_is_reported_within_the_connect_timeout);
   return s;
 }
 
