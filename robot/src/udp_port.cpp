@@ -17,6 +17,15 @@ bool fail(GError *error, std::string &why) {
   return false;
 }
 
+// Commands go to one robot: a multicast group would hand them to every listener on the network.
+bool isMulticast(GInetAddress *address) {
+  return g_inet_address_get_is_multicast(address);
+}
+
+const char *const kMulticastRefused =
+    "is a multicast address: every host in the group would take the robot's commands; give the robot's own "
+    "address";
+
 }  // namespace
 
 bool isUdpLocation(const std::string &location) {
@@ -67,6 +76,14 @@ std::optional<UdpEndpoint> parseUdpLocation(const std::string &location, std::st
     return std::nullopt;
   }
   endpoint.port = static_cast<std::uint16_t>(std::atoi(port.c_str()));
+  if (GInetAddress *literal = g_inet_address_new_from_string(endpoint.host.c_str())) {
+    const bool multicast = isMulticast(literal);
+    g_object_unref(literal);
+    if (multicast) {
+      why = "'" + endpoint.host + "' " + kMulticastRefused;
+      return std::nullopt;
+    }
+  }
   return endpoint;
 }
 
@@ -82,6 +99,13 @@ bool UdpPort::open(std::string &why) {
   if (!address) {
     if (!error) why = "the host '" + endpoint->host + "' has no address";
     return error ? fail(error, why) : false;
+  }
+  // A host name may resolve to a group too.
+  if (G_IS_INET_SOCKET_ADDRESS(address) &&
+      isMulticast(g_inet_socket_address_get_address(G_INET_SOCKET_ADDRESS(address)))) {
+    why = "the host '" + endpoint->host + "' " + kMulticastRefused;
+    g_object_unref(address);
+    return false;
   }
   // A connected socket: the kernel finds the route now (a host nothing leads to is an error here, not
   // datagrams silently dropped later), and a peer that is not listening (ICMP port unreachable) makes the

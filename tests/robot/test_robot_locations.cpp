@@ -41,6 +41,19 @@ TEST(UdpLocation, RefusesWhatIsNotHostAndPort) {
   }
 }
 
+// Issue 48: a multicast group would hand the commands to every listener; the unicast address just below
+// the groups is still taken.
+TEST(UdpLocation, RefusesMulticastGroups) {
+  for (const char *group : {"udp://224.0.0.1:14550", "udp://239.255.255.250:1900", "udp://[ff02::1]:14550"}) {
+    std::string why;
+    EXPECT_FALSE(parseUdpLocation(group, why)) << group;
+    EXPECT_NE(why.find("multicast"), std::string::npos) << why;
+    EXPECT_NE(checkLocation(group).find("multicast"), std::string::npos) << group;
+  }
+  std::string why;
+  EXPECT_TRUE(parseUdpLocation("udp://223.255.255.255:14550", why)) << why;
+}
+
 TEST(Location, UrlLikeAndDriveLettersAreNeverFiles) {
   for (const char *typo : {"udp:127.0.0.1:14550", "udp:/127.0.0.1:1", "tcp://127.0.0.1:5760",
                            "serial:/dev/tty", "C:robot.txt", "c:\\robot.txt", "mqtt+ssl://x:1"}) {
