@@ -97,6 +97,7 @@ std::string checkMqttString(const std::string &text, const char *what) {
 
 std::string checkTopic(const std::string &topic) {
   if (topic.empty()) return "a topic must not be empty";
+  if (topic.find_first_not_of(' ') == std::string::npos) return "a topic of only spaces is surely a mistake";
   const std::string bad = checkMqttString(topic, "the topic");
   if (!bad.empty()) return bad;
   if (topic.find_first_of("+#") != std::string::npos)
@@ -297,8 +298,8 @@ void MqttPublisher::connect(std::unique_lock<std::mutex> &lock) {
   options.keepAliveInterval = kKeepAliveSeconds;
   options.cleansession = 1;  // what was in flight is resent from our queue
   options.connectTimeout = kConnectTimeoutSeconds;
-  // MQTT 3.1.1 only: Paho's default tries 3.1.1, then 3.1 on a second connection, so a peer that never answers
-  // was reported after two timeouts (12 s) instead of one.
+  // MQTT 3.1.1 only: Paho's default tries 3.1.1, then 3.1 on a second connection, so a peer that never
+  // answers was reported after two timeouts (12 s) instead of one.
   options.MQTTVersion = MQTTVERSION_3_1_1;
   options.onSuccess = &Callback::connected;
   options.onFailure = &Callback::connectFailed;

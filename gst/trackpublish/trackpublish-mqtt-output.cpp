@@ -131,6 +131,16 @@ bool checkMqttSettings(GstElement *self, const Settings &s, const MqttConfig &co
                       (nullptr));
     return false;
   }
+  // A client certificate and its key go together (Paho would send neither, or fail the handshake).
+  if (tls && s.tlsKeyFile.empty() != s.tlsCertFile.empty()) {
+    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
+                      ("Property '%s' is set without '%s': a client certificate and its private key go "
+                       "together.",
+                       s.tlsKeyFile.empty() ? "tls-cert-file" : "tls-key-file",
+                       s.tlsKeyFile.empty() ? "tls-key-file" : "tls-cert-file"),
+                      (nullptr));
+    return false;
+  }
   if (!tls && !s.tlsVerify) {
     GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
                       ("TLS verification is off (property 'tls-verify') but address '%s' does not use TLS: "
@@ -140,6 +150,13 @@ bool checkMqttSettings(GstElement *self, const Settings &s, const MqttConfig &co
                       (nullptr));
     return false;
   }
+  // MQTT allows empty levels, but "a//b" is more often a typo than a design: said, not refused.
+  if (topic.find("//") != std::string::npos || topic.front() == '/' || topic.back() == '/')
+    GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS,
+                        ("Topic '%s' (property 'topic') has an empty level (a '/' at an end, or '//'): "
+                         "subscribers must use the same empty level.",
+                         gstglue::validUtf8(topic).c_str()),
+                        (nullptr));
   // MQTT 3.1.1 (3.1.2.9): a password is only sent with a user name.
   if (!s.password.empty() && s.username.empty()) {
     GST_ELEMENT_ERROR(

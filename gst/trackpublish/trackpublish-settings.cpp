@@ -39,8 +39,26 @@ std::string checkAddressValue(const PropertyStore &, const GValue *v, std::strin
   return address.empty() ? "" : checkAddress(address);
 }
 
+// Only {source} is replaced in a topic: any other {name} would be published as written.
 std::string checkTopicValue(const PropertyStore &, const GValue *v, std::string *) {
-  return checkTopic(textOf(v));
+  const std::string topic = textOf(v);
+  for (std::size_t open = topic.find('{'); open != std::string::npos; open = topic.find('{', open + 1)) {
+    const std::size_t close = topic.find('}', open);
+    const std::string name =
+        topic.substr(open, close == std::string::npos ? std::string::npos : close - open + 1);
+    if (name != "{source}")
+      return "'" + name + "' is not replaced by anything: the only placeholder is {source}";
+  }
+  return checkTopic(topic);
+}
+
+// The source goes into every document and into the topic: a control character (a newline) would split a
+// line-per-document file for some readers and is refused by brokers in a topic.
+std::string checkSourceValue(const PropertyStore &, const GValue *v, std::string *) {
+  for (const unsigned char c : textOf(v))
+    if (c < 0x20 || c == 0x7F)
+      return "a source name must not contain control characters (a newline, a tab, ...)";
+  return "";
 }
 
 std::string checkClientIdValue(const PropertyStore &, const GValue *v, std::string *) {
@@ -141,7 +159,7 @@ const Def kProperties[] = {
                                   "NULL = the element's name",
                                   nullptr, f);
      },
-     getTextOrNull<&Settings::source>, setText<&Settings::source>},
+     getTextOrNull<&Settings::source>, setText<&Settings::source>, nullptr, checkSourceValue},
     {kAtStart, false,
      [](GParamFlags f) {
        return g_param_spec_int("mqtt-qos", "MQTT QoS",

@@ -49,6 +49,9 @@ GST_START_TEST(test_bad_addresses_and_topics) {
   gchar *dir = g_dir_make_tmp("trackpublish-XXXXXX", nullptr);
   const std::string fifo = std::string(dir) + "/ca.fifo";
   fail_unless(mkfifo(fifo.c_str(), 0600) == 0);
+  const std::string key = std::string(dir) + "/client.key";
+  fail_unless(g_file_set_contents(
+      key.c_str(), "-----BEGIN PRIVATE KEY-----\nAA==\n-----END PRIVATE KEY-----\n", -1, nullptr));
   // Set before start: an error at start naming the property.
   for (const auto &[properties, part] : std::vector<std::pair<std::string, std::string>>{
            {"address=http://127.0.0.1:1883", "property 'address'"},
@@ -69,6 +72,15 @@ GST_START_TEST(test_bad_addresses_and_topics) {
            {"address=ssl://127.0.0.1:8883 tls-cert-file=/etc/hostname", "property 'tls-cert-file'"},
            {"address=ssl://127.0.0.1:8883 tls-key-file=/nonexistent.pem", "property 'tls-key-file'"},
            {"address=tcp://127.0.0.1:1883 tls-verify=false", "property 'tls-verify'"},
+           // Issue 48's silent accepts: a key without its certificate, a blank topic, a placeholder that is
+           // not one, a source with a newline, tags with a key twice or a NUL.
+           {"address=ssl://127.0.0.1:8883 tls-key-file=" + key,
+            "'tls-key-file' is set without 'tls-cert-file'"},
+           {"address=tcp://127.0.0.1:1883 topic=\" \"", "property 'topic'"},
+           {"address=tcp://127.0.0.1:1883 topic=cams/{unknown}", "'{unknown}' is not replaced"},
+           {"address=tcp://127.0.0.1:1883 source=\"cam\n1\"", "property 'source'"},
+           {R"(location=/dev/null tags="{\"a\":1,\"a\":2}")", "the key \"a\" is given twice"},
+           {R"(location=/dev/null tags="{\"a\":\"x\\u0000y\"}")", "NUL character"},
            {"address=tcp://127.0.0.1:1883 password=x", "Property 'password'"},
            {"address=tcp://127.0.0.1:1883 username=" + std::string(70000, 'u'), "property 'username'"},
            {"location=/nonexistent/x", "property 'location'"},
@@ -83,6 +95,7 @@ GST_START_TEST(test_bad_addresses_and_topics) {
   }
   fail_if(g_file_test("udp:1.2.3.4:5", G_FILE_TEST_EXISTS), "a URL-like location was created as a file");
   g_unlink(fifo.c_str());
+  g_unlink(key.c_str());
   g_rmdir(dir);
   g_free(dir);
   // Unreachable with fail-on-connect: an error at start, within the connect timeout.
@@ -106,6 +119,16 @@ GST_START_TEST(test_bad_addresses_and_topics) {
         "no warning for %s", address.c_str());
     p.endAndWait();
     fail_unless_equals_int(p.drainSink(), 10);
+  }
+  // An empty topic level: MQTT allows it, so it is said, not refused.
+  {
+    Publisher p("address=tcp://127.0.0.1:" + std::to_string(freePort()) +
+                " topic=cams//tracks drain-timeout=0");
+    fail_unless(p.play() != GST_STATE_CHANGE_FAILURE);
+    p.push(0);
+    p.endAndWait();
+    fail_unless(anyContains(p.messages(GST_MESSAGE_WARNING), "has an empty level"),
+                "no warning for cams//tracks");
   }
 }
 GST_END_TEST;
