@@ -391,4 +391,16 @@ const gstglue::PropertyTable<Settings, Shared> &properties() {
   return table;
 }
 
+std::string objectDefinitionConflict(const Settings &s) {
+  if (s.templateLocation.empty()) return "";
+  if (s.mode == colortrack::TrackingMode::Threshold)
+    return "property 'template-location' has no use in mode=threshold, which finds the colour range of "
+           "'hsv-lower'/'hsv-upper' or learns it from 'init-box': unset 'template-location', or use "
+           "mode=template";
+  if (!s.initBox.empty())
+    return "properties 'template-location' and 'init-box' both give the template (the box's would replace "
+           "the file's on the first frame): set one of them";
+  return "";
+}
+
 }  // namespace colortrack_gst

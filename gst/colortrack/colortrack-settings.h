@@ -47,6 +47,11 @@ using PropertyStore = gstglue::PropertyStore<Settings, Shared>;
 // In the order gst-inspect-1.0 lists them.
 const gstglue::PropertyTable<Settings, Shared> &properties();
 
+// Why properties that each define the object contradict each other, for start() to refuse; empty when they
+// do not: a template file with an init-box (the box would replace the file's template on the first frame),
+// or in threshold mode (which never reads it).
+std::string objectDefinitionConflict(const Settings &s);
+
 // The properties whose refused value start() reports, in the order it checks them.
 inline constexpr const char *kCheckedAtStart[] = {"bins", "channel-weights", "init-box", "hsv-lower",
                                                   "hsv-upper"};

@@ -227,6 +227,12 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
     return FALSE;
   }
 
+  const std::string conflict = colortrack_gst::objectDefinitionConflict(snapshot);
+  if (!conflict.empty()) {
+    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("Contradicting settings: %s.", conflict.c_str()), (nullptr));
+    return FALSE;
+  }
+
   try {
     state = State{};
     colortrack::startWorkerThreads();  // here rather than on the first frame

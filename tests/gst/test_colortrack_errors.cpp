@@ -163,6 +163,21 @@ GST_START_TEST(test_missing_template_file) {
 }
 GST_END_TEST;
 
+// Issue 48: a template file with an init-box, or in threshold mode, was accepted and one of them silently
+// unused. Refused at start, naming both.
+GST_START_TEST(test_template_file_with_another_definition_is_refused) {
+  const Scene scene(smallScene());
+  TempFile file("object.png");
+  fail_unless(cv::imwrite(file.path(), cv::Mat(16, 16, CV_8UC3, cv::Scalar(0, 0, 255))));
+  const std::string box = boxString(scene.initBox());
+  for (const auto &[properties, other] : std::vector<std::pair<std::string, std::string>>{
+           {"init-box=" + box, "init-box"}, {"mode=threshold", "mode=threshold"}}) {
+    const Outcome o = run("colortrack name=ct template-location=" + file.path() + " " + properties, scene);
+    assertErrorNames(o, "template-location", other);
+  }
+}
+GST_END_TEST;
+
 GST_START_TEST(test_unreadable_template_file) {
   const Scene scene(smallScene());
   TempFile file("garbage.png");
@@ -465,6 +480,7 @@ static Suite *colortrack_errors_suite(void) {
   suite_add_tcase(s, tc);
   tcase_add_test(tc, test_missing_template_file);
   tcase_add_test(tc, test_unreadable_template_file);
+  tcase_add_test(tc, test_template_file_with_another_definition_is_refused);
   tcase_add_test(tc, test_template_larger_than_frame);
   tcase_add_test(tc, test_tiny_template_file);
   tcase_add_test(tc, test_interlaced_caps_are_refused);
