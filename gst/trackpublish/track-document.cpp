@@ -82,7 +82,8 @@ std::string trackDocument(GstBuffer *buffer, GQuark roiType, const FrameFacts &f
   document["frame"] = facts.frame;
   document["resolution"] = {{"width", facts.width}, {"height", facts.height}};
   if (!facts.tags.is_null()) document["tags"] = facts.tags;
-  document["objects"] = std::move(objects);
+  // As gvametaconvert: an empty frame's document (add-empty-results) has no "objects" key at all.
+  if (!objects.empty()) document["objects"] = std::move(objects);
   // Invalid UTF-8 in a source name is replaced rather than thrown.
   return document.dump(-1, ' ', false, Json::error_handler_t::replace);
 }
