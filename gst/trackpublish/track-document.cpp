@@ -30,7 +30,7 @@ void addTrackFields(Json &object, const GstStructure *params, double &confidence
   gboolean verified = FALSE;
   if (gst_structure_get_boolean(params, COLORTRACK_PARAM_VERIFIED, &verified))
     object["verified"] = static_cast<bool>(verified);
-  for (const char *field : {COLORTRACK_PARAM_VX, COLORTRACK_PARAM_VY}) {
+  for (const char *field : {COLORTRACK_PARAM_VX, COLORTRACK_PARAM_VY, COLORTRACK_PARAM_AREA}) {
     double value = 0;
     if (gst_structure_get_double(params, field, &value)) object[field] = value;
   }

@@ -168,6 +168,36 @@ GST_START_TEST(test_empty_results_and_run_ids) {
 }
 GST_END_TEST;
 
+// Threshold mode's blob area reaches the document (issue 48): a red ball, the default range.
+GST_START_TEST(test_threshold_area_is_published) {
+  const std::string path = tempPath();
+  const std::string launch =
+      "videotestsrc num-buffers=10 pattern=ball foreground-color=0xffe02020 ! "
+      "video/x-raw,format=BGR,width=320,height=240 ! colortrack mode=threshold ! "
+      "trackpublish location=" +
+      path + " ! fakesink";
+  GstElement *pipeline = gst_parse_launch(launch.c_str(), nullptr);
+  fail_unless(pipeline != nullptr);
+  gst_element_set_state(pipeline, GST_STATE_PLAYING);
+  GstBus *bus = gst_element_get_bus(pipeline);
+  GstMessage *end = gst_bus_timed_pop_filtered(
+      bus, 10 * GST_SECOND, static_cast<GstMessageType>(GST_MESSAGE_EOS | GST_MESSAGE_ERROR));
+  fail_unless(end && GST_MESSAGE_TYPE(end) == GST_MESSAGE_EOS);
+  gst_message_unref(end);
+  gst_object_unref(bus);
+  gst_element_set_state(pipeline, GST_STATE_NULL);
+  gst_object_unref(pipeline);
+  std::ifstream in(path);
+  int withArea = 0;
+  for (std::string line; std::getline(in, line);)
+    for (const Json &o : Json::parse(line).value("objects", Json::array()))
+      withArea += o.contains("area") && o["area"].is_number() && o["area"].get<double>() > 100;
+  std::printf("threshold mode: %d objects with an area\n", withArea);
+  fail_unless(withArea >= 5, "%d objects with an area in 10 frames", withArea);
+  g_unlink(path.c_str());
+}
+GST_END_TEST;
+
 // tags that are not a JSON object are refused at start, naming the property.
 GST_START_TEST(test_bad_tags_are_refused) {
   for (const char *tags : {"{", "[1,2]", "\"text\""}) {
@@ -191,13 +221,14 @@ GST_START_TEST(test_bad_tags_are_refused) {
 GST_END_TEST;
 
 static Suite *trackpublish_schema_suite(void) {
-  colortrack::gst_test_util::preloadPlugins({"colortrack"});
+  colortrack::gst_test_util::preloadPlugins({"colortrack", "videotestsrc", "coreelements"});
   Suite *s = suite_create("trackpublish_schema");
   TCase *tc = tcase_create("schema");
   suite_add_tcase(s, tc);
   tcase_add_test(tc, test_gvametaconvert_consumer_reads_our_documents);
   tcase_add_test(tc, test_empty_results_and_run_ids);
   tcase_add_test(tc, test_bad_tags_are_refused);
+  tcase_add_test(tc, test_threshold_area_is_published);
   return s;
 }
 
