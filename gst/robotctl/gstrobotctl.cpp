@@ -48,7 +48,8 @@
  *
  * With #GstRobotCtl:post-messages, every command sent is also posted as an element message "robotctl" with
  * command (string), left and right (int, as sent; with MAVLink instead pitch-rate or vx and yaw-rate, as
- * sent: rad/s and m/s, yaw > 0 to the right), linear and angular (double), target-visible (boolean),
+ * sent: rad/s and m/s, yaw > 0 to the right), linear and angular (double; angular > 0 turns left, the
+ * opposite sign to yaw-rate), target-visible (boolean),
  * timestamp (the buffer the decision came from, or GST_CLOCK_TIME_NONE) and reason ("target", "no-target",
  * "stalling", "stalled", "eos", "flush", "paused", "ready", "start", "reconnected", "link-lost", "shutdown").
  *
