@@ -489,8 +489,10 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
   klass->reset = gst_color_track_reset_action;
 
   gst_element_class_set_static_metadata(element_class, "Colour object tracker", "Filter/Analyzer/Video",
-                                        "Tracks a coloured object by modified colour indexing with a Kalman "
-                                        "filter; attaches region-of-interest meta and draws the track",
+                                        "Tracks a coloured object (template mode: colour likelihood and "
+                                        "correlation filters, or the paper's modified colour indexing; "
+                                        "threshold mode: every blob in an HSV range) with a Kalman filter; "
+                                        "attaches region-of-interest meta and draws the track",
                                         "colortrack developers");
   gst_element_class_add_static_pad_template(element_class, &sink_template);
   gst_element_class_add_static_pad_template(element_class, &src_template);
