@@ -163,6 +163,18 @@ def check_deduper(module):
     return errors
 
 
+def check_unreachable(script):
+    """A mistyped host or a port without a broker is said within seconds, not a silent wait (issue 48)."""
+    errors = []
+    for host, port, expected in (("no-such-host.invalid", 1883, "does not resolve"),
+                                 ("127.0.0.1", free_port(), "cannot connect to 127.0.0.1")):
+        out = subprocess.run([sys.executable, script, "--host", host, "--port", str(port), "--timeout", "4"],
+                             capture_output=True, text=True, timeout=30)
+        if out.returncode != 1 or expected not in out.stderr or "connecting to" not in out.stderr:
+            errors.append(f"--host {host} --port {port}: exit {out.returncode}, no '{expected}': {out.stderr!r}")
+    return errors
+
+
 def main():
     script = sys.argv[1]
     try:
@@ -179,7 +191,7 @@ def main():
     spec = importlib.util.spec_from_file_location("track_subscriber", script)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
-    errors = check_deduper(module)
+    errors = check_deduper(module) + check_unreachable(script)
 
     start = time.monotonic()
     with tempfile.TemporaryDirectory(prefix="check-subscriber-") as directory:

@@ -146,7 +146,23 @@ def main():
     client.on_message = on_message
     if args.username:
         client.username_pw_set(args.username, args.password)
+    failures = [0]
+
+    def on_connect_fail(client, userdata, *rest):
+        failures[0] += 1
+        if failures[0] in (1, 10) or failures[0] % 100 == 0:  # said, without flooding a long wait
+            print(f"cannot connect to {args.host}:{args.port} (attempt {failures[0]}): no broker answers there; "
+                  "retrying", file=sys.stderr, flush=True)
+
+    client.on_connect_fail = on_connect_fail  # paho-mqtt >= 1.6; an older one only stays silent
     client.reconnect_delay_set(1, 30)
+    # A mistyped host would otherwise look like a hang: say where we connect, and whether the name resolves.
+    print(f"connecting to {args.host}:{args.port} (retried until a broker answers; Ctrl-C to stop)",
+          file=sys.stderr, flush=True)
+    try:
+        socket.getaddrinfo(args.host, args.port)
+    except OSError as e:
+        print(f"warning: the host {args.host} does not resolve ({e}); retrying anyway", file=sys.stderr, flush=True)
     client.connect_async(args.host, args.port, keepalive=30)  # retried until the broker answers
     client.loop_start()
     try:
