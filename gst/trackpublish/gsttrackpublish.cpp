@@ -193,7 +193,7 @@ static gboolean gst_track_publish_sink_event(GstBaseTransform *trans, GstEvent *
 static GstFlowReturn gst_track_publish_transform_ip(GstBaseTransform *trans, GstBuffer *buffer) {
   GstTrackPublish *self = GST_TRACK_PUBLISH(trans);
   State &state = self->priv->state;
-  // Stream time, as gvametaconvert gives it: from 0 at the start of the stream whatever the PTS origin.
+  // Stream time, as gvametaconvert gives it (docs/trackpublish.md: the position in the stream).
   // A segment in another format (appsrc's default is bytes) has no stream time: the PTS then.
   state.facts.timestamp =
       trans->segment.format == GST_FORMAT_TIME

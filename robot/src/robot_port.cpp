@@ -177,7 +177,11 @@ sp_flowcontrol toFlowControl(FlowControl flow) {
 bool SerialPort::open(std::string &why) {
   if (sp_get_port_by_name(config_.device.c_str(), &port_) != SP_OK) {
     port_ = nullptr;
-    why = "no such serial port";
+    // A pseudo-terminal or a plain file exists but is no serial port libserialport knows: say where it goes.
+    why = access(config_.device.c_str(), F_OK) == 0
+              ? "it exists but is not a serial port (a pseudo-terminal, a FIFO or a file goes in 'location' "
+                "instead of 'device')"
+              : "no such serial port";
     return false;
   }
   if (!check(sp_open(port_, SP_MODE_WRITE), "open", why)) {

@@ -141,6 +141,27 @@ TEST(SerialPort, AMissingDeviceIsNamedInTheError) {
   EXPECT_NE(port.describe().find("/dev/ttyNO-SUCH-ADAPTER"), std::string::npos);
 }
 
+// Issue 48: a pseudo-terminal (or a plain file) given as device= exists but is no serial port: the error
+// says to use location=.
+TEST(SerialPort, APseudoTerminalOrAFileIsSentToLocation) {
+  const int master = posix_openpt(O_RDWR | O_NOCTTY);
+  const bool pty = master >= 0 && grantpt(master) == 0 && unlockpt(master) == 0;
+  const std::string file = std::filesystem::temp_directory_path() / "colortrack-not-a-serial-port";
+  std::ofstream(file).put('x');
+  std::vector<std::string> devices = {file};
+  if (pty) devices.push_back(ptsname(master));
+  for (const std::string &device : devices) {
+    SerialConfig config;
+    config.device = device;
+    SerialPort port(config);
+    std::string why;
+    EXPECT_FALSE(port.open(why)) << device;
+    EXPECT_NE(why.find("'location'"), std::string::npos) << device << ": " << why;
+  }
+  std::filesystem::remove(file);
+  if (master >= 0) close(master);
+}
+
 // The device property wins over location; a udp:// location is a UDP destination; anything else a file.
 TEST(PortChoice, DeviceThenUdpThenFile) {
   using robotctl::PortKind;
