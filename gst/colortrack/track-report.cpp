@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "colortrack-meta.h"
+#include "dlstreamer-params.h"
 #include "track-params.h"
 
 namespace colortrack_gst {
@@ -30,6 +31,7 @@ void attachTrackMeta(GstElement *element, GstBuffer *buffer, const colortrack::T
       COLORTRACK_PARAM_VX, G_TYPE_DOUBLE, track.vx, COLORTRACK_PARAM_VY, G_TYPE_DOUBLE, track.vy, nullptr);
   if (track.area) gst_structure_set(params, COLORTRACK_PARAM_AREA, G_TYPE_DOUBLE, *track.area, nullptr);
   colortrack_add_roi_params(buffer, meta, params, GST_ELEMENT_NAME(element));
+  colortrack_add_dlstreamer_params(meta, frame.width, frame.height, track.score);
 }
 
 namespace {
