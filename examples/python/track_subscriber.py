@@ -81,6 +81,29 @@ def brief(doc):
     return " ".join(parts)
 
 
+def connect_with_news(client, host, port):
+    """Connects in the background, retried until a broker answers. A mistyped host would otherwise look like a
+    hang: says where it connects, whether the name resolves, and when attempts fail."""
+    failures = [0]
+
+    def on_connect_fail(client, userdata, *rest):
+        failures[0] += 1
+        if failures[0] in (1, 10) or failures[0] % 100 == 0:  # said, without flooding a long wait
+            print(f"cannot connect to {host}:{port} (attempt {failures[0]}): no broker answers there; retrying",
+                  file=sys.stderr, flush=True)
+
+    client.on_connect_fail = on_connect_fail  # paho-mqtt >= 1.6; an older one only stays silent
+    client.reconnect_delay_set(1, 30)
+    print(f"connecting to {host}:{port} (retried until a broker answers; Ctrl-C to stop)", file=sys.stderr,
+          flush=True)
+    try:
+        socket.getaddrinfo(host, port)
+    except OSError as e:
+        print(f"warning: the host {host} does not resolve ({e}); retrying anyway", file=sys.stderr, flush=True)
+    client.connect_async(host, port, keepalive=30)
+    client.loop_start()
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--host", default="localhost", help="broker host (default: localhost)")
@@ -146,25 +169,7 @@ def main():
     client.on_message = on_message
     if args.username:
         client.username_pw_set(args.username, args.password)
-    failures = [0]
-
-    def on_connect_fail(client, userdata, *rest):
-        failures[0] += 1
-        if failures[0] in (1, 10) or failures[0] % 100 == 0:  # said, without flooding a long wait
-            print(f"cannot connect to {args.host}:{args.port} (attempt {failures[0]}): no broker answers there; "
-                  "retrying", file=sys.stderr, flush=True)
-
-    client.on_connect_fail = on_connect_fail  # paho-mqtt >= 1.6; an older one only stays silent
-    client.reconnect_delay_set(1, 30)
-    # A mistyped host would otherwise look like a hang: say where we connect, and whether the name resolves.
-    print(f"connecting to {args.host}:{args.port} (retried until a broker answers; Ctrl-C to stop)",
-          file=sys.stderr, flush=True)
-    try:
-        socket.getaddrinfo(args.host, args.port)
-    except OSError as e:
-        print(f"warning: the host {args.host} does not resolve ({e}); retrying anyway", file=sys.stderr, flush=True)
-    client.connect_async(args.host, args.port, keepalive=30)  # retried until the broker answers
-    client.loop_start()
+    connect_with_news(client, args.host, args.port)
     try:
         finished = done.wait(args.timeout)
     except KeyboardInterrupt:
