@@ -125,7 +125,9 @@ void setUpTracker(RunState &run, const Options &options, const scene::Scene &sce
   run.tracker = makeElement(kElementName);
   setProperty(run.tracker, "post-messages", "true");
   setProperty(run.tracker, "draw", "box+trail+label+search-window");
-  if (run.kind == InputKind::Scene) setProperty(run.tracker, "init-box", boxText(scene.initBox()));
+  // One definition of the object (colortrack refuses two): the scene's box unless a template is given.
+  if (run.kind == InputKind::Scene && options.templatePath.empty() && options.initBox.empty())
+    setProperty(run.tracker, "init-box", boxText(scene.initBox()));
   if (!options.initBox.empty()) setProperty(run.tracker, "init-box", options.initBox);
   if (!options.templatePath.empty()) {
     if (!g_file_test(options.templatePath.c_str(), G_FILE_TEST_IS_REGULAR))

@@ -77,6 +77,8 @@ void checkOptions(const Options &options) {
     g_free(out);
     if (same) throw DemoError("the output file is the input file: choose another --output");
   }
+  if (!options.initBox.empty() && !options.templatePath.empty())
+    throw DemoError("--init-box and --template both define the object: give one of them");
   if (inputKind(options.input) != InputKind::Scene && options.initBox.empty() && options.templatePath.empty())
     throw DemoError(
         "a camera, file or stream input needs --init-box X,Y,W,H or --template FILE to know what "

@@ -85,7 +85,7 @@ fi
 if [ "$mode" = all ] && [ ! -f tests/mavlink/node_modules/node-mavlink/package.json ]; then
   echo "== installing node-mavlink for the MAVLink tests (npm ci in tests/mavlink)"
   # An unreachable registry is found in seconds (npm ci alone retries for about 70 s).
-  if ! timeout 15 npm ping --fetch-retries=0 --fetch-timeout=10000 >/dev/null 2>&1; then
+  if ! timeout 15 npm view node-mavlink version --fetch-retries=0 --fetch-timeout=10000 >/dev/null 2>&1; then
     echo "== the npm registry ($(npm config get registry 2>/dev/null)) does not answer within 15 s"
     npm_reachable=false
   else

@@ -168,6 +168,8 @@ def main():
     parser.add_argument("--latency", type=int, default=100, help="rtspsrc jitter buffer, ms")
     parser.add_argument("--seconds", type=float, default=0, help="stop after this long (0: run for ever)")
     args = parser.parse_args()
+    if args.init_box and args.template:
+        parser.error("--init-box and --template both define the target: give one of them")
     if not (args.init_box or args.template):
         parser.error("give --init-box or --template")
     Gst.init(None)

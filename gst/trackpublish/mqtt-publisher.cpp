@@ -406,8 +406,9 @@ void MqttPublisher::connectDone(bool ok, const ConnectFailure &failure) {
       // A peer that keeps dropping the connection soon after it is made is retried less and less often.
       if (!flapping_) backoff_ = kFirstBackoff;
     } else {
+      // A new kind of failure is news too: a broker that was starting and now refuses the password.
+      first = !failedSinceSuccess_ || failure.fault != lastFailure_.fault;
       lastFailure_ = failure;
-      first = !failedSinceSuccess_;
       failedSinceSuccess_ = true;
       retryIn = backoff_;
       nextAttempt_ = Clock::now() + backoff_;

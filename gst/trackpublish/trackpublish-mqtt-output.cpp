@@ -131,13 +131,12 @@ bool checkMqttSettings(GstElement *self, const Settings &s, const MqttConfig &co
                       (nullptr));
     return false;
   }
-  // A client certificate and its key go together (Paho would send neither, or fail the handshake).
-  if (tls && s.tlsKeyFile.empty() != s.tlsCertFile.empty()) {
+  // A private key is only used with its certificate (a certificate may hold its key itself, without
+  // tls-key-file).
+  if (tls && !s.tlsKeyFile.empty() && s.tlsCertFile.empty()) {
     GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                      ("Property '%s' is set without '%s': a client certificate and its private key go "
-                       "together.",
-                       s.tlsKeyFile.empty() ? "tls-cert-file" : "tls-key-file",
-                       s.tlsKeyFile.empty() ? "tls-key-file" : "tls-cert-file"),
+                      ("Property 'tls-key-file' is set without 'tls-cert-file': a private key is used only "
+                       "with its client certificate."),
                       (nullptr));
     return false;
   }

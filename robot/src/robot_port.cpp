@@ -172,16 +172,27 @@ sp_flowcontrol toFlowControl(FlowControl flow) {
   return SP_FLOWCONTROL_NONE;
 }
 
+// Why `path` (resolved) is no serial port libserialport knows. A pseudo-terminal, a FIFO or a file exists
+// but belongs in 'location'; another character device is named as such.
+std::string notASerialPort(const std::string &path) {
+  struct stat info;
+  if (stat(path.c_str(), &info) != 0) return "no such serial port";
+  if (!S_ISCHR(info.st_mode) || path.rfind("/dev/pts/", 0) == 0)
+    return "it exists but is not a serial port (a pseudo-terminal, a FIFO or a file goes in 'location' "
+           "instead of 'device')";
+  return "no such serial port (a character device libserialport does not know as one)";
+}
+
 }  // namespace
 
 bool SerialPort::open(std::string &why) {
-  if (sp_get_port_by_name(config_.device.c_str(), &port_) != SP_OK) {
+  // libserialport looks a port up by its /dev name: a link (/dev/serial/by-id/...) is followed first.
+  char *resolved = realpath(config_.device.c_str(), nullptr);
+  const std::string name = resolved ? resolved : config_.device;
+  free(resolved);
+  if (sp_get_port_by_name(name.c_str(), &port_) != SP_OK) {
     port_ = nullptr;
-    // A pseudo-terminal or a plain file exists but is no serial port libserialport knows: say where it goes.
-    why = access(config_.device.c_str(), F_OK) == 0
-              ? "it exists but is not a serial port (a pseudo-terminal, a FIFO or a file goes in 'location' "
-                "instead of 'device')"
-              : "no such serial port";
+    why = notASerialPort(name);
     return false;
   }
   if (!check(sp_open(port_, SP_MODE_WRITE), "open", why)) {

@@ -146,7 +146,8 @@ TEST(SerialPort, AMissingDeviceIsNamedInTheError) {
 TEST(SerialPort, APseudoTerminalOrAFileIsSentToLocation) {
   const int master = posix_openpt(O_RDWR | O_NOCTTY);
   const bool pty = master >= 0 && grantpt(master) == 0 && unlockpt(master) == 0;
-  const std::string file = std::filesystem::temp_directory_path() / "colortrack-not-a-serial-port";
+  const std::string file =
+      std::filesystem::temp_directory_path() / ("colortrack-not-a-serial-port-" + std::to_string(getpid()));
   std::ofstream(file).put('x');
   std::vector<std::string> devices = {file};
   if (pty) devices.push_back(ptsname(master));
