@@ -22,6 +22,8 @@ repo=$(cd "$(dirname "$0")/.." && pwd)
 root=${COLORTRACK_DEBIAN13_CHROOT:-/var/tmp/colortrack-debian13}
 mirror=${DEBIAN_MIRROR:-http://deb.debian.org/debian}
 src=/src/colortrack
+# shellcheck source=tests/chroot-lib.sh
+source "$repo/tests/chroot-lib.sh"
 
 # This machine cannot run the Debian 13 tests: say why and exit 77.
 cannot() {
@@ -43,14 +45,6 @@ summary() {
   for p in "${phases[@]}"; do echo "   $p"; done
 }
 
-# Unmounts whatever is mounted under $1 (a run or a debootstrap killed before it could clean up), deepest
-# first, so that nothing under it is removed through a mount.
-unmount_under() {
-  local dir m
-  dir=$(realpath -m "$1")
-  awk -v d="$dir" '$2 == d || index($2, d "/") == 1 { print $2 }' /proc/mounts | sort -r |
-    while read -r m; do umount "$m" 2>/dev/null || umount -l "$m"; done
-}
 unmount_under "$root"
 unmount_under "$root.partial"
 
@@ -58,92 +52,30 @@ unmount_under "$root.partial"
 if [ ! -f "$root/etc/debian_version" ] || ! grep -q '^13' "$root/etc/debian_version" ||
   [ ! -x "$root/usr/bin/apt-get" ]; then
   begin "debootstrap trixie into $root"
-  command -v debootstrap >/dev/null || {
-    apt-get update -q
-    DEBIAN_FRONTEND=noninteractive apt-get install -y -q debootstrap || cannot "debootstrap cannot be installed"
-  }
-  # Into a temporary directory first: a debootstrap cut short leaves no half chroot under $root.
-  rm -rf "$root.partial"
-  mkdir -p "$(dirname "$root")"
-  debootstrap --variant=minbase trixie "$root.partial" "$mirror" ||
-    cannot "debootstrap trixie from $mirror failed (no access to a Debian mirror? DEBIAN_MIRROR names another)"
-  rm -rf "$root"
-  mv "$root.partial" "$root"
+  debootstrap_into_root trixie
   end "debootstrap"
 fi
-cp /etc/resolv.conf "$root/etc/resolv.conf"
 
 # Mounts, undone on any exit (failure and interruption too).
-mounted=()
 cleanup() {
-  local status=$? i
-  for ((i = ${#mounted[@]} - 1; i >= 0; i--)); do
-    umount "${mounted[i]}" 2>/dev/null || umount -l "${mounted[i]}" || echo "could not unmount ${mounted[i]}" >&2
-  done
+  local status=$?
+  chroot_unmount
   summary
   exit "$status"
 }
 trap cleanup EXIT
 trap 'exit 130' INT TERM
-mount_in() {  # mount_in TARGET MOUNT-ARGS...
-  local target=$root$1
-  shift
-  mkdir -p "$target"
-  mount "$@" "$target" || cannot "mounting $1 in the chroot is not allowed"
-  mounted+=("$target")
-}
-mount_in /proc -t proc proc
-mount_in /sys -t sysfs sysfs
-mount_in /dev --bind /dev
-mount_in /dev/pts --bind /dev/pts
-mount_in /dev/shm -t tmpfs -o mode=1777,nosuid,nodev shm
+chroot_mount_all
 
 # 2. The work tree.
 begin "copy $repo to $root$src"
-mkdir -p "$root$src"
 if [ "${COLORTRACK_DEBIAN13_CLEAN:-0}" = 1 ]; then
   rm -rf "$root$src/build"
 fi
-# Into a staging directory, then only the files whose content differs are copied over (with the time of the
-# copy, so that ninja rebuilds what changed: the work tree's own times may be older than the kept build's),
-# and files no longer in the work tree are removed. Nothing under build*/ (git ignores them) is touched.
-stage="$root/src/.incoming"
-dest="$root$src"
-rm -rf "$stage"
-mkdir -p "$stage"
-git -C "$repo" ls-files -z --cached --others --exclude-standard |
-  tar -C "$repo" --no-recursion --ignore-failed-read --null -cf - -T - | tar -xf - -C "$stage"
-changed=0
-while IFS= read -r -d '' f; do
-  if ! cmp -s "$stage/$f" "$dest/$f"; then
-    mkdir -p "$(dirname "$dest/$f")"
-    rm -f "$dest/$f"
-    cp -P --preserve=mode "$stage/$f" "$dest/$f"
-    changed=$((changed + 1))
-  fi
-done < <(cd "$stage" && find . ! -type d -print0)
-while IFS= read -r -d '' f; do
-  [ -e "$stage/$f" ] || [ -L "$stage/$f" ] || rm -f "$dest/$f"
-done < <(cd "$dest" && find . -path './build*' -prune -o ! -type d -print0)
-rm -rf "$stage"
-echo "$changed files changed"
+copy_work_tree "$repo"
 end "copy"
 
-# The host's certificate authorities for npm's HTTPS requests from inside the chroot (tests/bootstrap.sh
-# installs node-mavlink): the host may reach the registry through a proxy whose CA only the host trusts.
-# apt in the chroot uses the Debian mirror over HTTP and needs none of this.
-ca_env=()
-host_ca=${NODE_EXTRA_CA_CERTS:-/etc/ssl/certs/ca-certificates.crt}
-if [ -r "$host_ca" ]; then
-  cp "$host_ca" "$root/etc/colortrack-host-ca.crt"
-  ca_env=(NODE_EXTRA_CA_CERTS=/etc/colortrack-host-ca.crt npm_config_cafile=/etc/colortrack-host-ca.crt)
-fi
-
-in_chroot() {
-  chroot "$root" /usr/bin/env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin HOME=/root LANG=C.UTF-8 \
-    TERM="${TERM:-dumb}" CI="${CI:-}" COLORTRACK_REQUIRE_NODE_MAVLINK="${COLORTRACK_REQUIRE_NODE_MAVLINK:-0}" \
-    "${ca_env[@]}" /bin/bash -c "cd $src && $*"
-}
+chroot_trust_host_ca
 
 # 3. Packages and build, then the tests.
 begin "tests/bootstrap.sh (packages, build)"
