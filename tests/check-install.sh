@@ -30,3 +30,8 @@ for element in colortrack robotctl trackpublish; do
   [ "$filename" = "$plugin" ] || fail "gst-inspect-1.0 $element loaded '$filename', not the staged $plugin"
   echo "ok: $element from $filename"
 done
+# The plugin's origin is a URL (meson option package-origin; by default the clone's web address or the
+# source tree as file://), as gst-inspect and packagers expect.
+origin="$("$inspect" colortrack | sed -n 's/^ *Origin URL *//p' | head -1)"
+[[ "$origin" =~ ^(https?|file)://[^[:space:]]+$ ]] || fail "the plugin's Origin URL is not a URL: '$origin'"
+echo "ok: origin $origin"
