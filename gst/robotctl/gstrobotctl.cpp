@@ -267,6 +267,9 @@ bool checkSettings(GstRobotCtl *self, const robotctl::Settings &s, const std::st
     GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("%s", mismatch.c_str()), (nullptr));
     return false;
   }
+  const std::string unused = robotctl::serialSettingsUnused(s);
+  if (!unused.empty())
+    GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS, ("%s.", gstglue::validUtf8(unused).c_str()), (nullptr));
   return true;
 }
 

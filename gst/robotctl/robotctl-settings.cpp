@@ -479,6 +479,25 @@ std::string controllerMismatch(const Settings &s) {
          "motion at a time at a fixed speed. Use controller=auto (the default) or controller=proportional";
 }
 
+std::string serialSettingsUnused(const Settings &s) {
+  if (s.location.empty()) return {};
+  const Settings defaults;
+  std::string names;
+  const auto note = [&names](bool changed, const char *name) {
+    if (changed) names += std::string(names.empty() ? "" : ", ") + "'" + name + "'";
+  };
+  note(s.baudRate != defaults.baudRate, "baud-rate");
+  note(s.dataBits != defaults.dataBits, "data-bits");
+  note(s.stopBits != defaults.stopBits, "stop-bits");
+  note(s.parity != defaults.parity, "parity");
+  note(s.flowControl != defaults.flowControl, "flow-control");
+  if (names.empty()) return {};
+  return "Serial settings " + names +
+         " are ignored: only a serial port named by 'device' uses them, and the "
+         "output is 'location' ('" +
+         s.location + "')";
+}
+
 namespace {
 
 std::string checkControllerValue(const PropertyStore &store, const GValue *v, std::string *) {

@@ -53,6 +53,10 @@ colortrack::ControllerSettings controllerSettings(const Settings &settings);
 // Why `controller` cannot drive what the protocol drives (zone and a gimbal), or empty.
 std::string controllerMismatch(const Settings &settings);
 
+// A warning when serial-port properties are set away from their defaults while the output is 'location'
+// (a file, a pty, a FIFO, UDP or stdout: none of them has a baud rate); empty otherwise.
+std::string serialSettingsUnused(const Settings &settings);
+
 // In the order gst-inspect-1.0 lists them.
 const gstglue::PropertyTable<Settings> &properties();
 

@@ -255,6 +255,47 @@ GST_START_TEST(test_location_refused_when_set_is_judged_again_at_start) {
 }
 GST_END_TEST;
 
+// The warnings of a pipeline run to its end, one per line.
+std::string warningsOf(const std::string &launch) {
+  GstElement *pipeline = gst_parse_launch(launch.c_str(), nullptr);
+  fail_unless(pipeline != nullptr, "%s", launch.c_str());
+  GstBus *bus = gst_element_get_bus(pipeline);
+  gst_element_set_state(pipeline, GST_STATE_PLAYING);
+  std::string warnings;
+  while (GstMessage *m = gst_bus_timed_pop_filtered(
+             bus, 10 * GST_SECOND,
+             static_cast<GstMessageType>(GST_MESSAGE_WARNING | GST_MESSAGE_ERROR | GST_MESSAGE_EOS))) {
+    const bool warning = GST_MESSAGE_TYPE(m) == GST_MESSAGE_WARNING;
+    if (warning) {
+      GError *error = nullptr;
+      gst_message_parse_warning(m, &error, nullptr);
+      warnings += std::string(error->message) + "\n";
+      g_error_free(error);
+    }
+    gst_message_unref(m);
+    if (!warning) break;
+  }
+  gst_element_set_state(pipeline, GST_STATE_NULL);
+  gst_object_unref(bus);
+  gst_object_unref(pipeline);
+  return warnings;
+}
+
+// Serial settings mean nothing to a 'location' (a file, a pty...): said at start, naming each one set.
+GST_START_TEST(test_serial_settings_with_a_location_are_said_to_be_ignored) {
+  const std::string src = "videotestsrc num-buffers=2 ! robotctl location=/dev/null ";
+  const std::string warnings = warningsOf(src + "baud-rate=115200 parity=even");
+  std::printf("baud-rate and parity with a location: \"%s\"\n", warnings.c_str());
+  fail_unless(warnings.find("Serial settings") != std::string::npos, "no warning: \"%s\"", warnings.c_str());
+  for (const char *named : {"'baud-rate'", "'parity'", "'device'", "'location'"})
+    fail_unless(warnings.find(named) != std::string::npos, "%s not named: \"%s\"", named, warnings.c_str());
+  fail_unless(warnings.find("data-bits") == std::string::npos, "a default setting named: %s",
+              warnings.c_str());
+  const std::string plain = warningsOf(src + "baud-rate=9600");
+  fail_unless(plain.find("Serial settings") == std::string::npos, "warned with defaults: %s", plain.c_str());
+}
+GST_END_TEST;
+
 }  // namespace
 
 static Suite *robotctl_settings_suite(void) {
@@ -267,6 +308,7 @@ static Suite *robotctl_settings_suite(void) {
   tcase_add_test(tc, test_bad_field_of_view_while_running);
   tcase_add_test(tc, test_zone_law_refused_for_a_gimbal);
   tcase_add_test(tc, test_location_refused_when_set_is_judged_again_at_start);
+  tcase_add_test(tc, test_serial_settings_with_a_location_are_said_to_be_ignored);
   return s;
 }
 
