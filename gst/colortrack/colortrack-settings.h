@@ -9,7 +9,7 @@
 #include "colortrack/frame_tracker.hpp"
 #include "colortrack/settings.hpp"
 #include "colortrack/tracker.hpp"
-#include "gstcolortrack.h"
+#include "colortrack-enums.h"
 #include "property-table.h"
 
 namespace colortrack_gst {

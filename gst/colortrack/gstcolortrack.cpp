@@ -74,7 +74,6 @@
 #include "colortrack-mode.h"
 #include "colortrack-settings.h"
 #include "colortrack-state.h"
-#include "enum-types.h"
 #include "frame-view.h"
 #include "track-overlay.h"
 #include "track-report.h"
@@ -107,25 +106,6 @@ static GstStaticPadTemplate src_template =
 #define gst_color_track_parent_class parent_class
 G_DEFINE_TYPE(GstColorTrack, gst_color_track, GST_TYPE_VIDEO_FILTER);
 GST_ELEMENT_REGISTER_DEFINE(colortrack, "colortrack", GST_RANK_NONE, GST_TYPE_COLOR_TRACK);
-
-// ---------------------------------------------------------------------------------------------------------
-// Enum and flags types
-
-COLORTRACK_DEFINE_CHOICE_TYPE(gst_color_track_mode_get_type, "GstColorTrackMode", colortrack::kTrackingModes)
-COLORTRACK_DEFINE_CHOICE_TYPE(gst_color_track_color_space_get_type, "GstColorTrackColorSpace",
-                              colortrack::kColorSpaces)
-COLORTRACK_DEFINE_CHOICE_TYPE(gst_color_track_verify_get_type, "GstColorTrackVerify",
-                              colortrack::kVerifyModes)
-COLORTRACK_DEFINE_CHOICE_TYPE(gst_color_track_method_get_type, "GstColorTrackMethod",
-                              colortrack::methodDescriptors())
-COLORTRACK_DEFINE_FLAGS_TYPE(
-    gst_color_track_draw_get_type, "GstColorTrackDraw",
-    {GST_COLOR_TRACK_DRAW_NONE, "No overlay: frames are only read (no copy behind a tee)", "none"},
-    {GST_COLOR_TRACK_DRAW_BOX, "Box (red: colour match, green: verified, orange: coasting)", "box"},
-    {GST_COLOR_TRACK_DRAW_TRAIL, "Trail of the box centre (yellow)", "trail"},
-    {GST_COLOR_TRACK_DRAW_SEARCH_WINDOW, "Region searched this frame (blue)", "search-window"},
-    {GST_COLOR_TRACK_DRAW_LABEL, "Label \"id score state\" (threshold: \"id area state\")", "label"},
-    {GST_COLOR_TRACK_DRAW_MASK, "mode=threshold: pixels inside the HSV range, tinted magenta", "mask"})
 
 // ---------------------------------------------------------------------------------------------------------
 // Helpers

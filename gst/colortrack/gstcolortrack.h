@@ -6,6 +6,8 @@
 #include <gst/video/gstvideofilter.h>
 #include <gst/video/video.h>
 
+#include "colortrack-enums.h"
+
 G_BEGIN_DECLS
 
 #define GST_TYPE_COLOR_TRACK (gst_color_track_get_type())
@@ -16,29 +18,6 @@ G_BEGIN_DECLS
 
 typedef struct _GstColorTrack GstColorTrack;
 typedef struct _GstColorTrackClass GstColorTrackClass;
-
-/* The enum types of mode, color-space, method and verify are generated from the core tables that declare
- * their values (kTrackingModes in colortrack/frame_tracker.hpp, kColorSpaces in color.hpp, the method
- * registry's methodDescriptors() in detection_method.hpp, kVerifyModes in edges.hpp); the values are those
- * enums', in their order. */
-
-/**
- * GstColorTrackDraw:
- * @GST_COLOR_TRACK_DRAW_NONE: no overlay: frames are only read, never written (no copy behind a tee)
- * @GST_COLOR_TRACK_DRAW_BOX: the tracked box (red: colour match, green: verified, orange: coasting)
- * @GST_COLOR_TRACK_DRAW_TRAIL: the path of the box centre (yellow)
- * @GST_COLOR_TRACK_DRAW_SEARCH_WINDOW: the region searched in this frame (blue)
- * @GST_COLOR_TRACK_DRAW_LABEL: "id score state" above the box
- * @GST_COLOR_TRACK_DRAW_MASK: mode=threshold: the pixels inside the HSV range, tinted magenta (for tuning)
- */
-typedef enum {
-  GST_COLOR_TRACK_DRAW_NONE = 0,
-  GST_COLOR_TRACK_DRAW_BOX = (1 << 0),
-  GST_COLOR_TRACK_DRAW_TRAIL = (1 << 1),
-  GST_COLOR_TRACK_DRAW_SEARCH_WINDOW = (1 << 2),
-  GST_COLOR_TRACK_DRAW_LABEL = (1 << 3),
-  GST_COLOR_TRACK_DRAW_MASK = (1 << 4),
-} GstColorTrackDraw;
 
 // C++ data (settings and streaming state); defined in gstcolortrack.cpp.
 typedef struct _GstColorTrackPrivate GstColorTrackPrivate;
@@ -55,17 +34,6 @@ struct _GstColorTrackClass {
 };
 
 GType gst_color_track_get_type(void);
-#define GST_TYPE_COLOR_TRACK_MODE (gst_color_track_mode_get_type())
-#define GST_TYPE_COLOR_TRACK_COLOR_SPACE (gst_color_track_color_space_get_type())
-#define GST_TYPE_COLOR_TRACK_VERIFY (gst_color_track_verify_get_type())
-#define GST_TYPE_COLOR_TRACK_DRAW (gst_color_track_draw_get_type())
-GType gst_color_track_mode_get_type(void);
-GType gst_color_track_color_space_get_type(void);
-GType gst_color_track_verify_get_type(void);
-#define GST_TYPE_COLOR_TRACK_METHOD (gst_color_track_method_get_type())
-GType gst_color_track_method_get_type(void);
-GType gst_color_track_draw_get_type(void);
-
 GST_ELEMENT_REGISTER_DECLARE(colortrack);
 
 G_END_DECLS

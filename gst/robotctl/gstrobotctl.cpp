@@ -80,7 +80,6 @@
 
 #include "gstrobotctl.h"
 #include "property-table.h"
-#include "enum-types.h"
 #include "robotctl-listener.h"
 #include "robotctl-output.h"
 #include "robotctl-settings.h"
@@ -141,22 +140,6 @@ static GstStaticPadTemplate sink_template =
 #define gst_robot_ctl_parent_class parent_class
 G_DEFINE_TYPE(GstRobotCtl, gst_robot_ctl, GST_TYPE_BASE_SINK);
 GST_ELEMENT_REGISTER_DEFINE(robotctl, "robotctl", GST_RANK_NONE, GST_TYPE_ROBOT_CTL);
-
-// ---------------------------------------------------------------------------------------------------------
-// Enum types
-
-COLORTRACK_DEFINE_CHOICE_TYPE(gst_robot_ctl_protocol_get_type, "GstRobotCtlProtocol",
-                              colortrack::protocolDescriptors())
-COLORTRACK_DEFINE_CHOICE_TYPE(gst_robot_ctl_mavlink_mode_get_type, "GstRobotCtlMavlinkMode",
-                              colortrack::kMavlinkModes)
-COLORTRACK_DEFINE_CHOICE_TYPE(gst_robot_ctl_controller_get_type, "GstRobotCtlController",
-                              colortrack::kControllerKinds)
-COLORTRACK_DEFINE_CHOICE_TYPE(gst_robot_ctl_distance_cue_get_type, "GstRobotCtlDistanceCue",
-                              colortrack::kDistanceCues)
-COLORTRACK_DEFINE_CHOICE_TYPE(gst_robot_ctl_parity_get_type, "GstRobotCtlParity", robotctl::kParities)
-COLORTRACK_DEFINE_CHOICE_TYPE(gst_robot_ctl_flow_control_get_type, "GstRobotCtlFlowControl",
-                              robotctl::kFlowControls)
-COLORTRACK_DEFINE_CHOICE_TYPE(gst_robot_ctl_lock_on_get_type, "GstRobotCtlLockOn", colortrack::kLockOns)
 
 // ---------------------------------------------------------------------------------------------------------
 // GObject

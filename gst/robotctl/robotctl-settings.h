@@ -7,7 +7,7 @@
 #include "colortrack/controller.hpp"
 #include "colortrack/protocol.hpp"
 #include "colortrack/target_lock.hpp"
-#include "gstrobotctl.h"
+#include "robotctl-enums.h"
 #include "property-table.h"
 #include "colortrack/robot_port.hpp"
 

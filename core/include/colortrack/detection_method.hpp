@@ -13,7 +13,8 @@
 #include "colortrack/image_source.hpp"
 #include "colortrack/kalman_track.hpp"
 #include "colortrack/template_model.hpp"
-#include "colortrack/tracker.hpp"
+#include "colortrack/track_output.hpp"
+#include "colortrack/tracker_settings.hpp"
 
 namespace colortrack {
 

@@ -7,7 +7,7 @@
 
 #include "colortrack/kalman.hpp"
 #include "colortrack/track.hpp"
-#include "colortrack/tracker.hpp"
+#include "colortrack/track_output.hpp"
 
 namespace colortrack {
 

@@ -12,7 +12,7 @@
 #include "colortrack/histogram.hpp"
 #include "colortrack/image_source.hpp"
 #include "colortrack/likelihood.hpp"
-#include "colortrack/tracker.hpp"
+#include "colortrack/tracker_settings.hpp"
 
 namespace colortrack {
 

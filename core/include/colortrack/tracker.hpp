@@ -17,62 +17,10 @@
 #include "colortrack/scale.hpp"
 #include "colortrack/search.hpp"
 #include "colortrack/track.hpp"
+#include "colortrack/track_output.hpp"
+#include "colortrack/tracker_settings.hpp"
 
 namespace colortrack {
-
-// How a frame is searched for the target.
-enum class Method {
-  // The paper's modified colour indexing: the template's per-channel histograms against every window by
-  // weighted histogram intersection, scale by window-versus-ring match.
-  Indexing,
-  // Object-versus-surroundings colour likelihood P(object | colour), learnt from the target box and the
-  // ring around it and adapted slowly; windows scored by their mean likelihood with a motion prior, box size
-  // and aspect by the likelihood mass they enclose. Falls back to Indexing until it has been learnt (a
-  // template file has no surroundings: the first detection teaches it).
-  Discriminative,
-  // Two learners fused (as in Staple): a discriminative correlation filter over gradient-orientation cells
-  // and intensity (shape, learnt online in the Fourier domain) and the colour likelihood above, their
-  // response maps summed; a 1-D scale filter; the fused response's peak-to-sidelobe confidence decides
-  // tracking / coasting / lost and gates learning; a lost target is re-detected over the whole frame.
-  Fused,
-};
-
-struct TrackerSettings {
-  Method method = Method::Fused;
-  ColorSpace colorSpace = ColorSpace::Hsv;
-  BinLayout bins;
-  ChannelWeights weights;
-  double matchThreshold = 0.25;  // minimum match value of a detection (a product of three intersections)
-  ScaleParams scale;
-  double searchMargin = 2.0;  // search region = box grown by margin * size + 3 sigma of the prediction
-  KalmanParams kalman;
-  int maxCoastFrames = 10;  // frames without detection before the track is lost
-  // The camera's own motion (GlobalMotion) taken out of the predictions: a panning or turning camera moves
-  // every track with the picture. Threshold mode.
-  bool followCamera = true;
-  VerifyMode verify = VerifyMode::Both;
-  double verifyTolerance = 0.5;
-
-  // Discriminative method only.
-  double likelihoodThreshold = 0.3;  // minimum mean P(object | colour) in the box for a detection
-  double modelUpdateRate = 0.05;     // how fast the likelihood follows appearance changes (0 = never)
-  bool adaptAspect = true;           // let the box's width and height change independently
-};
-
-struct TrackOutput {
-  TrackState state = TrackState::Searching;
-  bool hasBox = false;  // a track exists (tracking or coasting)
-  int id = 0;           // track id, >= 1 once a track has existed; grows at every new acquisition
-  cv::Rect2d box;       // filtered box, frame coordinates
-  // Indexing and discriminative: match value of this frame's detection against the template (0 when
-  // coasting). Fused: the frame's confidence relative to the track's usual one, capped at 1 and at
-  // 1 - rival / 2 when a look-alike answers in the window (under 0.5: not a detection, a guess or doubted).
-  double score = 0;
-  bool verified = false;  // edge check passed (always true when verify = None)
-  double scale = 1.0;     // box size relative to the template
-  double vx = 0, vy = 0;  // filtered velocity, px/frame
-  cv::Rect searchRegion;  // where this frame was searched (empty if nothing was searched)
-};
 
 // The smallest template side: smaller boxes hold too few pixels for a histogram or a shape filter.
 constexpr int kMinTemplateSide = 8;
