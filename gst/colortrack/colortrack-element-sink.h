@@ -9,39 +9,40 @@
 #include <gst/gst.h>
 
 #include "colortrack/blobs.hpp"
-#include "gstcolortrack.h"
 
 namespace colortrack_gst {
 
+// An interface, so that a mode can be tested against a fake (the element's is ElementLink,
+// colortrack-element-link.h).
 class ElementSink {
  public:
-  explicit ElementSink(GstColorTrack *element) : element_(element) {}
+  virtual ~ElementSink() = default;
 
   // An element error or warning (GST_ELEMENT_ERROR / GST_ELEMENT_WARNING with this text and debug detail).
-  void error(GQuark domain, gint code, const std::string &text, const char *debug = nullptr) const;
-  void warning(GQuark domain, gint code, const std::string &text, const char *debug = nullptr) const;
-  void info(const std::string &text) const;
+  virtual void error(GQuark domain, gint code, const std::string &text,
+                     const char *debug = nullptr) const = 0;
+  virtual void warning(GQuark domain, gint code, const std::string &text,
+                       const char *debug = nullptr) const = 0;
+  virtual void info(const std::string &text) const = 0;
 
   // A new target: its trails start over and the element leaves the idle state.
-  void targetChanged() const;
+  virtual void targetChanged() const = 0;
   // A new target the tracks there are may carry on with: the element leaves the idle state, trails kept.
-  void resumed() const;
+  virtual void resumed() const = 0;
   // A right click: trails cleared, and nothing reported until a new target.
-  void stopped() const;
+  virtual void stopped() const = 0;
   // The tracks were reset (no new target): their trails go.
-  void tracksReset() const;
+  virtual void tracksReset() const = 0;
   // New caps or the "reset" signal since the last call.
-  bool takeResetRequest() const;
+  virtual bool takeResetRequest() const = 0;
 
   // Writes a colour range learnt from the video to hsv-lower/hsv-upper (and notifies); returns the blob
   // settings as they now are and their counter, which the mode has thereby applied.
-  colortrack::BlobSettings writeLearntRange(const colortrack::HsvRange &range, guint64 &generation) const;
+  virtual colortrack::BlobSettings writeLearntRange(const colortrack::HsvRange &range,
+                                                    guint64 &generation) const = 0;
   // template-location reads back as `inUse` when the value `refused` could not be used (unless it was set
   // again meanwhile).
-  void restoreTemplateLocation(const std::string &refused, const std::string &inUse) const;
-
- private:
-  GstColorTrack *element_;
+  virtual void restoreTemplateLocation(const std::string &refused, const std::string &inUse) const = 0;
 };
 
 }  // namespace colortrack_gst

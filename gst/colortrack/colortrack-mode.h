@@ -42,26 +42,28 @@ class Mode {
   virtual bool listsTracks() const = 0;
 };
 
-std::unique_ptr<Mode> makeTemplateMode(ElementSink sink);
-std::unique_ptr<Mode> makeThresholdMode(ElementSink sink);
+// The mode `mode` (fixed while the element is started), reaching the element through `sink`.
+std::unique_ptr<Mode> makeMode(colortrack::TrackingMode mode, std::unique_ptr<ElementSink> sink);
+std::unique_ptr<Mode> makeTemplateMode(std::unique_ptr<ElementSink> sink);
+std::unique_ptr<Mode> makeThresholdMode(std::unique_ptr<ElementSink> sink);
 
 // --- What both modes do alike (colortrack-targets.cpp) ---
 
 // After new caps or the "reset" signal: the tracks are forgotten (the target stays).
-void resetIfRequested(ElementSink &sink, colortrack::FrameTracker &tracker);
+void resetIfRequested(const ElementSink &sink, colortrack::FrameTracker &tracker);
 // A right click: no target until a new one is given.
-void stopTracking(ElementSink &sink, colortrack::FrameTracker &tracker);
+void stopTracking(const ElementSink &sink, colortrack::FrameTracker &tracker);
 
 // The square of side `side` centred on `point`, clipped to the frame; empty when the point lies outside.
 cv::Rect boxAround(const cv::Point2d &point, int side, cv::Size frame);
 // "the click at x,y (box x,y,w,h)", for messages and the template's origin.
 std::string describeClick(const ClickRequest &click, const cv::Rect &box);
 // A click on a sink's letterbox border, outside the frame: logged and ignored.
-void ignoreClickOutside(ElementSink &sink, const ClickRequest &click, cv::Size frame);
+void ignoreClickOutside(const ElementSink &sink, const ClickRequest &click, cv::Size frame);
 // An init-box that does not lie inside the frame: an element error before streaming, a warning (and the
 // box ignored) when it was set while playing.
 enum class InitBoxFit { Fits, Ignored, Error };
-InitBoxFit checkInitBox(ElementSink &sink, const cv::Rect &box, cv::Size frame, bool whileStreaming,
+InitBoxFit checkInitBox(const ElementSink &sink, const cv::Rect &box, cv::Size frame, bool whileStreaming,
                         const std::string &text);
 
 }  // namespace colortrack_gst

@@ -22,8 +22,8 @@ namespace colortrack_gst {
 
 // What the streaming thread owns (and start()/stop(), which never run concurrently with it).
 struct State {
-  // Both modes live from start to stop (mode may change while streaming); each frame uses the one asked for.
-  std::unique_ptr<Mode> templateMode, thresholdMode;
+  // The mode property's mode, made at start (the property cannot change while the element is started).
+  std::unique_ptr<Mode> mode;
   colortrack::ScratchImage frameCache;  // the frame view's converted pixels, kept from frame to frame
   Trails trails;
   AnalyticsTracks analytics;  // GStreamer >= 1.24: the tracks in the analytics meta (first seen, gone)

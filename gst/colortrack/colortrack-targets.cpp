@@ -9,13 +9,13 @@
 
 namespace colortrack_gst {
 
-void resetIfRequested(ElementSink &sink, colortrack::FrameTracker &tracker) {
+void resetIfRequested(const ElementSink &sink, colortrack::FrameTracker &tracker) {
   if (!sink.takeResetRequest()) return;
   tracker.reset();
   sink.tracksReset();
 }
 
-void stopTracking(ElementSink &sink, colortrack::FrameTracker &tracker) {
+void stopTracking(const ElementSink &sink, colortrack::FrameTracker &tracker) {
   tracker.reset();
   sink.stopped();
 }
@@ -37,14 +37,14 @@ std::string describeClick(const ClickRequest &click, const cv::Rect &box) {
   return text;
 }
 
-void ignoreClickOutside(ElementSink &sink, const ClickRequest &click, cv::Size frame) {
+void ignoreClickOutside(const ElementSink &sink, const ClickRequest &click, cv::Size frame) {
   char text[128];
   std::snprintf(text, sizeof text, "click at %.1f,%.1f lies outside the %dx%d frame: ignored", click.point.x,
                 click.point.y, frame.width, frame.height);
   sink.info(text);
 }
 
-InitBoxFit checkInitBox(ElementSink &sink, const cv::Rect &box, cv::Size frame, bool whileStreaming,
+InitBoxFit checkInitBox(const ElementSink &sink, const cv::Rect &box, cv::Size frame, bool whileStreaming,
                         const std::string &text) {
   if ((box & cv::Rect(cv::Point(), frame)) == box) return InitBoxFit::Fits;
   const std::string what = "Property 'init-box' '" + gstglue::validUtf8(text) + "' does not fit in the " +

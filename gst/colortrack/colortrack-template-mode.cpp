@@ -46,7 +46,7 @@ std::string fromFile(const std::string &location) {
 
 class TemplateMode : public Mode {
  public:
-  explicit TemplateMode(ElementSink sink) : sink_(sink) {}
+  explicit TemplateMode(std::unique_ptr<ElementSink> sink) : sink_(std::move(sink)) {}
 
   bool start(const Snapshot &snapshot) override;
   bool prepare(const Snapshot &snapshot, const Requests &requests, const FrameView &view) override;
@@ -59,7 +59,7 @@ class TemplateMode : public Mode {
   void reloadTemplate(const std::string &location, cv::Size frame);
   void applyClick(const ClickRequest &click, int boxSize, const FrameView &view);
 
-  ElementSink sink_;
+  std::unique_ptr<ElementSink> sink_;
   std::optional<colortrack::Tracker> tracker_;
   guint64 appliedTrackerGeneration_ = 0, appliedTemplateGeneration_ = 0;
   std::string templateOrigin_;    // "the image 'x.png' (...)" or "the box '1,2,3,4' (...)", for messages
@@ -79,16 +79,17 @@ bool TemplateMode::start(const Snapshot &snapshot) {
   bool missing = false;
   if (!loadTemplateFile(snapshot.templateLocation, bgr, mask, why, missing)) {
     if (missing)
-      sink_.error(GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_NOT_FOUND,
-                  "Template file '" + shown + "' (property 'template-location') does not exist.",
-                  why.c_str());
+      sink_->error(GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_NOT_FOUND,
+                   "Template file '" + shown + "' (property 'template-location') does not exist.",
+                   why.c_str());
     else
-      sink_.error(GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_OPEN_READ,
-                  "Could not read the template image '" + shown + "' (property 'template-location'): " + why);
+      sink_->error(
+          GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_OPEN_READ,
+          "Could not read the template image '" + shown + "' (property 'template-location'): " + why);
     return false;
   }
   if (const std::string problem = colortrack::templateSizeProblem(bgr.size()); !problem.empty()) {
-    sink_.error(
+    sink_->error(
         GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_SETTINGS,
         "Cannot use the template image '" + shown + "' (property 'template-location'): " + problem + ".");
     return false;
@@ -108,10 +109,10 @@ bool TemplateMode::prepare(const Snapshot &snapshot, const Requests &requests, c
     appliedTemplateGeneration_ = snapshot.templateGeneration;
     if (!snapshot.templateLocation.empty()) reloadTemplate(snapshot.templateLocation, view.size());
   }
-  resetIfRequested(sink_, *tracker_);
+  resetIfRequested(*sink_, *tracker_);
   if (requests.initBox) {
-    const InitBoxFit fit =
-        checkInitBox(sink_, *requests.initBox, view.size(), requests.initBoxWhileStreaming, snapshot.initBox);
+    const InitBoxFit fit = checkInitBox(*sink_, *requests.initBox, view.size(),
+                                        requests.initBoxWhileStreaming, snapshot.initBox);
     if (fit == InitBoxFit::Error) return false;
     if (fit == InitBoxFit::Fits) {
       tracker_->setTemplateFromBox(view, *requests.initBox);
@@ -126,25 +127,25 @@ Mode::Readiness TemplateMode::readiness(cv::Size frame) {
   if (!tracker_->hasTemplate()) {
     if (!warnedNoTemplate_) {
       warnedNoTemplate_ = true;
-      sink_.warning(GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_SETTINGS,
-                    "No template: set 'template-location' or 'init-box', or click the object in the video "
-                    "window. Passing video through.");
+      sink_->warning(GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_SETTINGS,
+                     "No template: set 'template-location' or 'init-box', or click the object in the video "
+                     "window. Passing video through.");
     }
     return Readiness::Waiting;
   }
   const cv::Size size = tracker_->templateSize();
   if (size.width <= frame.width && size.height <= frame.height) return Readiness::Ready;
-  sink_.error(GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_SETTINGS,
-              "The template from " + gstglue::validUtf8(templateOrigin_) + " (" + std::to_string(size.width) +
-                  "x" + std::to_string(size.height) + ") is larger than the " + std::to_string(frame.width) +
-                  "x" + std::to_string(frame.height) + " frame.");
+  sink_->error(GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_SETTINGS,
+               "The template from " + gstglue::validUtf8(templateOrigin_) + " (" +
+                   std::to_string(size.width) + "x" + std::to_string(size.height) + ") is larger than the " +
+                   std::to_string(frame.width) + "x" + std::to_string(frame.height) + " frame.");
   return Readiness::Error;
 }
 
 void TemplateMode::targetChanged(const std::string &origin) {
   templateOrigin_ = origin;
   warnedNoTemplate_ = false;
-  sink_.targetChanged();
+  sink_->targetChanged();
 }
 
 // A template-location set while streaming: read now; a file that cannot be read, or an image that cannot be
@@ -166,29 +167,29 @@ void TemplateMode::reloadTemplate(const std::string &location, cv::Size frame) {
       }
     }
   }
-  sink_.warning(GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_OPEN_READ,
-                "Could not use the template image '" + gstglue::validUtf8(location) +
-                    "' (property 'template-location'): " + gstglue::validUtf8(why) +
-                    ". Keeping the previous template.",
-                missing ? "the file does not exist" : nullptr);
-  sink_.restoreTemplateLocation(location, templateLocation_);
+  sink_->warning(GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_OPEN_READ,
+                 "Could not use the template image '" + gstglue::validUtf8(location) +
+                     "' (property 'template-location'): " + gstglue::validUtf8(why) +
+                     ". Keeping the previous template.",
+                 missing ? "the file does not exist" : nullptr);
+  sink_->restoreTemplateLocation(location, templateLocation_);
 }
 
 // A left click takes the template from the box around it and starts tracking there, exactly as init-box
 // does; a right click stops until a new target is given.
 void TemplateMode::applyClick(const ClickRequest &click, int boxSize, const FrameView &view) {
-  if (click.kind == ClickRequest::Kind::Stop) return stopTracking(sink_, *tracker_);
+  if (click.kind == ClickRequest::Kind::Stop) return stopTracking(*sink_, *tracker_);
   const cv::Rect box = boxAround(click.point, boxSize, view.size());
-  if (box.empty()) return ignoreClickOutside(sink_, click, view.size());
+  if (box.empty()) return ignoreClickOutside(*sink_, click, view.size());
   tracker_->setTemplateFromBox(view, box);
   targetChanged(describeClick(click, box));
-  sink_.info("template from " + templateOrigin_);
+  sink_->info("template from " + templateOrigin_);
 }
 
 }  // namespace
 
-std::unique_ptr<Mode> makeTemplateMode(ElementSink sink) {
-  return std::make_unique<TemplateMode>(sink);
+std::unique_ptr<Mode> makeTemplateMode(std::unique_ptr<ElementSink> sink) {
+  return std::make_unique<TemplateMode>(std::move(sink));
 }
 
 }  // namespace colortrack_gst

@@ -23,7 +23,7 @@ colortrack::MultiTrackerSettings multiTrackerSettings(const Settings &settings) 
 
 class ThresholdMode : public Mode {
  public:
-  explicit ThresholdMode(ElementSink sink) : sink_(sink) {}
+  explicit ThresholdMode(std::unique_ptr<ElementSink> sink) : sink_(std::move(sink)) {}
 
   bool start(const Snapshot &snapshot) override {
     tracker_.emplace(snapshot.blobs);
@@ -40,7 +40,7 @@ class ThresholdMode : public Mode {
   void learnRange(const FrameView &view, const cv::Rect &box, const std::string &origin);
   void applyClick(const ClickRequest &click, int boxSize, const FrameView &view);
 
-  ElementSink sink_;
+  std::unique_ptr<ElementSink> sink_;
   std::optional<colortrack::ThresholdTracker> tracker_;
   guint64 appliedBlobsGeneration_ = 0, appliedRangeGeneration_ = 0;
 };
@@ -48,10 +48,10 @@ class ThresholdMode : public Mode {
 bool ThresholdMode::prepare(const Snapshot &snapshot, const Requests &requests, const FrameView &view) {
   const cv::Size size = view.size();
   if (snapshot.blobs.minArea > size.area()) {
-    sink_.error(GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_SETTINGS,
-                "Property 'min-area' " + std::to_string(snapshot.blobs.minArea) + " is larger than the " +
-                    std::to_string(size.width) + "x" + std::to_string(size.height) + " frame (" +
-                    std::to_string(size.area()) + " pixels): nothing can be found.");
+    sink_->error(GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_SETTINGS,
+                 "Property 'min-area' " + std::to_string(snapshot.blobs.minArea) + " is larger than the " +
+                     std::to_string(size.width) + "x" + std::to_string(size.height) + " frame (" +
+                     std::to_string(size.area()) + " pixels): nothing can be found.");
     return false;
   }
   if (snapshot.blobsGeneration != appliedBlobsGeneration_) {
@@ -60,13 +60,13 @@ bool ThresholdMode::prepare(const Snapshot &snapshot, const Requests &requests, 
   }
   if (snapshot.rangeGeneration != appliedRangeGeneration_) {
     appliedRangeGeneration_ = snapshot.rangeGeneration;
-    sink_.resumed();  // a new range is a new target for the tracks there are
+    sink_->resumed();  // a new range is a new target for the tracks there are
   }
   tracker_->setTrackSettings(multiTrackerSettings(snapshot));
-  resetIfRequested(sink_, *tracker_);
+  resetIfRequested(*sink_, *tracker_);
   if (requests.initBox) {
     const InitBoxFit fit =
-        checkInitBox(sink_, *requests.initBox, size, requests.initBoxWhileStreaming, snapshot.initBox);
+        checkInitBox(*sink_, *requests.initBox, size, requests.initBoxWhileStreaming, snapshot.initBox);
     if (fit == InitBoxFit::Error) return false;
     if (fit == InitBoxFit::Fits) learnRange(view, *requests.initBox, "init-box " + snapshot.initBox);
   }
@@ -79,29 +79,29 @@ bool ThresholdMode::prepare(const Snapshot &snapshot, const Requests &requests, 
 // launch line.
 void ThresholdMode::learnRange(const FrameView &view, const cv::Rect &box, const std::string &origin) {
   const colortrack::HsvRange learnt = colortrack::learnRange(view, box);
-  tracker_->setBlobSettings(sink_.writeLearntRange(learnt, appliedBlobsGeneration_));
+  tracker_->setBlobSettings(sink_->writeLearntRange(learnt, appliedBlobsGeneration_));
   tracker_->reset();
-  sink_.targetChanged();
-  sink_.info("learnt hsv-lower " + colortrack::formatHsv(learnt.lower) + " hsv-upper " +
-             colortrack::formatHsv(learnt.upper) + " from " + origin);
+  sink_->targetChanged();
+  sink_->info("learnt hsv-lower " + colortrack::formatHsv(learnt.lower) + " hsv-upper " +
+              colortrack::formatHsv(learnt.upper) + " from " + origin);
 }
 
 // A left click learns the colour around it; a right click stops until a new target is given.
 void ThresholdMode::applyClick(const ClickRequest &click, int boxSize, const FrameView &view) {
-  if (click.kind == ClickRequest::Kind::Stop) return stopTracking(sink_, *tracker_);
+  if (click.kind == ClickRequest::Kind::Stop) return stopTracking(*sink_, *tracker_);
   // The colour is sampled from the middle half of the box: a click lands near an object's centre, and a
   // sample that reached past a small object's edge would learn the background's colours too.
   const cv::Rect sample = boxAround(click.point, std::max(1, boxSize / 2), view.size());
   if (sample.empty())
-    ignoreClickOutside(sink_, click, view.size());
+    ignoreClickOutside(*sink_, click, view.size());
   else
     learnRange(view, sample, describeClick(click, sample));
 }
 
 }  // namespace
 
-std::unique_ptr<Mode> makeThresholdMode(ElementSink sink) {
-  return std::make_unique<ThresholdMode>(sink);
+std::unique_ptr<Mode> makeThresholdMode(std::unique_ptr<ElementSink> sink) {
+  return std::make_unique<ThresholdMode>(std::move(sink));
 }
 
 }  // namespace colortrack_gst

@@ -71,6 +71,7 @@
 #include "colortrack/frame_tracker.hpp"
 #include "colortrack/tracker.hpp"
 #include "colortrack-meta.h"
+#include "colortrack-element-link.h"
 #include "colortrack-mode.h"
 #include "colortrack-settings.h"
 #include "colortrack-state.h"
@@ -216,9 +217,8 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
   try {
     state = State{};
     colortrack::startWorkerThreads();  // here rather than on the first frame
-    state.templateMode = colortrack_gst::makeTemplateMode(colortrack_gst::ElementSink(self));
-    state.thresholdMode = colortrack_gst::makeThresholdMode(colortrack_gst::ElementSink(self));
-    if (!state.templateMode->start(snapshot) || !state.thresholdMode->start(snapshot)) {
+    state.mode = colortrack_gst::makeMode(snapshot.mode, std::make_unique<colortrack_gst::ElementLink>(self));
+    if (!state.mode->start(snapshot)) {
       state = State{};
       return FALSE;
     }
@@ -364,8 +364,7 @@ static GstFlowReturn track_frame(GstColorTrack *self, GstVideoFrame *frame, cons
                                  const colortrack_gst::Requests &requests, guint64 frameNumber, double dt) {
   State &state = stateOf(self);
   const colortrack_gst::FrameView view(frame, &state.frameCache);
-  colortrack_gst::Mode &mode =
-      snapshot.mode == colortrack::TrackingMode::Threshold ? *state.thresholdMode : *state.templateMode;
+  colortrack_gst::Mode &mode = *state.mode;
   if (!mode.prepare(snapshot, requests, view)) return GST_FLOW_ERROR;
 
   // No track, but messages still come for every frame (an application waiting for a click sees why).
@@ -399,7 +398,7 @@ static GstFlowReturn track_mapped_frame(GstColorTrack *self, GstVideoFrame *fram
   const guint64 frameNumber = state.frameCount++;
   const double dt = frame_step(self, GST_VIDEO_FILTER(self), frame->buffer);
   try {
-    if (!state.templateMode || !state.thresholdMode) {
+    if (!state.mode) {
       GST_ELEMENT_ERROR(self, CORE, FAILED, ("colortrack was not started."), (nullptr));
       return GST_FLOW_ERROR;
     }

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
-// ElementSink: the modes' one way into the element's private data.
-#include "colortrack-element-sink.h"
+// ElementLink: the modes' one way into the element's private data.
+#include "colortrack-element-link.h"
 
 #include "colortrack-state.h"
 
@@ -18,46 +18,46 @@ void post(GstColorTrack *element, GstMessageType type, GQuark domain, gint code,
 
 }  // namespace
 
-void ElementSink::error(GQuark domain, gint code, const std::string &text, const char *debug) const {
+void ElementLink::error(GQuark domain, gint code, const std::string &text, const char *debug) const {
   post(element_, GST_MESSAGE_ERROR, domain, code, text, debug);
 }
 
-void ElementSink::warning(GQuark domain, gint code, const std::string &text, const char *debug) const {
+void ElementLink::warning(GQuark domain, gint code, const std::string &text, const char *debug) const {
   post(element_, GST_MESSAGE_WARNING, domain, code, text, debug);
 }
 
-void ElementSink::info(const std::string &text) const {
+void ElementLink::info(const std::string &text) const {
   GST_INFO_OBJECT(element_, "%s", text.c_str());
 }
 
-void ElementSink::targetChanged() const {
+void ElementLink::targetChanged() const {
   State &state = element_->priv->state;
   state.trails.clear();
   state.idle = false;
 }
 
-void ElementSink::resumed() const {
+void ElementLink::resumed() const {
   element_->priv->state.idle = false;
 }
 
-void ElementSink::stopped() const {
+void ElementLink::stopped() const {
   State &state = element_->priv->state;
   state.trails.clear();
   state.idle = true;
 }
 
-void ElementSink::tracksReset() const {
+void ElementLink::tracksReset() const {
   element_->priv->state.trails.clear();
 }
 
-bool ElementSink::takeResetRequest() const {
+bool ElementLink::takeResetRequest() const {
   State &state = element_->priv->state;
   const bool reset = element_->priv->resetRequested.exchange(false) || state.capsChanged;
   state.capsChanged = false;
   return reset;
 }
 
-colortrack::BlobSettings ElementSink::writeLearntRange(const colortrack::HsvRange &range,
+colortrack::BlobSettings ElementLink::writeLearntRange(const colortrack::HsvRange &range,
                                                        guint64 &generation) const {
   GST_OBJECT_LOCK(element_);
   PropertyStore &store = element_->priv->store;
@@ -72,7 +72,7 @@ colortrack::BlobSettings ElementSink::writeLearntRange(const colortrack::HsvRang
   return blobs;
 }
 
-void ElementSink::restoreTemplateLocation(const std::string &refused, const std::string &inUse) const {
+void ElementLink::restoreTemplateLocation(const std::string &refused, const std::string &inUse) const {
   GST_OBJECT_LOCK(element_);
   std::string &location = element_->priv->store.settings.templateLocation;
   const bool unchanged = location == refused;

@@ -1,0 +1,32 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+// ElementLink: the ElementSink of the colortrack element itself, writing into its private data.
+#pragma once
+
+#include <string>
+
+#include "colortrack-element-sink.h"
+#include "gstcolortrack.h"
+
+namespace colortrack_gst {
+
+class ElementLink final : public ElementSink {
+ public:
+  explicit ElementLink(GstColorTrack *element) : element_(element) {}
+
+  void error(GQuark domain, gint code, const std::string &text, const char *debug) const override;
+  void warning(GQuark domain, gint code, const std::string &text, const char *debug) const override;
+  void info(const std::string &text) const override;
+  void targetChanged() const override;
+  void resumed() const override;
+  void stopped() const override;
+  void tracksReset() const override;
+  bool takeResetRequest() const override;
+  colortrack::BlobSettings writeLearntRange(const colortrack::HsvRange &range,
+                                            guint64 &generation) const override;
+  void restoreTemplateLocation(const std::string &refused, const std::string &inUse) const override;
+
+ private:
+  GstColorTrack *element_;
+};
+
+}  // namespace colortrack_gst
