@@ -2,17 +2,15 @@
 // ElementLink: the modes' one way into the element's private data.
 #include "colortrack-element-link.h"
 
-#include "colortrack-state.h"
-
 #define GST_CAT_DEFAULT gst_color_track_debug
 
 namespace colortrack_gst {
 
 namespace {
 
-void post(GstColorTrack *element, GstMessageType type, GQuark domain, gint code, const std::string &text,
+void post(GstElement *element, GstMessageType type, GQuark domain, gint code, const std::string &text,
           const char *debug) {
-  gst_element_message_full(GST_ELEMENT(element), type, domain, code, g_strdup(text.c_str()),
+  gst_element_message_full(element, type, domain, code, g_strdup(text.c_str()),
                            debug ? g_strdup(debug) : nullptr, __FILE__, GST_FUNCTION, __LINE__);
 }
 
@@ -31,28 +29,28 @@ void ElementLink::info(const std::string &text) const {
 }
 
 void ElementLink::targetChanged() const {
-  State &state = element_->priv->state;
+  State &state = priv_->state;
   state.trails.clear();
   state.idle = false;
 }
 
 void ElementLink::resumed() const {
-  element_->priv->state.idle = false;
+  priv_->state.idle = false;
 }
 
 void ElementLink::stopped() const {
-  State &state = element_->priv->state;
+  State &state = priv_->state;
   state.trails.clear();
   state.idle = true;
 }
 
 void ElementLink::tracksReset() const {
-  element_->priv->state.trails.clear();
+  priv_->state.trails.clear();
 }
 
 bool ElementLink::takeResetRequest() const {
-  State &state = element_->priv->state;
-  const bool reset = element_->priv->resetRequested.exchange(false) || state.capsChanged;
+  State &state = priv_->state;
+  const bool reset = priv_->resetRequested.exchange(false) || state.capsChanged;
   state.capsChanged = false;
   return reset;
 }
@@ -60,7 +58,7 @@ bool ElementLink::takeResetRequest() const {
 colortrack::BlobSettings ElementLink::writeLearntRange(const colortrack::HsvRange &range,
                                                        guint64 &generation) const {
   GST_OBJECT_LOCK(element_);
-  PropertyStore &store = element_->priv->store;
+  PropertyStore &store = priv_->store;
   store.settings.blobs.range = range;
   store.settings.hsvLower = colortrack::formatHsv(range.lower);
   store.settings.hsvUpper = colortrack::formatHsv(range.upper);
@@ -74,7 +72,7 @@ colortrack::BlobSettings ElementLink::writeLearntRange(const colortrack::HsvRang
 
 void ElementLink::restoreTemplateLocation(const std::string &refused, const std::string &inUse) const {
   GST_OBJECT_LOCK(element_);
-  std::string &location = element_->priv->store.settings.templateLocation;
+  std::string &location = priv_->store.settings.templateLocation;
   const bool unchanged = location == refused;
   if (unchanged) location = inUse;
   GST_OBJECT_UNLOCK(element_);

@@ -5,13 +5,14 @@
 #include <string>
 
 #include "colortrack-element-sink.h"
-#include "gstcolortrack.h"
+#include "colortrack-state.h"
 
 namespace colortrack_gst {
 
 class ElementLink final : public ElementSink {
  public:
-  explicit ElementLink(GstColorTrack *element) : element_(element) {}
+  // `priv`: the element's private data (the link needs no more of the element than that and the GstElement).
+  ElementLink(GstElement *element, GstColorTrackPrivate *priv) : element_(element), priv_(priv) {}
 
   void error(GQuark domain, gint code, const std::string &text, const char *debug) const override;
   void warning(GQuark domain, gint code, const std::string &text, const char *debug) const override;
@@ -26,7 +27,8 @@ class ElementLink final : public ElementSink {
   void restoreTemplateLocation(const std::string &refused, const std::string &inUse) const override;
 
  private:
-  GstColorTrack *element_;
+  GstElement *element_;
+  GstColorTrackPrivate *priv_;
 };
 
 }  // namespace colortrack_gst

@@ -13,7 +13,6 @@
 #include "analytics-meta.h"
 #include "colortrack-mode.h"
 #include "colortrack-settings.h"
-#include "gstcolortrack.h"
 #include "track-overlay.h"
 
 GST_DEBUG_CATEGORY_EXTERN(gst_color_track_debug);
@@ -37,6 +36,7 @@ struct State {
 
 }  // namespace colortrack_gst
 
+typedef struct _GstColorTrackPrivate GstColorTrackPrivate;  // (also declared by gstcolortrack.h)
 struct _GstColorTrackPrivate {
   colortrack_gst::PropertyStore store;
   colortrack_gst::State state;

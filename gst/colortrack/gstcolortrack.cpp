@@ -217,7 +217,7 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
   try {
     state = State{};
     colortrack::startWorkerThreads();  // here rather than on the first frame
-    state.mode = colortrack_gst::makeMode(snapshot.mode, std::make_unique<colortrack_gst::ElementLink>(self));
+    state.mode = colortrack_gst::makeMode(snapshot.mode, std::make_unique<colortrack_gst::ElementLink>(GST_ELEMENT(self), self->priv));
     if (!state.mode->start(snapshot)) {
       state = State{};
       return FALSE;
