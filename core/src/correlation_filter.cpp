@@ -311,7 +311,7 @@ double strongestOutsideShare(const cv::Mat &response, cv::Point peak, cv::Size2d
   cv::Mat outside(response.size(), CV_8U, cv::Scalar(255));
   // Rounded from its corner, the area can lie one element to one side when a half side ends in .5. Centring
   // it exactly moved the core harness's SRE tune mean by -0.005, within its noise; the figures in
-  // docs/benchmarks.md are with this form.
+  // docs/benchmarks-history.md are with this form.
   const cv::Rect own(cvRound(peak.x - halfSides.width), cvRound(peak.y - halfSides.height),
                      cvRound(2 * halfSides.width) + 1, cvRound(2 * halfSides.height) + 1);
   outside(own & cv::Rect(cv::Point(), response.size())).setTo(0);

@@ -14,7 +14,7 @@ namespace colortrack {
 
 namespace {
 
-// The parameters were chosen on the tune half of ../shared/sequences (docs/benchmarks.md lists what was
+// The parameters were chosen on the tune half of ../shared/sequences (docs/benchmarks-history.md lists what was
 // tried); most are Staple's and DSST's published values, which held up.
 constexpr int kCell = 4;  // feature cell side, normalised px
 constexpr double kWindowArea =
@@ -49,7 +49,7 @@ constexpr double kExtentMinContrast = 0.1;
 // The same vote also tries centres shifted by up to 0.1 of the size on each axis (steps of 0.05), and the
 // report moves kShiftRate of the way there; the learners keep the filter's peak. A first box placed partly
 // off the target (SRE's shifted starts) otherwise stays off it for the whole run. Core harness, means over
-// the four start offsets of docs/benchmarks.md, OPE tune/confirm, SRE tune/confirm: without 0.639/0.524,
+// the four start offsets of docs/benchmarks-history.md, OPE tune/confirm, SRE tune/confirm: without 0.639/0.524,
 // 0.599/0.470; rate 0.5 0.649/0.521, 0.619/0.478 (SRE up on 16 of 18 sequences); 0.3 0.648/0.523,
 // 0.612/0.476. Offset 0,0 only: 0.2 0.659/0.507, 0.609/0.484; 1: 0.650/0.488, 0.623/0.482; shifts up to 0.05
 // or 0.15: 0.660/0.507, 0.607/0.483 and 0.663/0.506, 0.615/0.486 (at rate 0.3). Feeding the shift to the

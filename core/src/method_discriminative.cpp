@@ -22,7 +22,7 @@ constexpr double kSurroundings = 0.5;
 // Sizing: the ring the box's mean likelihood is compared with, as a fraction of the box's smaller side.
 // Narrower than the indexing ring: the likelihood map is sharper than a window's histogram, and a wide ring
 // reaches neighbouring object-coloured clutter. 0.1-0.2 all give mean AUC 0.55-0.57 on the shared sequences,
-// 0.25 gives 0.52, 0.5 gives 0.33 (docs/benchmarks.md).
+// 0.25 gives 0.52, 0.5 gives 0.33 (docs/benchmarks-history.md).
 constexpr double kLikelihoodRing = 0.15;
 
 cv::Size wholeWindow(cv::Size2d size) {

@@ -31,7 +31,7 @@ namespace {
 // running means (rate kConfidenceRate) over learnt frames, skipping the first kConfidenceSkip frames after
 // the filters start (they match their single training view unusually well), trusted after kConfidenceWarmUp
 // frames, and capped at kConfidentPsr (a video that starts with still frames would otherwise set the bar out
-// of reach once things move). Chosen on the tune half of ../shared/sequences (docs/benchmarks.md).
+// of reach once things move). Chosen on the tune half of ../shared/sequences (docs/benchmarks-history.md).
 constexpr double kLostConfidence = 4.0;
 constexpr double kLostRatio = 0.5;
 constexpr double kLostColourRatio = 0.5;
@@ -72,7 +72,7 @@ constexpr double kReachSidesPerFrame = 1.0;
 // well, and learning or reporting `tracking` there is how the track went over to it. The track waits at its
 // peak until the two are apart. Core harness, all 162 runs, wrong frames reported `tracking` in the SRE runs
 // and SRE tune / confirm: main 15.7 %, 0.5974 / 0.4685; 0.8: 10.5 %, 0.5964 / 0.4718; 0.85: 12.9 %, 0.5972 /
-// 0.4760; 0.9: 13.0 %, 0.5987 / 0.4713; 0.75: 10.7 %, 0.5949; 0.7: 12.7 %, 0.5838 (docs/benchmarks.md).
+// 0.4760; 0.9: 13.0 %, 0.5987 / 0.4713; 0.75: 10.7 %, 0.5949; 0.7: 12.7 %, 0.5838 (docs/benchmarks-history.md).
 // Re-detections after a loss (acquire()) are not held to it: refusing to confirm one with a rival share of
 // 0.8 changed nothing, 0.6 lost 0.001-0.003 on each half.
 constexpr double kRivalShare = 0.8;
@@ -91,7 +91,7 @@ constexpr int kProbationFrames = 30;
 // After such a frame the track is doubted (KalmanTrack::doubted): followed and learnt as before, but reported
 // `coasting` until a frame reaches the bar that confirms a re-detection (Redetector::confirmed). The track
 // may have left with the look-alike, and the detection bar alone does not tell. The boxes are the same, so
-// every AUC is unchanged. Core harness, the four start offsets of docs/benchmarks.md: wrong frames reported
+// every AUC is unchanged. Core harness, the four start offsets of docs/benchmarks-history.md: wrong frames reported
 // `tracking` in the SRE runs 14.7 % -> 11.7 % (lower at each offset); at offset 0,1 the right ones (IoU >=
 // 0.5) reported `tracking` 0.4 % fewer.
 // A detection whose colour map shows no object at its box (FusedDetector::showsObject: no box around the peak
@@ -109,7 +109,7 @@ constexpr int kProbationFrames = 30;
 // look-alike crosses the target the window's peak may go over to it, and nothing in the frames after the two
 // part tells which one the track kept (following the motion from before instead lost 0.1 of SRE). A robot
 // waits while look-alikes are about. Boxes unchanged. Core harness, SRE + injected runs, offsets 0,0 / 1,0 /
-// 0,1 / -1,-1 (docs/benchmarks.md): off-target frames reported `tracking` 9.6 / 5.1 / 11.7 / 16.9 % -> 3.0 /
+// 0,1 / -1,-1 (docs/benchmarks-history.md): off-target frames reported `tracking` 9.6 / 5.1 / 11.7 / 16.9 % -> 3.0 /
 // 2.2 / 5.0 / 9.9 %, AUROC 0.943 / 0.953 / 0.929 / 0.912 -> 0.954 / 0.961 / 0.944 / 0.925, a copy crossing in
 // front ending on the copy at `tracking` 11 / 12 / 11 / 12 -> 2 / 2 / 2 / 3 of 33; the cost, recall of
 // `tracking` 0.91 -> 0.81-0.83 (at 0,0 Tiger1 0.92 -> 0.60, wakeboard5 0.68 -> 0.45, basketball 0.93 ->
@@ -132,7 +132,7 @@ double guessScore(double score) {
 // bar this is still above kLostRatio). Without it most frames report 1, and a frame on a look-alike ranks
 // with those on the target. Boxes and states unchanged; core harness, SRE + injected runs, AUROC of the
 // score tune / confirm 0.801 / 0.934 -> 0.861 / 0.942, and 0.862 / 0.946 with guessScore scaled (it was
-// min(score, just under 0.5)); 1 - 0.625 rival and 1 - rival^2 / 2 did no better (docs/benchmarks.md).
+// min(score, just under 0.5)); 1 - 0.625 rival and 1 - rival^2 / 2 did no better (docs/benchmarks-history.md).
 double rivalScore(double rival) {
   return 1 - rival / 2;
 }
@@ -210,7 +210,7 @@ class FusedMethod : public DetectionMethod {
   StartLikeness startLikeness_;  // every reported score is multiplied by its factor
   ScoreFall scoreFall_;          // of the weighted score: while fallen, a tracked frame is reported coasting
   // A return to `tracking` further from the last `tracking` place than a jump is held back. With this bar
-  // of 1.5 sides, core harness, SRE + injected runs, offsets 0,0 / 1,0 / 0,1 / -1,-1 (docs/benchmarks.md):
+  // of 1.5 sides, core harness, SRE + injected runs, offsets 0,0 / 1,0 / 0,1 / -1,-1 (docs/benchmarks-history.md):
   // off-target frames reported `tracking` 3.0 / 2.2 / 5.0 / 9.9 % -> 1.5 / 2.1 / 2.9 / 9.2 %, AUROC
   // 0.954 / 0.961 / 0.944 / 0.925 -> 0.957 / 0.960 / 0.948 / 0.923, recall of `tracking`
   // 0.827 / 0.832 / 0.810 / 0.825 -> 0.807 / 0.816 / 0.779 / 0.798.
@@ -419,7 +419,7 @@ void FusedMethod::waitAt(const FusedDetector::Estimate &e) {
 // A track begun from a re-detection under the confirmation bar follows its peak, coasting and learning
 // nothing but its size, until a frame reaches the bar (then it is the target again: false, and the frame is
 // learnt as usual) or max-coast-frames pass. Reported as tracking at once, such guesses put half the frames
-// whose box is off the target at `tracking` (docs/benchmarks.md). Its size takes the same step smaller as a
+// whose box is off the target at `tracking` (docs/benchmarks-history.md). Its size takes the same step smaller as a
 // confirmed track's where the colour map says it has grown into the background (sizeToSearchAt): the scale
 // filter alone grew a guess on a target that came back smaller, and its PSR stayed under the bar
 // (test_reacquisition.cpp; core harness: the means within 0.001).
@@ -534,7 +534,7 @@ void FusedMethod::noteConfidence(const FusedDetector::Estimate &e) {
 // whose colours fill only a part of its box from the start (the vote was at its smallest on one of the first
 // kPartFrames detections: a walker's shirt, or a loose first box), which the step would shrink onto that
 // part: person11's SRE fell by 0.18 without this exception. Core harness, means over the four start offsets
-// of docs/benchmarks.md, OPE tune/confirm, SRE tune/confirm: without 0.649/0.521, 0.619/0.478; with
+// of docs/benchmarks-history.md, OPE tune/confirm, SRE tune/confirm: without 0.649/0.521, 0.619/0.478; with
 // 0.669/0.505, 0.628/0.491 (bag +0.05, wakeboard4 +0.02, boat1 +0.14 SRE; Couple -0.06, a walker who grows).
 // Judged on the first detection only: 0.669/0.516, 0.635/0.497 there, but in the element (other decoded
 // frames) person11's OPE fell by 0.21: one frame's vote is too fragile. A floor at the start size instead of

@@ -16,7 +16,7 @@ constexpr int kCandidatesPerSize = 3;
 // After a loss, also kImageCandidatesPerSize candidates from the likelihood against the whole frame: the
 // target's colours measured against its last surroundings can rank other places of the frame (spray, the
 // boat) above it once it is elsewhere, and then it was never among the three. Core harness, the four start
-// offsets of docs/benchmarks.md, OPE tune / confirm, SRE tune / confirm, frames found after a loss: without
+// offsets of docs/benchmarks-history.md, OPE tune / confirm, SRE tune / confirm, frames found after a loss: without
 // 0.669 / 0.505, 0.628 / 0.491, 24.7 %; 1: 0.677 / 0.510, 0.637 / 0.494, 30.2 %; 2: 0.676 / 0.509, 0.636 /
 // 0.495, 29.9 %; 3: 0.674 / 0.508, 0.637 / 0.494, 29.4 % (Coke and wakeboard4 up at every offset, no tune
 // sequence down). Also while a confirmed track coasts (2): 0.677 / 0.514, 0.637 / 0.497, but the wrong frames
@@ -27,7 +27,7 @@ constexpr int kImageCandidatesPerSize = 1;
 // the frames after a loss searching with the target in view; proposing at the lower bar and reporting it as
 // tracking at once put half the wrong frames at `tracking`. The share was chosen on the tune half with an
 // earlier form of the rule (core harness, SRE, shares 0.42 / 0.5 / 0.58 / 0.67: 0.582 / 0.587 / 0.583 /
-// 0.583) and checked at 0.5 in this one (docs/benchmarks.md).
+// 0.583) and checked at 0.5 in this one (docs/benchmarks-history.md).
 constexpr double kConfidence = 6.0;
 constexpr double kConfidenceRatio = 0.6;
 constexpr double kProposal = 0.5;

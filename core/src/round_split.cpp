@@ -13,7 +13,7 @@ namespace {
 // A neck this narrow (its half width against the smaller disc's radius) separates two objects; one body
 // that is merely long (a capsule, an ellipse) has a ridge of nearly even width between its peaks. 0.85 missed
 // a small ball a third over a big one (neck 11.0 px, radius 13.6); 0.95 splits red balls with orange ones
-// drawn over them (docs/benchmarks.md, issue 47).
+// drawn over them (docs/benchmarks-history.md, issue 47).
 constexpr double kNeck = 0.9;
 // The discs must cover this part of the blob: what they leave is not round objects.
 constexpr double kCoverage = 0.9;

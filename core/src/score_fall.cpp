@@ -12,7 +12,7 @@ namespace {
 // Chosen offline on the tune half from per-frame dumps of the core harness (OPE + SRE + injected, offset
 // 0,0), off-target frames reported `tracking` and the recall of `tracking`, tune / confirm: without 28.2 % /
 // 17.8 %, recall 0.932 / 0.930; these values 2.7 % / 13.6 %, 0.910 / 0.909. Any score under 0.4 (no fall
-// needed): 2.7 % / 12.6 %, recall 0.853 / 0.903, bag's right frames -41 % (docs/benchmarks.md). The return's
+// needed): 2.7 % / 12.6 %, recall 0.853 / 0.903, bag's right frames -41 % (docs/benchmarks-history.md). The return's
 // bar, from the element's dumps (colortrack-eval, BGRx, OPE + injected) checked on the core harness's:
 // element 13.4 % / 8.8 %, recall 0.871 / 0.902 -> 3.6 % / 5.9 %, 0.848 / 0.899; core 2.7 % / 13.6 % -> 2.6 %
 // / 13.5 %, recall 0.910 / 0.909 -> 0.903 / 0.908.

@@ -14,7 +14,7 @@ namespace {
 // tune / confirm / all): without 0.863 / 0.945 / 0.926; 20 frames 0.899 / 0.953 / 0.935; 40: 0.920 / 0.951 /
 // 0.940; 80: 0.910 / 0.949 / 0.936 (all at 0.5); at 40 frames, weight 0.3: 0.916, 0.7: 0.914 on the tune
 // half; a reference that follows the match (a running mean at rate 0.005-0.05) 0.815-0.853
-// (docs/benchmarks.md).
+// (docs/benchmarks-history.md).
 constexpr int kReferenceFrames = 40;
 constexpr double kWeight = 0.5;
 

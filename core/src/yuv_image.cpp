@@ -17,7 +17,7 @@ namespace {
 // 16 bits of each product, the sum saturated. It has no luma offset: limited-range luma reads about 2 levels
 // darker than the standard matrix says, as it does in what videoconvert delivers. Reading with OpenCV's
 // rounding instead (14-bit weights, offsets kept) gave the same frames 1-2 levels apart in BGRx and I420,
-// and the tracker's answer moved with them (docs/benchmarks.md, "Pixel formats").
+// and the tracker's answer moved with them (docs/benchmarks-history.md, "Pixel formats").
 struct VideoconvertMatrix {
   int luma, blueU, greenU, greenV, redV;  // weights, 256 = 1
 

@@ -23,7 +23,7 @@
 //                   each from the OPE start; the honesty report (honesty.hpp) then covers them too.
 // --start-offset DX,DY  every start box (OPE and SRE) moved by whole pixels before the run. The means move
 //                   by about 0.01 (SRE) to 0.05 (OPE) for a 1 px offset, so a change smaller than that
-//                   spread, judged at one offset, is not yet a result (docs/benchmarks.md, noise floor).
+//                   spread, judged at one offset, is not yet a result (docs/benchmarks-history.md, noise floor).
 // --threads N       runs processed in parallel, one Tracker per run (default 2). OpenCV runs
 //                   single-threaded (cv::setNumThreads(1)), so the per-frame times are those of one core.
 // --frames-out DIR  DIR/<sequence>.csv (SRE runs: DIR/<sequence>.<start>.csv): frame,x,y,w,h,state,score

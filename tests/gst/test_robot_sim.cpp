@@ -15,7 +15,7 @@
 // distanceForSizeCue). The distance error is |distance / set-point distance - 1|.
 //
 // Every scenario prints its figures with g_print (`meson test -C build gst-robot-sim -v`);
-// docs/benchmarks.md ("Robot closed loop (issue 12)") has them for the old and the new controllers.
+// docs/benchmarks-history.md ("Robot closed loop (issue 12)") has them for the old and the new controllers.
 // C++ headers first: gstcheck.h defines macros (fail, ...) that clash with names in the standard library.
 #include <cmath>
 #include <cstdlib>

@@ -34,7 +34,7 @@ using namespace colortrack::robot_loop;
 // The distractor rolls at 0.4 m/s, and at 0.3 m/s: then the zone robot makes a single turn while the
 // distractor touches the ball, the ball jumps 13 px in the image and its track, merged a moment later, must
 // not coast on that jump out of the merged blob (and out of the frame, leaving robotctl only the
-// distractor): docs/benchmarks.md, "Robot closed loop".
+// distractor): docs/benchmarks-history.md, "Robot closed loop".
 // ROBOT_SIM_TRACE=1 prints every frame's ground truth and ROIs.
 struct Crossing {
   double speed = 0.4;              // m/s, right to left

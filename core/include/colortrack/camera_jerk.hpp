@@ -4,7 +4,7 @@
 // GlobalMotion compares a small copy of it with the frame before's; a shift of more than kJerkSides target
 // sides is a jerk, and FusedMethod then looks for the target where the jerk took it. GlobalMotion alone is
 // not trusted to move the track: on real footage its shift is more than 2 px off a feature-based reference
-// on 16 % of the frames (colortrack-motion-eval, docs/benchmarks.md), and following it every frame lost
+// on 16 % of the frames (colortrack-motion-eval, docs/benchmarks-history.md), and following it every frame lost
 // accuracy (issue 21); the target must be found where the jerk says.
 #pragma once
 

@@ -58,7 +58,7 @@ class ScaleFilter {
   // spectrum for trainOnLastEstimate().
   double estimate(const cv::Mat &samples);
   // Learns from the samples last given to estimate(), as they were measured: the label stays on the middle
-  // candidate, the size before the change. Measured on the shared sequences (docs/benchmarks.md): this
+  // candidate, the size before the change. Measured on the shared sequences (docs/benchmarks-history.md): this
   // (0.608 tune / 0.485 confirm) against re-sampling at the new size as DSST does (0.604 / 0.483, 35 %
   // slower) and against moving the spectrum by the change found (0.578 / 0.479).
   void trainOnLastEstimate(double rate);
