@@ -9,19 +9,21 @@ namespace colortrack_gst {
 namespace {
 
 void post(GstElement *element, GstMessageType type, GQuark domain, gint code, const std::string &text,
-          const char *debug) {
+          const char *debug, const CallSite &where) {
   gst_element_message_full(element, type, domain, code, g_strdup(text.c_str()),
-                           debug ? g_strdup(debug) : nullptr, __FILE__, GST_FUNCTION, __LINE__);
+                           debug ? g_strdup(debug) : nullptr, where.file, where.function, where.line);
 }
 
 }  // namespace
 
-void ElementLink::error(GQuark domain, gint code, const std::string &text, const char *debug) const {
-  post(element_, GST_MESSAGE_ERROR, domain, code, text, debug);
+void ElementLink::error(GQuark domain, gint code, const std::string &text, const char *debug,
+                        const char *file, const char *function, int line) const {
+  post(element_, GST_MESSAGE_ERROR, domain, code, text, debug, CallSite{file, function, line});
 }
 
-void ElementLink::warning(GQuark domain, gint code, const std::string &text, const char *debug) const {
-  post(element_, GST_MESSAGE_WARNING, domain, code, text, debug);
+void ElementLink::warning(GQuark domain, gint code, const std::string &text, const char *debug,
+                          const char *file, const char *function, int line) const {
+  post(element_, GST_MESSAGE_WARNING, domain, code, text, debug, CallSite{file, function, line});
 }
 
 void ElementLink::info(const std::string &text) const {

@@ -14,8 +14,10 @@ class ElementLink final : public ElementSink {
   // `priv`: the element's private data (the link needs no more of the element than that and the GstElement).
   ElementLink(GstElement *element, GstColorTrackPrivate *priv) : element_(element), priv_(priv) {}
 
-  void error(GQuark domain, gint code, const std::string &text, const char *debug) const override;
-  void warning(GQuark domain, gint code, const std::string &text, const char *debug) const override;
+  void error(GQuark domain, gint code, const std::string &text, const char *debug, const char *file,
+             const char *function, int line) const override;
+  void warning(GQuark domain, gint code, const std::string &text, const char *debug, const char *file,
+               const char *function, int line) const override;
   void info(const std::string &text) const override;
   void targetChanged() const override;
   void resumed() const override;

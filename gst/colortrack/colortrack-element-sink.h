@@ -12,6 +12,16 @@
 
 namespace colortrack_gst {
 
+// Where in the source a message was decided: the caller's place. error() and warning() take it through
+// default arguments that are GCC's and Clang's __builtin_FILE / __builtin_FUNCTION / __builtin_LINE, which
+// are evaluated at each call (as C++20's std::source_location::current() is; this project builds as C++17),
+// so GST_DEBUG and the message's debug text name the mode's line, not the sink's.
+struct CallSite {
+  const char *file;
+  const char *function;
+  int line;
+};
+
 // An interface, so that a mode can be tested against a fake (the element's is ElementLink,
 // colortrack-element-link.h).
 class ElementSink {
@@ -19,10 +29,12 @@ class ElementSink {
   virtual ~ElementSink() = default;
 
   // An element error or warning (GST_ELEMENT_ERROR / GST_ELEMENT_WARNING with this text and debug detail).
-  virtual void error(GQuark domain, gint code, const std::string &text,
-                     const char *debug = nullptr) const = 0;
-  virtual void warning(GQuark domain, gint code, const std::string &text,
-                       const char *debug = nullptr) const = 0;
+  virtual void error(GQuark domain, gint code, const std::string &text, const char *debug = nullptr,
+                     const char *file = __builtin_FILE(), const char *function = __builtin_FUNCTION(),
+                     int line = __builtin_LINE()) const = 0;
+  virtual void warning(GQuark domain, gint code, const std::string &text, const char *debug = nullptr,
+                       const char *file = __builtin_FILE(), const char *function = __builtin_FUNCTION(),
+                       int line = __builtin_LINE()) const = 0;
   virtual void info(const std::string &text) const = 0;
 
   // A new target: its trails start over and the element leaves the idle state.

@@ -26,6 +26,7 @@ using colortrack_gst::Snapshot;
 // What a mode did to the element, recorded.
 struct Record {
   std::vector<std::string> errors, warnings, infos;
+  std::vector<std::string> errorPlaces;  // the source file of each error's call
   int targetChanged = 0, resumed = 0, stopped = 0, tracksReset = 0;
   bool resetRequested = false;
   std::vector<colortrack::HsvRange> learnt;
@@ -37,10 +38,13 @@ struct Record {
 class FakeSink final : public ElementSink {
  public:
   FakeSink(Record &record, Snapshot &store) : r_(record), store_(store) {}
-  void error(GQuark, gint, const std::string &text, const char *) const override {
+  void error(GQuark, gint, const std::string &text, const char *, const char *file, const char *,
+             int) const override {
     r_.errors.push_back(text);
+    r_.errorPlaces.push_back(file);
   }
-  void warning(GQuark, gint, const std::string &text, const char *) const override {
+  void warning(GQuark, gint, const std::string &text, const char *, const char *, const char *,
+               int) const override {
     r_.warnings.push_back(text);
   }
   void info(const std::string &text) const override { r_.infos.push_back(text); }
@@ -222,6 +226,9 @@ GST_START_TEST(test_threshold_mode_refuses_a_min_area_larger_than_the_frame) {
   fail_if(mode->prepare(snapshot, Requests{}, frame.view()));
   fail_unless_equals_int(record.errors.size(), 1);
   fail_unless(record.errors[0].find("'min-area'") != std::string::npos, "%s", record.errors[0].c_str());
+  // The message is stamped with the mode's place, not the sink's.
+  fail_unless(g_str_has_suffix(record.errorPlaces[0].c_str(), "colortrack-threshold-mode.cpp"), "stamped %s",
+              record.errorPlaces[0].c_str());
 }
 GST_END_TEST;
 
