@@ -111,10 +111,10 @@ def robotctl_cases():
         'lock-on': 'x', 'distance-cue': 'x'})
     out += each(rc, {'system-id': '0 256 4294967295 -1', 'component-id': '0 256', 'target-system': '256',
                             'target-component': '256', 'link-timeout': '60001 -1'}, extra=mav)
-    out += each(rc, {'rate': '0.5 1000', 'baud-rate': '115200', 'turn-gain': '0'}, A)
-    # A non-standard rate is refused with device= (start); with location= (here) serial settings are warned
-    # about as ignored.
-    out += each(rc, {'baud-rate': '12345'}, E)
+    out += each(rc, {'rate': '0.5 1000', 'turn-gain': '0'}, A)
+    # A non-standard rate is refused with device= (start); with location= (here) any serial setting away from
+    # its default is warned about as ignored.
+    out += each(rc, {'baud-rate': '12345 115200'}, E)
     out += each(rc, {'target-system': '0', 'target-component': '0', 'link-timeout': '0'}, A, extra=mav)
     return out + [case(rc, 'hysteresis', '0.5', E, extra={'turn-deadband': '0.1'})]
 
