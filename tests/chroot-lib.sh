@@ -21,21 +21,24 @@ debootstrap_into_root() {
     apt-get update -q
     DEBIAN_FRONTEND=noninteractive apt-get install -y -q debootstrap || cannot "debootstrap cannot be installed"
   }
-  rm -rf "$root.partial"
+  # (Nothing is removed through a mount a killed run left: unmounted first, and rm stays on this filesystem.)
+  unmount_under "$root.partial"
+  rm -rf --one-file-system "$root.partial"
   mkdir -p "$(dirname "$root")"
   debootstrap --variant=minbase "$suite" "$root.partial" "$mirror" ||
     cannot "debootstrap $suite from $mirror failed (no access to a Debian mirror? DEBIAN_MIRROR names another)"
-  rm -rf "$root"
+  unmount_under "$root"
+  rm -rf --one-file-system "$root"
   mv "$root.partial" "$root"
 }
 
 # Mounts /proc, /sys, /dev, /dev/pts and /dev/shm in $root; chroot_unmount undoes them (call it on exit).
 chroot_mounts=()
 chroot_mount() {  # chroot_mount TARGET MOUNT-ARGS...
-  local target=$root$1
+  local where=$1 target=$root$1
   shift
   mkdir -p "$target"
-  mount "$@" "$target" || cannot "mounting $1 in the chroot is not allowed"
+  mount "$@" "$target" || cannot "mounting $where in the chroot is not allowed"
   chroot_mounts+=("$target")
 }
 chroot_mount_all() {
@@ -98,5 +101,6 @@ chroot_trust_host_ca() {
 in_chroot() {
   chroot "$root" /usr/bin/env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin HOME=/root LANG=C.UTF-8 \
     TERM="${TERM:-dumb}" CI="${CI:-}" COLORTRACK_REQUIRE_NODE_MAVLINK="${COLORTRACK_REQUIRE_NODE_MAVLINK:-0}" \
+    COLORTRACK_MEASURING_SETUP="${COLORTRACK_MEASURING_SETUP:-}" \
     "${chroot_ca_env[@]}" /bin/bash -c "cd $src && $*"
 }

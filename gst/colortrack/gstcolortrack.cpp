@@ -187,15 +187,25 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
   GstColorTrack *self = GST_COLOR_TRACK(trans);
   State &state = stateOf(self);
 
+  // Running from the snapshot on: the start-only properties (mode) are refused from here, so what reads
+  // back is what runs. A failed start clears it again.
   GST_OBJECT_LOCK(self);
   const Snapshot snapshot = snapshotOf(storeOf(self));
   colortrack_gst::properties().recheckRefused(storeOf(self));
   const std::string refusal = first_refusal(self);
+  storeOf(self).running = true;
   GST_OBJECT_UNLOCK(self);
+  const auto failed = [self, &state]() {
+    state = State{};
+    GST_OBJECT_LOCK(self);
+    storeOf(self).running = false;
+    GST_OBJECT_UNLOCK(self);
+    return FALSE;
+  };
 
   if (!refusal.empty()) {
     gstglue::postStartRefusal(GST_ELEMENT(self), GST_CAT_DEFAULT, refusal);
-    return FALSE;
+    return failed();
   }
 
   const std::string rangeError = colortrack::validateRange(snapshot.blobs.range);
@@ -205,32 +215,25 @@ static gboolean gst_color_track_start(GstBaseTransform *trans) {
                        gstglue::validUtf8(snapshot.hsvLower).c_str(),
                        gstglue::validUtf8(snapshot.hsvUpper).c_str(), gstglue::validUtf8(rangeError).c_str()),
                       (nullptr));
-    return FALSE;
+    return failed();
   }
 
   const std::string conflict = colortrack_gst::objectDefinitionConflict(snapshot);
   if (!conflict.empty()) {
     GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("Contradicting settings: %s.", conflict.c_str()), (nullptr));
-    return FALSE;
+    return failed();
   }
 
   try {
     state = State{};
     colortrack::startWorkerThreads();  // here rather than on the first frame
-    state.mode = colortrack_gst::makeMode(snapshot.mode, std::make_unique<colortrack_gst::ElementLink>(GST_ELEMENT(self), self->priv));
-    if (!state.mode->start(snapshot)) {
-      state = State{};
-      return FALSE;
-    }
+    auto link = std::make_unique<colortrack_gst::ElementLink>(GST_ELEMENT(self), self->priv);
+    state.mode = colortrack_gst::makeMode(snapshot.mode, std::move(link));
+    if (!state.mode->start(snapshot)) return failed();
   } catch (const std::exception &e) {
     GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("Could not set up the tracker: %s", e.what()), (nullptr));
-    state = State{};
-    return FALSE;
+    return failed();
   }
-
-  GST_OBJECT_LOCK(self);
-  storeOf(self).running = true;
-  GST_OBJECT_UNLOCK(self);
   self->priv->resetRequested = false;
   return TRUE;
 }

@@ -2,9 +2,11 @@
 // colortrack's two modes alone, against a fake ElementSink (no element, no pipeline): what each posts, what
 // it tells the element about the target, what it writes back, and that it tracks a drawn object. C++ headers
 // first: gstcheck.h defines macros (fail, ...) that clash with names in the standard library.
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>

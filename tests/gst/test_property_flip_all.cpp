@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
-// Every writable property of every element flipped while buffers flow, the list taken from
-// g_object_class_list_properties, so that "every property" stays true when one is added. Values come from
+// Every writable property each element declares (its base classes' own, such as basesink's sync, are not
+// ours) flipped while buffers flow, the list taken from g_object_class_list_properties, so that "every
+// property" stays true when one is added; colortrack in both modes. Values come from
 // the GParamSpec (booleans, each enum value, flags, a number beside the default within the range); a text
 // property needs values written here, and the test fails naming one that has none. What a change may cause
 // (a warning that keeps the old value, a start-time setting for the next start) is allowed; an error, a
@@ -192,7 +193,8 @@ std::string tempPath(const std::string &folder, const char *name) {
   return folder + "/" + name;
 }
 
-GST_START_TEST(test_colortrack_every_property_flipped) {
+// colortrack in `mode` (fixed while started: each mode runs its own code for the flips).
+void flipColortrack(const char *mode) {
   gchar *dir = g_dir_make_tmp("flip-all-XXXXXX", nullptr);
   const std::string templateFile = tempPath(dir, "template.png");
   fail_unless(cv::imwrite(templateFile, cv::Mat(40, 40, CV_8UC3, cv::Scalar(30, 30, 220))));
@@ -204,10 +206,20 @@ GST_START_TEST(test_colortrack_every_property_flipped) {
       {"init-box", {"140,100,40,40", "20,20,40,40"}},
       {"template-location", {templateFile, ""}},
   };
-  flipEverything("colortrack", "post-messages=true init-box=140,100,40,40", true, texts);
+  const std::string properties = std::string("post-messages=true init-box=140,100,40,40 mode=") + mode;
+  flipEverything("colortrack", properties.c_str(), true, texts);
   g_unlink(templateFile.c_str());
   g_rmdir(dir);
   g_free(dir);
+}
+
+GST_START_TEST(test_colortrack_every_property_flipped) {
+  flipColortrack("template");
+}
+GST_END_TEST;
+
+GST_START_TEST(test_colortrack_threshold_every_property_flipped) {
+  flipColortrack("threshold");
 }
 GST_END_TEST;
 
@@ -263,6 +275,7 @@ static Suite *property_flip_all_suite(void) {
   TCase *tc = tcase_create("general");
   suite_add_tcase(s, tc);
   tcase_add_test(tc, test_colortrack_every_property_flipped);
+  tcase_add_test(tc, test_colortrack_threshold_every_property_flipped);
   tcase_add_test(tc, test_robotctl_every_property_flipped);
   tcase_add_test(tc, test_trackpublish_every_property_flipped);
   return s;

@@ -262,10 +262,12 @@ std::string warningsOf(const std::string &launch) {
   GstBus *bus = gst_element_get_bus(pipeline);
   gst_element_set_state(pipeline, GST_STATE_PLAYING);
   std::string warnings;
+  bool ended = false;
   while (GstMessage *m = gst_bus_timed_pop_filtered(
              bus, 10 * GST_SECOND,
              static_cast<GstMessageType>(GST_MESSAGE_WARNING | GST_MESSAGE_ERROR | GST_MESSAGE_EOS))) {
     const bool warning = GST_MESSAGE_TYPE(m) == GST_MESSAGE_WARNING;
+    ended = GST_MESSAGE_TYPE(m) == GST_MESSAGE_EOS;
     if (warning) {
       GError *error = nullptr;
       gst_message_parse_warning(m, &error, nullptr);
@@ -278,6 +280,7 @@ std::string warningsOf(const std::string &launch) {
   gst_element_set_state(pipeline, GST_STATE_NULL);
   gst_object_unref(bus);
   gst_object_unref(pipeline);
+  fail_unless(ended, "%s did not run to its end", launch.c_str());
   return warnings;
 }
 
