@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
-// protocol=mavlink: MAVLink 2 frames (core/src/mavlink.cpp), a gimbal's pitch and yaw rates or a drone's
+// protocol=mavlink: MAVLink 2 frames (robot/src/mavlink.cpp), a gimbal's pitch and yaw rates or a drone's
 // forward velocity and yaw rate per command (mavlink-mode), and a HEARTBEAT once a second.
 #include <algorithm>
 #include <cmath>

@@ -107,8 +107,8 @@ class CommandEncoder {
 };
 
 // One protocol: its value, the name a user types, what it sends, and its encoder's factory. The registry's
-// table (core/src/protocol_registry.cpp) is the one list of protocols; robotctl's enum type is made from it.
-// Adding a protocol is a value of Protocol, its encoder's file (core/src/encoder_<name>.cpp) and a row.
+// table (robot/src/protocol_registry.cpp) is the one list of protocols; robotctl's enum type is made from it.
+// Adding a protocol is a value of Protocol, its encoder's file (robot/src/encoder_<name>.cpp) and a row.
 struct ProtocolDescriptor {
   Protocol value;
   const char *nick;
