@@ -71,8 +71,8 @@ bool TemplateMode::start(const Snapshot &snapshot) {
   tracker_.emplace(snapshot.tracker);
   appliedTrackerGeneration_ = snapshot.trackerGeneration;
   appliedTemplateGeneration_ = snapshot.templateGeneration;
-  // In threshold mode a template-location is not even read.
-  if (snapshot.mode != colortrack::TrackingMode::Template || snapshot.templateLocation.empty()) return true;
+  // (Threshold mode makes no TemplateMode: a template-location is not even read there.)
+  if (snapshot.templateLocation.empty()) return true;
   const std::string shown = gstglue::validUtf8(snapshot.templateLocation);
   cv::Mat bgr, mask;
   std::string why;
