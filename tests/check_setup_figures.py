@@ -94,13 +94,14 @@ def render(part, f):
                 f"{f['packages']} more packages, {mb(f['download_kib'])} to download, {gb(f['disk_kib'])} more on"
                 f" disk with apt's cache\nand node-mavlink, {f['build_steps']} build steps;"
                 f" {minutes(f['seconds'])} in all{alone}.\n")
+    aside = f"`tests/measure-setup.sh` on {f['date']}, commit {f['commit']}, a 2-core machine shared with other work"
     if part == "sanitized":
-        return (f"{minutes(f['seconds'])} and {gb(f['disk_kib'])} more, {f['build_steps']} build steps"
-                f" (`tests/measure-setup.sh`, {when})")
+        return f"{minutes(f['seconds'])} and {gb(f['disk_kib'])} more, {f['build_steps']} build steps; {aside}"
     if part == "debian13":
-        steps = ", ".join(f"{name} {minutes(s)}" for name, s in f["phases"].items())
-        return (f"{minutes(f['seconds'])} and {gb(f['disk_kib'])} from nothing on a 2-core machine ({steps};"
-                f" `tests/measure-setup.sh`, {when})")
+        order = ["debootstrap", "copy", "packages and build", "tests"]
+        names = sorted(f["phases"], key=lambda n: order.index(n) if n in order else len(order))
+        steps = ", ".join(f"{name} {minutes(f['phases'][name])}" for name in names)
+        return f"{minutes(f['seconds'])} and {gb(f['disk_kib'])} from nothing ({steps}; {aside})"
     raise SystemExit(f"unknown part {part}")
 
 
