@@ -153,7 +153,9 @@ def check(args):
     figures = json.load(open(os.path.join(source, FIGURES)))
     problems = []
     if rendered(readme, figures) != readme:
-        problems.append(f"README's set-up blocks differ from {FIGURES}: run tests/check_setup_figures.py write")
+        problems.append(f"README's set-up blocks differ from {FIGURES} (edited by hand?): they are written by"
+                        f" tests/measure-setup.sh, or from the JSON by `tests/check_setup_figures.py write {FIGURES}"
+                        f" README.md`")
     bootstrap = open(os.path.join(source, "tests/bootstrap.sh")).read()
     stated = re.search(r"installs the (\d+) packages `tests/bootstrap.sh` lists for the demo", readme)
     if not stated or int(stated.group(1)) != listed(bootstrap, "demo_packages"):
