@@ -57,6 +57,13 @@ class Studio:
         self.robot_bytes = b""
         self.proc = subprocess.Popen(["nice", "-n", "5", *args], stdout=subprocess.PIPE, text=True)
         self.url = self.token = None
+        try:
+            self.wait_serving()
+        except BaseException:
+            self.close()
+            raise
+
+    def wait_serving(self):
         deadline = time.monotonic() + 30
         while time.monotonic() < deadline:
             line = self.proc.stdout.readline()
@@ -70,13 +77,17 @@ class Studio:
                 break
         self.wait_frames(3)
 
+    def headers(self):
+        return {"X-Studio-Token": self.token} if self.token else {}
+
     def get(self, path, timeout=5):
-        with urllib.request.urlopen(self.url.rstrip("/") + path, timeout=timeout) as r:
+        req = urllib.request.Request(self.url.rstrip("/") + path, headers=self.headers())
+        with urllib.request.urlopen(req, timeout=timeout) as r:
             return json.load(r)
 
     def post(self, path, body, timeout=5):
         req = urllib.request.Request(self.url.rstrip("/") + path, data=json.dumps(body).encode(),
-                                     headers={"Content-Type": "application/json"})
+                                     headers={"Content-Type": "application/json", **self.headers()})
         try:
             with urllib.request.urlopen(req, timeout=timeout) as r:
                 return r.status, json.load(r)
