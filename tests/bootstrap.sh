@@ -32,12 +32,14 @@ demo_packages=(
 # broker the trackpublish tests start on loopback, paho-mqtt for the Python MQTT consumer example, node and
 # npm for node-mavlink (the MAVLink tests' independent implementation, see below), Universal Ctags for the
 # size-limit check (tests/check_limits.py), locales for glibc's locale sources (core-settings-locale builds a
-# comma-decimal locale from them).
+# comma-decimal locale from them), chromium, its driver and selenium for colortrack-studio's browser test
+# (tests/studio/check_studio_browser.py).
 test_packages=(
   gstreamer1.0-tools gstreamer1.0-plugins-bad gstreamer1.0-opencv libgtest-dev libgstrtspserver-1.0-dev
   python3-gi python3-gst-1.0 gir1.2-gstreamer-1.0 gir1.2-gst-plugins-base-1.0 mosquitto openssl
   python3-paho-mqtt universal-ctags locales
   nodejs
+  chromium chromium-driver python3-selenium
 )
 packages=("${demo_packages[@]}")
 [ "$mode" = demo ] || packages+=("${test_packages[@]}")

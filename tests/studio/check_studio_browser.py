@@ -7,7 +7,8 @@ loads the page, sees frames arrive in the video and the mask, clicks on the ball
 track follows it (IoU >= 0.5 against the ball's true box on the reported frame), presses STOP and reads only
 stop on the pty, releases it and sees the robot move again, lowers the upper hue with the keyboard and sees
 the ball leave the mask and the track list. Screenshots go to SCREENSHOT-FOLDER (default: the current one).
-Exit code 77 (skipped) without chromium, chromedriver, selenium or PyGObject.
+Exit code 77 (skipped) without chromium, chromedriver, selenium or PyGObject (1 with COLORTRACK_REQUIRE_BROWSER=1,
+as CI sets it).
 """
 import os
 import shutil
@@ -108,6 +109,9 @@ def main():
     os.makedirs(folder, exist_ok=True)
     missing, chromium, driver_path = missing_tools()
     if missing:
+        if os.environ.get("COLORTRACK_REQUIRE_BROWSER") == "1":  # CI (.ci/run): a missing browser fails
+            print(f"FAIL: missing {', '.join(missing)} and COLORTRACK_REQUIRE_BROWSER=1")
+            return 1
         print(f"SKIPPED: missing {', '.join(missing)}")
         return SKIP
     from selenium.webdriver.common.action_chains import ActionChains

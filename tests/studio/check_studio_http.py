@@ -117,7 +117,7 @@ def slow_client(host, port, data, gap, results):
 
 
 def check_fuzz(program, failures):
-    studio = Studio(program, "--request-timeout", "2")
+    studio = Studio(program, "--request-timeout", "1")
     host, port = studio.url.split("//")[1].rstrip("/").split(":")
     port = int(port)
     try:
@@ -138,10 +138,11 @@ def check_fuzz(program, failures):
         print(f"fuzz: {len(cases)} bad requests, answers {dict(sorted(statuses.items()))} (0: the connection "
               f"closed without an answer: {', '.join(unanswered) or 'none'})")
 
-        # Slow clients: 8 bad requests one byte at a time, one that stops half way; /state stays prompt.
+        # Slow clients: 8 bad requests one byte every 50 ms (~5 s each), one that stops half way; /state
+        # stays prompt meanwhile (2 s allowed: the machine may be busy).
         results = []
         slow = [threading.Thread(target=slow_client, args=(host, port, post_bytes("/stop", b'{"hold": "yes"}'),
-                                                               0.01, results)) for _ in range(8)]
+                                                               0.05, results)) for _ in range(8)]
         half = socket.create_connection((host, port))
         half.sendall(b"POST /stop HTTP/1.1\r\nContent-Le")
         for t in slow:
@@ -163,7 +164,7 @@ def check_fuzz(program, failures):
               f"{time.monotonic() - start:.1f} s more")
         if any(r != 400 for r in results):
             failures.append(f"slow clients: {results}")
-        if worst > 1.0:
+        if worst > 2.0:  # each slow client takes ~5 s: /state is not waiting for them
             failures.append(f"/state took {worst:.2f} s during the slow clients")
 
         state = studio.get("/state")
