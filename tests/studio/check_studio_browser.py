@@ -15,7 +15,7 @@ import shutil
 import sys
 import time
 
-from studio_harness import SKIP, Studio, ball_box, gi_missing, iou
+from studio_harness import RADIUS, SKIP, Studio, ball_box, gi_missing, iou
 
 CLICK_BOX = 24   # the page's square for a click (studio.html)
 SHOWN_WIDTH = 480  # the page shows the 320x240 video 480 px wide
@@ -67,6 +67,33 @@ let n = 0;
 for (let i = 0; i < d.length; i += 4) if (d[i] > d[i + 1] + 30 && d[i + 2] > d[i + 1] + 30) n++;
 return n;
 """
+
+
+GREEN_CENTRE_JS = """
+const img = document.getElementById('video');
+const c = document.createElement('canvas'); c.width = img.naturalWidth; c.height = img.naturalHeight;
+const g = c.getContext('2d'); g.drawImage(img, 0, 0);
+const d = g.getImageData(0, 0, c.width, c.height).data;
+let n = 0, sx = 0, sy = 0;
+for (let i = 0; i < d.length; i += 4)
+  if (d[i + 1] > d[i] + 60 && d[i + 1] > d[i + 2] + 60) { n++; sx += (i / 4) % c.width; sy += Math.floor(i / 4 / c.width); }
+return n ? [sx / n, sy / n, n] : null;
+"""
+
+
+def page_latency(driver, studio, samples=15):
+    """How many frames the picture on the page is behind the studio's newest frame: the ball's centre in the
+    <img> (no overlay yet: nothing is tracked) gives the frame shown, /state right after it the newest."""
+    lags = []
+    for _ in range(samples):
+        centre = driver.execute_script(GREEN_CENTRE_JS)
+        newest = studio.get("/state")["test_frame"]
+        if centre:
+            shown = min(range(newest - 60, newest + 3), key=lambda n: (ball_box(n)[0] + RADIUS - centre[0]) ** 2
+                        + (ball_box(n)[1] + RADIUS - centre[1]) ** 2)
+            lags.append(newest - shown)
+        time.sleep(0.13)
+    return sorted(lags)
 
 
 def on_ball(studio):
@@ -134,6 +161,13 @@ def main():
         wait("more frames", lambda: studio.get("/state")["video_frames"] >= first + 15)
         print(f"frames arrive: {studio.get('/state')['video_frames']} served")
         shot("1-loaded")
+        lags = page_latency(driver, studio)
+        if lags:
+            median = lags[len(lags) // 2]
+            print(f"page latency: the picture in the page is {median} frame(s) ({median * 1000 / 30:.0f} ms at 30 fps) "
+                  f"behind the studio's newest frame (median of {len(lags)}; all: {lags})")
+            if median > 30:
+                failures.append(f"the page shows frames {median} behind the newest")
 
         # Click on the ball (up to three times: the ball moves ~4 px a frame), then a track on it.
         best, attempts, lead = 0.0, 0, 8

@@ -182,6 +182,10 @@ def check_fuzz(program, failures):
             failures.append(f"a bad request changed the settings: {state['settings']}")
         if not studio.alive():
             failures.append("the studio died")
+        status, saved = studio.post("/save", {})
+        if status != 200 or "colortrack mode=threshold hsv-lower=340,0.5,0.25" not in saved.get("launch", "") \
+                or saved.get("written") is not None or "hsv-upper=20,1,1" not in saved.get("preset", ""):
+            failures.append(f"/save without --preset-out: {status} {saved}")
         check_latency(studio, host, port, failures)
     finally:
         code = studio.close()
