@@ -9,7 +9,8 @@ Usage: check_studio_http.py COLORTRACK-STUDIO
    answer /state promptly throughout, no track may start, and the pty must get nothing but stop.
 2. Token: the studio listening on 0.0.0.0 refuses every request without the token (403), from loopback and
    from the machine's other address, and serves it with the token (header or ?token=).
-3. Latency: capture to receipt of /video.mjpg parts by an HTTP client on this machine, and /select to the
+3. Template mode: /select on the ball gives a track on it (IoU >= 0.5); threshold settings are refused (409).
+4. Latency: capture to receipt of /video.mjpg parts by an HTTP client on this machine, and /select to the
    first tracked frame; printed.
 Exit code 77 (skipped) without PyGObject.
 """
@@ -23,7 +24,7 @@ import time
 import urllib.error
 import urllib.request
 
-from studio_harness import SKIP, Studio, ball_box, gi_missing
+from studio_harness import SKIP, Studio, ball_box, gi_missing, iou
 
 STOP_LINE = b"L=0 R=0\n"
 
@@ -276,6 +277,27 @@ def check_token(program, failures):
         studio.close()
 
 
+def check_template(program, failures):
+    """Template mode: /select on the ball's box gives a track on it; the threshold settings are refused."""
+    studio = Studio(program, "--mode", "template", robot=False)
+    try:
+        state = studio.get("/state")
+        x, y, w, h = ball_box(state["test_frame"] + 1)
+        status, _ = studio.post("/select", {"x": round(x), "y": round(y), "w": w, "h": h})
+        time.sleep(0.5)
+        ious = []
+        for _ in range(10):
+            state = studio.get("/state")
+            ious.append(iou(state["box"], ball_box(state["test_frame"])) if state["box"] else 0.0)
+            time.sleep(0.1)
+        refused, _ = studio.post("/settings", {"min-area": 5})
+        print(f"template mode: /select {status}; IoU with the ball {min(ious):.2f}..{max(ious):.2f}; /settings {refused}")
+        if status != 200 or min(ious) < 0.5 or refused != 409:
+            failures.append(f"template mode: select {status}, IoU {ious}, settings {refused}")
+    finally:
+        studio.close()
+
+
 def main():
     program = sys.argv[1]
     missing = gi_missing()
@@ -285,6 +307,7 @@ def main():
     failures = []
     check_fuzz(program, failures)
     check_token(program, failures)
+    check_template(program, failures)
     for f in failures:
         print("FAIL:", f)
     return 1 if failures else 0
