@@ -61,7 +61,6 @@ class TemplateMode : public Mode {
 
   std::unique_ptr<ElementSink> sink_;
   std::optional<colortrack::Tracker> tracker_;
-  guint64 appliedTrackerGeneration_ = 0, appliedTemplateGeneration_ = 0;
   std::string templateOrigin_;    // "the image 'x.png' (...)" or "the box '1,2,3,4' (...)", for messages
   std::string templateLocation_;  // the template-location last loaded (what a refused one reads back as)
   bool warnedNoTemplate_ = false;
@@ -69,8 +68,6 @@ class TemplateMode : public Mode {
 
 bool TemplateMode::start(const Snapshot &snapshot) {
   tracker_.emplace(snapshot.tracker);
-  appliedTrackerGeneration_ = snapshot.trackerGeneration;
-  appliedTemplateGeneration_ = snapshot.templateGeneration;
   // (Threshold mode makes no TemplateMode: a template-location is not even read there.)
   if (snapshot.templateLocation.empty()) return true;
   const std::string shown = gstglue::validUtf8(snapshot.templateLocation);
@@ -101,14 +98,9 @@ bool TemplateMode::start(const Snapshot &snapshot) {
 }
 
 bool TemplateMode::prepare(const Snapshot &snapshot, const Requests &requests, const FrameView &view) {
-  if (snapshot.trackerGeneration != appliedTrackerGeneration_) {
-    tracker_->setSettings(snapshot.tracker);
-    appliedTrackerGeneration_ = snapshot.trackerGeneration;
-  }
-  if (snapshot.templateGeneration != appliedTemplateGeneration_) {
-    appliedTemplateGeneration_ = snapshot.templateGeneration;
-    if (!snapshot.templateLocation.empty()) reloadTemplate(snapshot.templateLocation, view.size());
-  }
+  if (snapshot.changed.has(Settings::Change::Tracker)) tracker_->setSettings(snapshot.tracker);
+  if (snapshot.changed.has(Settings::Change::Template) && !snapshot.templateLocation.empty())
+    reloadTemplate(snapshot.templateLocation, view.size());
   resetIfRequested(*sink_, *tracker_);
   if (requests.initBox) {
     const InitBoxFit fit = checkInitBox(*sink_, *requests.initBox, view.size(),

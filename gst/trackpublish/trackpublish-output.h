@@ -37,6 +37,7 @@ struct OutputContext {
 
 struct OutputKind {
   const char *property;                      // the property that asks for it
+  const char *what;                          // what the property names, for the "no output" error
   bool (*wanted)(const Settings &settings);  // asked for by these settings
   // The output, or null with an error posted that names what to fix.
   std::unique_ptr<DocumentOutput> (*open)(const OutputContext &context);
@@ -44,5 +45,7 @@ struct OutputKind {
 
 // The table of output kinds (trackpublish-outputs.cpp).
 const std::vector<OutputKind> &outputKinds();
+// The start's error when no kind is asked for, naming each kind's property; empty when one is.
+std::string noOutputProblem(const Settings &settings);
 
 }  // namespace trackpublish
