@@ -1,9 +1,14 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 #include "property-table.h"
 
+#include <cmath>
 #include <cstdio>
 
 namespace gstglue {
+
+const char *refuseNotFinite(const GValue *value) {
+  return std::isfinite(g_value_get_double(value)) ? nullptr : "the value must be a number";
+}
 
 std::string textOf(const GValue *value) {
   const gchar *text = g_value_get_string(value);

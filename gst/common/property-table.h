@@ -16,6 +16,10 @@
 
 namespace gstglue {
 
+// A refusal for a double property: NaN. GLib's own check refuses it too (its clamp leaves NaN, which never
+// equals itself); this is for a GLib that would not, so that NaN never reaches the engine.
+const char *refuseNotFinite(const GValue *value);
+
 // The helpers the table's templates share; in property-table.cpp.
 GParamFlags flagsFor(Apply apply);
 bool sameValue(const GValue *a, const GValue *b);

@@ -83,6 +83,7 @@
 #include "robotctl-controller-stage.h"
 #include "robotctl-listener.h"
 #include "robotctl-output.h"
+#include "robotctl-properties.h"
 #include "robotctl-settings.h"
 #include "track-params.h"
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "colortrack/controller.hpp"
 #include "colortrack/protocol.hpp"
@@ -59,7 +60,10 @@ colortrack::ControllerSettings controllerSettings(const Settings &settings);
 // A rate a serial port can be set to portably (termios' Bxxx constants).
 bool isStandardBaudRate(guint rate);
 
-// In the order gst-inspect-1.0 lists them.
-const gstglue::PropertyTable<Settings> &properties();
+// The rows of robotctl's table for where commands go and how (read at start), and for which target to follow;
+// and the start rules between them (robotctl-properties.cpp assembles the table).
+std::vector<gstglue::PropertyDef<Settings>> linkRows();
+std::vector<gstglue::PropertyDef<Settings>> targetRows();
+std::vector<gstglue::StartRule<Settings>> linkRules();
 
 }  // namespace robotctl
