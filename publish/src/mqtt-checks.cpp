@@ -79,4 +79,5 @@ std::string redactedAddress(const std::string &address) {
   const std::size_t userEnd = colon != std::string::npos && colon < at ? colon : at;
   return address.substr(0, userEnd) + (userEnd < at ? ":***" : "") + address.substr(at);
 }
+
 }  // namespace trackpublish
