@@ -16,6 +16,7 @@
 #include <string>
 #include <thread>
 
+#include "mqtt-checks.h"  // checkAddress, checkTopic, ... (the settings check with them)
 #include "send-queue.h"
 
 namespace trackpublish {
@@ -54,24 +55,6 @@ class MqttListener {
   // `total` documents dropped so far because the queue was full.
   virtual void dropped(std::uint64_t total, std::size_t maxQueued) = 0;
 };
-
-// An address Paho accepts, or why not (empty when fine): SCHEME://HOST:PORT (tcp, ssl, mqtt, mqtts), or
-// HOST:PORT, which means tcp:// as in DL Streamer's gvametapublish.
-std::string checkAddress(const std::string &address);
-// The address as Paho takes it: HOST:PORT becomes tcp://HOST:PORT, anything else is kept.
-std::string brokerUri(const std::string &address);
-// A topic a publisher may use (UTF-8 of at most 65,535 bytes, not empty, no NUL, no wildcards, not the
-// broker's own $...), or why not (empty when fine).
-std::string checkTopic(const std::string &topic);
-// Why `text` is not an MQTT "UTF-8 encoded string" (at most 65,535 bytes of UTF-8, no NUL), naming it as
-// `what`; empty when it is one.
-std::string checkMqttString(const std::string &text, const char *what);
-// A client id MQTT can carry (UTF-8 of at most 65,535 bytes, no NUL), or why not (empty when fine).
-std::string checkClientId(const std::string &clientId);
-// Whether the address's scheme is a TLS one (ssl://, mqtts://).
-bool usesTls(const std::string &address);
-// The address as it may be shown: a password in it (tcp://user:password@host:port) becomes ***.
-std::string redactedAddress(const std::string &address);
 
 class MqttPublisher {
  public:

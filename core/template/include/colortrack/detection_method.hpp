@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // How the template tracker finds its target in a frame: one DetectionMethod per `Method`, each in its own
-// file (core/src/method_<name>.cpp), created through the registry (core/src/method_registry.cpp). The
+// file (core/template/src/method_<name>.cpp), created through the registry (method_registry.cpp). The
 // Tracker owns what the methods share (the template model and the track) and hands it to the method it
 // creates; the method moves the track, frame by frame.
 #pragma once

@@ -8,6 +8,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "colortrack/assignment.hpp"  // solveAssignment (blobs to tracks)
 #include "colortrack/blobs.hpp"
 #include "colortrack/kalman.hpp"
 #include "colortrack/track.hpp"
@@ -124,10 +125,5 @@ class MultiTracker {
 
 // The report with the largest area (the primary target), or -1 when empty.
 int primaryIndex(const std::vector<TrackedObject> &objects);
-
-// Minimum-cost assignment (Hungarian method with potentials, O(n^2 m)) for a rows x cols CV_64F cost matrix.
-// Returns, per row, the column assigned to it, or -1 for the rows left over when rows > cols. Every cost
-// must be finite; give forbidden pairs a large cost and discard them afterwards.
-std::vector<int> solveAssignment(const cv::Mat &cost);
 
 }  // namespace colortrack
