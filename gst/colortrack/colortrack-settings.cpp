@@ -20,20 +20,14 @@ using colortrack::TrackerSettings;
 
 using Change = Settings::Change;
 
-// A text property's check: the parser's error text, or empty when it parses.
-template <typename Parse>
-std::string parseError(const GValue *v, Parse parse) {
-  std::string error;
-  return parse(textOf(v), &error) ? std::string() : error;
-}
+using colortrack::Status;
 
 // Each end is parsed alone. While streaming the pair must also make sense (lower s and v not above upper);
-// before, the other end may still be set after this one, so start() checks the pair.
+// before, the other end may still be set after this one, so a start rule checks the pair.
 template <bool lower>
-std::string checkHsv(const PropertyStore &store, const GValue *v, std::string *) {
-  std::string error;
-  const std::optional<colortrack::Hsv> parsed = colortrack::parseHsv(textOf(v), &error);
-  if (!parsed) return error;
+Status checkHsv(const PropertyStore &store, const GValue *v) {
+  const colortrack::Result<colortrack::Hsv> parsed = colortrack::parseHsv(textOf(v));
+  if (!parsed) return parsed.status();
   if (!store.running) return {};
   colortrack::HsvRange candidate = store.settings.blobs.range;
   (lower ? candidate.lower : candidate.upper) = *parsed;
@@ -42,42 +36,39 @@ std::string checkHsv(const PropertyStore &store, const GValue *v, std::string *)
 template <bool lower>
 void setHsv(Settings &s, const GValue *v) {
   (lower ? s.hsvLower : s.hsvUpper) = textOf(v);
-  if (const std::optional<colortrack::Hsv> parsed = colortrack::parseHsv(textOf(v), nullptr))
+  if (const colortrack::Result<colortrack::Hsv> parsed = colortrack::parseHsv(textOf(v)))
     (lower ? s.blobs.range.lower : s.blobs.range.upper) = *parsed;
 }
 
-std::optional<cv::Rect> parseInitBox(const std::string &text, std::string *error) {
-  const std::optional<cv::Rect> box = colortrack::parseBox(text, error);
+colortrack::Result<cv::Rect> parseInitBox(const std::string &text) {
+  colortrack::Result<cv::Rect> box = colortrack::parseBox(text);
   if (!box) return box;
-  const std::string problem = colortrack::templateSizeProblem(box->size());
-  if (problem.empty()) return box;
-  if (error) *error = problem;
-  return std::nullopt;
+  if (Status size = colortrack::checkTemplateSize(box->size()); !size) return size;
+  return box;
 }
 
 // An empty string only clears a box that has not been used yet.
-std::string checkInitBox(const PropertyStore &, const GValue *v, std::string *) {
-  return textOf(v).empty() ? std::string() : parseError(v, parseInitBox);
+Status checkInitBox(const PropertyStore &, const GValue *v) {
+  return textOf(v).empty() ? Status() : parseInitBox(textOf(v)).status();
 }
 void initBoxAccepted(PropertyStore &store) {
   Requests &requests = store.shared.requests;
-  requests.initBox = parseInitBox(store.settings.initBox, nullptr);
-  if (!requests.initBox) return;
+  const colortrack::Result<cv::Rect> box = parseInitBox(store.settings.initBox);
+  if (!box) return requests.initBox.reset();
+  requests.initBox = *box;
   requests.initBoxWhileStreaming = store.running;
   requests.click.reset();  // the latest request wins
 }
 
 // Larger than a known frame while playing: nothing could ever be found. Otherwise it is checked against
 // every frame, where it is an error.
-std::string checkMinArea(const PropertyStore &store, const GValue *v, std::string *warning) {
+Status checkMinArea(const PropertyStore &store, const GValue *v) {
   const cv::Size frame = store.shared.frameSize;
   const int minArea = g_value_get_int(v);
   if (!store.running || frame.empty() || minArea <= frame.area()) return {};
-  *warning = "Property 'min-area' " + std::to_string(minArea) + " is larger than the " +
-             std::to_string(frame.width) + "x" + std::to_string(frame.height) + " frame (" +
-             std::to_string(frame.area()) + " pixels). Keeping " +
-             std::to_string(store.settings.blobs.minArea) + ".";
-  return "larger than the frame";
+  return Status::failure("larger than the " + std::to_string(frame.width) + "x" +
+                         std::to_string(frame.height) + " frame (" + std::to_string(frame.area()) +
+                         " pixels)");
 }
 
 // What the object is: the mode, a template file, a first box.
@@ -116,8 +107,8 @@ std::vector<Def> objectRows() {
 
 // A template file with an init-box (the box would replace the file's template on the first frame), or in
 // threshold mode (which never reads it): a start rule.
-std::string objectDefinitionConflict(const Settings &s) {
-  if (s.templateLocation.empty()) return "";
+Status objectDefinitionConflict(const Settings &s) {
+  if (s.templateLocation.empty()) return {};
   std::string conflict;
   if (s.mode == colortrack::TrackingMode::Threshold)
     conflict =
@@ -128,7 +119,7 @@ std::string objectDefinitionConflict(const Settings &s) {
     conflict =
         "properties 'template-location' and 'init-box' both give the template (the box's would "
         "replace the file's on the first frame): set one of them";
-  return conflict.empty() ? conflict : "Contradicting settings: " + conflict + ".";
+  return conflict.empty() ? Status() : Status::failure("Contradicting settings: " + conflict + ".");
 }
 
 // How frames are searched.
@@ -191,12 +182,10 @@ std::vector<Def> histogramRows() {
           .accessors(getText<&Settings::bins>,
                      [](Settings &s, const GValue *v) {
                        s.bins = textOf(v);
-                       if (const auto parsed = colortrack::parseBins(s.bins, nullptr))
-                         s.tracker.bins = *parsed;
+                       if (const auto parsed = colortrack::parseBins(s.bins)) s.tracker.bins = *parsed;
                      })
-          .checking([](const PropertyStore &, const GValue *v, std::string *) {
-            return parseError(
-                v, [](const std::string &t, std::string *e) { return colortrack::parseBins(t, e); });
+          .checking([](const PropertyStore &, const GValue *v) {
+            return colortrack::parseBins(textOf(v)).status();
           })
           .keepingRefused(),
       Def::live([](GParamFlags f) {
@@ -211,12 +200,11 @@ std::vector<Def> histogramRows() {
           .accessors(getText<&Settings::weights>,
                      [](Settings &s, const GValue *v) {
                        s.weights = textOf(v);
-                       if (const auto parsed = colortrack::parseWeights(s.weights, nullptr))
+                       if (const auto parsed = colortrack::parseWeights(s.weights))
                          s.tracker.weights = *parsed;
                      })
-          .checking([](const PropertyStore &, const GValue *v, std::string *) {
-            return parseError(
-                v, [](const std::string &t, std::string *e) { return colortrack::parseWeights(t, e); });
+          .checking([](const PropertyStore &, const GValue *v) {
+            return colortrack::parseWeights(textOf(v)).status();
           })
           .keepingRefused(),
       Def::live([](GParamFlags f) {
@@ -391,11 +379,11 @@ std::vector<Def> thresholdRows() {
 }
 
 // Each end of the range was parsed alone when set: the pair, at start.
-std::string rangeProblem(const Settings &s) {
-  const std::string error = colortrack::validateRange(s.blobs.range);
-  if (error.empty()) return error;
-  return "Properties 'hsv-lower' '" + s.hsvLower + "' and 'hsv-upper' '" + s.hsvUpper +
-         "' do not make a range: " + error;
+Status rangeProblem(const Settings &s) {
+  const Status range = colortrack::validateRange(s.blobs.range);
+  if (range) return range;
+  return Status::failure("Properties 'hsv-lower' '" + s.hsvLower + "' and 'hsv-upper' '" + s.hsvUpper +
+                         "' do not make a range: " + range.message());
 }
 
 // Clicks in the video window, and the per-frame message.

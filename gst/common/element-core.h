@@ -54,10 +54,10 @@ class ElementCore {
       return std::nullopt;
     }
     for (const StartRule<S> &rule : table_.startRules()) {
-      const std::string problem = rule.problem(settings);
-      if (problem.empty()) continue;
+      const colortrack::Status verdict = rule.problem(settings);
+      if (verdict) continue;
       const bool error = rule.severity == StartRule<S>::Severity::Error;
-      postStartProblem(element_, category_, rule.code, error, problem);
+      postStartProblem(element_, category_, rule.code, error, verdict.message());
       if (!error) continue;
       stop();
       return std::nullopt;

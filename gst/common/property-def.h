@@ -10,6 +10,7 @@
 #include <map>
 #include <string>
 
+#include "colortrack/status.hpp"
 #include "change-set.h"
 #include "property-accessors.h"
 
@@ -48,8 +49,8 @@ struct PropertyDef {
   using Spec = GParamSpec *(*)(GParamFlags flags);
   using Get = void (*)(const S &settings, GValue *value);
   using Set = void (*)(S &settings, const GValue *value);
-  using Refuse = const char *(*)(const GValue *value);
-  using Check = std::string (*)(const Store &store, const GValue *value, std::string *warning);
+  using Refuse = colortrack::Status (*)(const GValue *value);
+  using Check = colortrack::Status (*)(const Store &store, const GValue *value);
   using Accepted = void (*)(Store &store);
   using Show = std::string (*)(const GValue *value);
 
@@ -58,11 +59,10 @@ struct PropertyDef {
   Spec spec = nullptr;
   Get get = nullptr;
   Set set = nullptr;
-  // Why a value of the spec's range is still refused, or null to accept it.
+  // Why a value of the spec's range is still refused (a failed Status), judged by the value alone.
   Refuse refuse = nullptr;
   // The same for a value judged by parsing it or against the store (the other settings, running, the
-  // runtime facts): why it is refused, or empty to accept. May set `warning` to a whole text that replaces
-  // the usual "Invalid value ... Keeping ..." while running.
+  // runtime facts).
   Check check = nullptr;
   // A value refused before start is still stored, so that it reads back as written (text properties).
   bool keepRefused = false;

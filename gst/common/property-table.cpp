@@ -6,8 +6,9 @@
 
 namespace gstglue {
 
-const char *refuseNotFinite(const GValue *value) {
-  return std::isfinite(g_value_get_double(value)) ? nullptr : "the value must be a number";
+colortrack::Status refuseNotFinite(const GValue *value) {
+  if (std::isfinite(g_value_get_double(value))) return {};
+  return colortrack::Status::failure("the value must be a number");
 }
 
 std::string textOf(const GValue *value) {

@@ -18,7 +18,7 @@ namespace gstglue {
 
 // A refusal for a double property: NaN. GLib's own check refuses it too (its clamp leaves NaN, which never
 // equals itself); this is for a GLib that would not, so that NaN never reaches the engine.
-const char *refuseNotFinite(const GValue *value);
+colortrack::Status refuseNotFinite(const GValue *value);
 
 // The helpers the table's templates share; in property-table.cpp.
 GParamFlags flagsFor(Apply apply);
@@ -39,11 +39,11 @@ void postStartRefusal(GstElement *element, GstDebugCategory *category, const std
 void postStartProblem(GstElement *element, GstDebugCategory *category, GstResourceError code, bool error,
                       const std::string &text);
 
-// A rule between properties, judged at start after every property's own check: the whole error text when
-// the settings break it (naming the properties and what to set), or empty.
+// A rule between properties, judged at start after every property's own check: a failure whose message is
+// the whole error (naming the properties and what to set) when the settings break it.
 template <typename S>
 struct StartRule {
-  std::string (*problem)(const S &settings);
+  colortrack::Status (*problem)(const S &settings);
   enum class Severity { Error, Warning } severity = Severity::Error;
   GstResourceError code = GST_RESOURCE_ERROR_SETTINGS;
 };
@@ -99,21 +99,20 @@ class PropertyTable {
     std::string warning, refusedBeforeStart;
     GST_OBJECT_LOCK(element);
     def.get(store.settings, &before);
-    const char *refused = def.refuse ? def.refuse(value) : nullptr;
-    std::string why = refused ? refused : "";
-    if (why.empty() && def.check) why = def.check(store, value, &warning);
+    colortrack::Status verdict = def.refuse ? def.refuse(value) : colortrack::Status();
+    if (verdict && def.check) verdict = def.check(store, value);
+    std::string why = verdict ? std::string() : verdict.message();
     if (why.empty() && def.apply == Apply::BeforeStart && store.running && !sameValue(&before, value))
       why = "it cannot change while the element is started; set it before";
     if (!why.empty()) {
       const std::string refusal = refusalText(pspec, value, why.c_str(), def.shown);
       if (store.running) {
-        if (warning.empty()) warning = keepingText(refusal, &before, def.shown);
+        warning = keepingText(refusal, &before, def.shown);
       } else {
         store.refused[id] = refusedBeforeStart = refusal;
         if (def.keepRefused) def.set(store.settings, value);
       }
     } else {
-      warning.clear();
       store.refused.erase(id);
       def.set(store.settings, value);
       store.changed |= def.changes;
@@ -140,8 +139,7 @@ class PropertyTable {
         GValue value = G_VALUE_INIT;
         g_value_init(&value, G_TYPE_STRING);
         def.get(store.settings, &value);
-        std::string warning;
-        good = (!def.refuse || !def.refuse(&value)) && def.check(store, &value, &warning).empty();
+        good = (!def.refuse || def.refuse(&value)) && def.check(store, &value);
         g_value_unset(&value);
       }
       it = good ? store.refused.erase(it) : std::next(it);

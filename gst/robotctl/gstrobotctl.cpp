@@ -232,7 +232,7 @@ static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
 
   robotctl::WriterConfig config;
   config.protocol.protocol = s.protocol;
-  config.protocol.zoneChars = *colortrack::parseZoneChars(s.zoneChars, nullptr);  // a start rule checked it
+  config.protocol.zoneChars = *colortrack::parseZoneChars(s.zoneChars);  // a start rule checked it
   config.protocol.outputScale = s.outputScale;
   config.protocol.mavlink = robotctl::toMavlinkSettings(s);
   config.rate = s.rate;

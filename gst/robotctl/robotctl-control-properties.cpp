@@ -17,16 +17,17 @@ using Change = Settings::Change;
 // checked again when `controller` is set while running.
 }  // namespace
 
-std::string controllerMismatch(const Settings &s) {
+colortrack::Status controllerMismatch(const Settings &s) {
   const colortrack::ControllerSettings c = controllerSettings(s);
   if (colortrack::lawFits(c.kind, c.axes)) return {};
-  return "controller=zone cannot drive a gimbal (protocol=mavlink mavlink-mode=gimbal): its commands are one "
-         "motion at a time at a fixed speed. Use controller=auto (the default) or controller=proportional";
+  return colortrack::Status::failure(
+      "controller=zone cannot drive a gimbal (protocol=mavlink mavlink-mode=gimbal): its commands are one "
+      "motion at a time at a fixed speed. Use controller=auto (the default) or controller=proportional");
 }
 
 namespace {
 
-std::string checkControllerValue(const PropertyStore &store, const GValue *v, std::string *) {
+colortrack::Status checkControllerValue(const PropertyStore &store, const GValue *v) {
   if (!store.running) return {};
   Settings s = store.settings;
   s.controller.kind = static_cast<colortrack::ControllerKind>(g_value_get_enum(v));

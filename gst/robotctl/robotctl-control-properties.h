@@ -11,8 +11,8 @@
 namespace robotctl {
 
 std::vector<gstglue::PropertyDef<Settings>> controlRows();
-// Why `controller` cannot drive what the protocol drives (zone and a gimbal), or empty: a start rule, and
+// Whether `controller` can drive what the protocol drives (not zone and a gimbal), or why not: a start rule, and
 // checked again when `controller` is set while running.
-std::string controllerMismatch(const Settings &settings);
+colortrack::Status controllerMismatch(const Settings &settings);
 
 }  // namespace robotctl

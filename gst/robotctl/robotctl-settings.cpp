@@ -28,21 +28,21 @@ using colortrack::FailsafeSettings;
 using Change = Settings::Change;
 using Rule = gstglue::StartRule<Settings>;
 
-std::string checkZoneCharsValue(const PropertyStore &, const GValue *v, std::string *) {
-  std::string why;
-  return colortrack::parseZoneChars(textOf(v), &why) ? "" : why;
+colortrack::Status checkZoneCharsValue(const PropertyStore &, const GValue *v) {
+  return colortrack::parseZoneChars(textOf(v)).status();
 }
 
-std::string checkLocationValue(const PropertyStore &, const GValue *v, std::string *) {
+colortrack::Status checkLocationValue(const PropertyStore &, const GValue *v) {
   const std::string location = textOf(v);
-  const std::string why = checkLocation(location);
-  if (!why.empty() || location.empty() || location == "-" || isUdpLocation(location)) return why;
+  const colortrack::Status written = checkLocation(location);
+  if (!written || location.empty() || location == "-" || isUdpLocation(location)) return written;
   return colortrack::checkOutputPath(location);
 }
 
-const char *refuseEmptyRoiType(const GValue *v) {
+colortrack::Status refuseEmptyRoiType(const GValue *v) {
   // An empty type matches no region: the robot would never see a target.
-  return textOf(v).empty() ? "it names the type of the regions to follow (e.g. colortrack, object)" : nullptr;
+  if (!textOf(v).empty()) return {};
+  return colortrack::Status::failure("it names the type of the regions to follow (e.g. colortrack, object)");
 }
 
 // Where the commands go and how they are encoded: read at start.
@@ -87,15 +87,16 @@ constexpr guint kStandardBaudRates[] = {50,      75,      110,     134,     150,
                                         115200,  230400,  460800,  500000,  576000,  921600, 1000000, 1152000,
                                         1500000, 2000000, 2500000, 3000000, 3500000, 4000000};
 
-std::string nonStandardBaudRate(const Settings &s) {
+colortrack::Status nonStandardBaudRate(const Settings &s) {
   if (s.device.empty() || isStandardBaudRate(s.baudRate)) return {};
-  return "Unsupported baud rate " + std::to_string(s.baudRate) +
-         " (property 'baud-rate'): use a standard rate such as 9600, 19200, 38400, 57600 or 115200.";
+  return colortrack::Status::failure(
+      "Unsupported baud rate " + std::to_string(s.baudRate) +
+      " (property 'baud-rate'): use a standard rate such as 9600, 19200, 38400, 57600 or 115200.");
 }
 
 // A warning when serial-port properties are set away from their defaults while the output is 'location'
 // (a file, a pty, a FIFO, UDP or stdout: none of them has a baud rate).
-std::string serialSettingsUnused(const Settings &s) {
+colortrack::Status serialSettingsUnused(const Settings &s) {
   if (s.location.empty()) return {};
   const Settings defaults;
   std::string names;
@@ -108,9 +109,9 @@ std::string serialSettingsUnused(const Settings &s) {
   note(s.parity != defaults.parity, "parity");
   note(s.flowControl != defaults.flowControl, "flow-control");
   if (names.empty()) return {};
-  return "Serial settings " + names +
-         " are ignored: only a serial port named by 'device' uses them, and the " +
-         "output is 'location' ('" + s.location + "').";
+  return colortrack::Status::failure(
+      "Serial settings " + names + " are ignored: only a serial port named by 'device' uses them, and the " +
+      "output is 'location' ('" + s.location + "').");
 }
 
 // Any other output, and what is written to it (read at start).
@@ -150,21 +151,24 @@ std::vector<Def> outputRows() {
   };
 }
 
-std::string noOutput(const Settings &s) {
+colortrack::Status noOutput(const Settings &s) {
   if (!s.device.empty() || !s.location.empty()) return {};
-  return "No output: set 'device' (a serial port) or 'location' (a file, FIFO, pseudo-terminal, "
-         "udp://HOST:PORT, or '-' for stdout).";
+  return colortrack::Status::failure(
+      "No output: set 'device' (a serial port) or 'location' (a file, FIFO, pseudo-terminal, "
+      "udp://HOST:PORT, or '-' for stdout).");
 }
 
-std::string twoOutputs(const Settings &s) {
+colortrack::Status twoOutputs(const Settings &s) {
   if (s.device.empty() || s.location.empty()) return {};
-  return "Set either 'device' ('" + s.device + "') or 'location' ('" + s.location + "'), not both.";
+  return colortrack::Status::failure("Set either 'device' ('" + s.device + "') or 'location' ('" +
+                                     s.location + "'), not both.");
 }
 
-std::string badZoneChars(const Settings &s) {
-  std::string why;
-  if (colortrack::parseZoneChars(s.zoneChars, &why)) return {};
-  return "Invalid value '" + s.zoneChars + "' for property 'zone-chars': " + why;
+colortrack::Status badZoneChars(const Settings &s) {
+  const colortrack::Result<colortrack::ZoneChars> chars = colortrack::parseZoneChars(s.zoneChars);
+  if (chars) return {};
+  return colortrack::Status::failure("Invalid value '" + s.zoneChars +
+                                     "' for property 'zone-chars': " + chars.error());
 }
 
 // MAVLink ids and what the commands drive (read at start).

@@ -115,9 +115,8 @@ static gboolean gst_track_publish_start(GstBaseTransform *trans) {
   const std::optional<trackpublish::Settings> settings = self->priv->core.start();
   if (!settings) return FALSE;
   const trackpublish::Settings &s = *settings;
-  const std::string noOutput = trackpublish::noOutputProblem(s);
-  if (!noOutput.empty()) {
-    GST_ELEMENT_ERROR(self, RESOURCE, NOT_FOUND, ("%s", noOutput.c_str()), (nullptr));
+  if (const colortrack::Status output = trackpublish::checkSomeOutput(s); !output) {
+    GST_ELEMENT_ERROR(self, RESOURCE, NOT_FOUND, ("%s", output.message().c_str()), (nullptr));
     self->priv->core.stop();
     return FALSE;
   }

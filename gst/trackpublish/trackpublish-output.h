@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "colortrack/status.hpp"
+
 #include "trackpublish-settings.h"
 
 GST_DEBUG_CATEGORY_EXTERN(gst_track_publish_debug);
@@ -45,7 +47,7 @@ struct OutputKind {
 
 // The table of output kinds (trackpublish-outputs.cpp).
 const std::vector<OutputKind> &outputKinds();
-// The start's error when no kind is asked for, naming each kind's property; empty when one is.
-std::string noOutputProblem(const Settings &settings);
+// Whether some kind is asked for; the start's error when none is, naming each kind's property.
+colortrack::Status checkSomeOutput(const Settings &settings);
 
 }  // namespace trackpublish

@@ -18,13 +18,13 @@ const std::vector<OutputKind> &outputKinds() {
   return kinds;
 }
 
-std::string noOutputProblem(const Settings &settings) {
+colortrack::Status checkSomeOutput(const Settings &settings) {
   std::string asked;
   for (const OutputKind &kind : outputKinds()) {
     if (kind.wanted(settings)) return {};
     asked += std::string(asked.empty() ? "" : " and/or ") + "'" + kind.property + "' (" + kind.what + ")";
   }
-  return "No output: set " + asked + ".";
+  return colortrack::Status::failure("No output: set " + asked + ".");
 }
 
 }  // namespace trackpublish

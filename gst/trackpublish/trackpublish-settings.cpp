@@ -23,87 +23,90 @@ using Def = gstglue::PropertyDef<Settings>;
 
 // Every property is read at start: a change while running warns and applies from the next start.
 
-std::string checkLocationValue(const PropertyStore &, const GValue *v, std::string *) {
+colortrack::Status checkLocationValue(const PropertyStore &, const GValue *v) {
   const std::string location = textOf(v);
-  if (location.empty() || location == "-") return "";
+  if (location.empty() || location == "-") return {};
   if (colortrack::looksLikeUrl(location))
-    return "it looks like a URL (or a drive letter), but location names a file (an MQTT broker goes in "
-           "'address'); a file whose name has a colon is written ./" +
-           location;
+    return colortrack::Status::failure(
+        "it looks like a URL (or a drive letter), but location names a file (an MQTT broker goes in "
+        "'address'); a file whose name has a colon is written ./" +
+        location);
   return colortrack::checkOutputPath(location);
 }
 
-std::string checkAddressValue(const PropertyStore &, const GValue *v, std::string *) {
+colortrack::Status checkAddressValue(const PropertyStore &, const GValue *v) {
   const std::string address = textOf(v);
-  return address.empty() ? "" : checkAddress(address);
+  return address.empty() ? colortrack::Status() : checkAddress(address);
 }
 
 // Only {source} is replaced in a topic: any other {name} would be published as written.
-std::string checkTopicValue(const PropertyStore &, const GValue *v, std::string *) {
+colortrack::Status checkTopicValue(const PropertyStore &, const GValue *v) {
   const std::string topic = textOf(v);
   for (std::size_t open = topic.find('{'); open != std::string::npos; open = topic.find('{', open + 1)) {
     const std::size_t close = topic.find('}', open);
     const std::string name =
         topic.substr(open, close == std::string::npos ? std::string::npos : close - open + 1);
     if (name != "{source}")
-      return "'" + name + "' is not replaced by anything: the only placeholder is {source}";
+      return colortrack::Status::failure("'" + name +
+                                         "' is not replaced by anything: the only placeholder is {source}");
   }
   return checkTopic(topic);
 }
 
 // The source goes into every document and into the topic: a control character (a newline) would split a
 // line-per-document file for some readers and is refused by brokers in a topic.
-std::string checkSourceValue(const PropertyStore &, const GValue *v, std::string *) {
+colortrack::Status checkSourceValue(const PropertyStore &, const GValue *v) {
   for (const unsigned char c : textOf(v))
     if (c < 0x20 || c == 0x7F)
-      return "a source name must not contain control characters (a newline, a tab, ...)";
-  return "";
+      return colortrack::Status::failure(
+          "a source name must not contain control characters (a newline, a tab, ...)");
+  return {};
 }
 
-std::string checkClientIdValue(const PropertyStore &, const GValue *v, std::string *) {
+colortrack::Status checkClientIdValue(const PropertyStore &, const GValue *v) {
   return checkClientId(textOf(v));
 }
 
 // A PEM file holding `what` ("CERTIFICATE", "PRIVATE KEY"), read without waiting: a FIFO or a directory
 // would hold Paho's thread (and the pipeline's stop) for ever, and a missing or garbled file would only show
 // as "cannot reach the broker", blamed on the address.
-std::string checkPemFile(const std::string &path, const char *what) {
-  if (path.empty()) return "";
+colortrack::Status checkPemFile(const std::string &path, const char *what) {
+  if (path.empty()) return {};
   std::vector<unsigned char> bytes;
   std::string why;
-  if (!colortrack::readRegularFile(path, 1 << 20, bytes, why)) return why;
+  if (!colortrack::readRegularFile(path, 1 << 20, bytes, why)) return colortrack::Status::failure(why);
   const std::string text(bytes.begin(), bytes.end());
   if (text.find("-----BEGIN ") == std::string::npos || text.find(what) == std::string::npos)
-    return std::string("'") + path + "' is not a PEM file with a " + what + " (-----BEGIN ..." + what +
-           "-----)";
-  return "";
+    return colortrack::Status::failure(std::string("'") + path + "' is not a PEM file with a " + what +
+                                       " (-----BEGIN ..." + what + "-----)");
+  return {};
 }
 
 // tls-ca-file and tls-cert-file both hold certificates.
-std::string checkCertificateFileValue(const PropertyStore &, const GValue *v, std::string *) {
+colortrack::Status checkCertificateFileValue(const PropertyStore &, const GValue *v) {
   return checkPemFile(textOf(v), "CERTIFICATE");
 }
 
-std::string checkKeyFileValue(const PropertyStore &, const GValue *v, std::string *) {
+colortrack::Status checkKeyFileValue(const PropertyStore &, const GValue *v) {
   return checkPemFile(textOf(v), "PRIVATE KEY");
 }
 
-std::string checkUsernameValue(const PropertyStore &, const GValue *v, std::string *) {
+colortrack::Status checkUsernameValue(const PropertyStore &, const GValue *v) {
   return checkMqttString(textOf(v), "the user name");
 }
 
-std::string checkPasswordValue(const PropertyStore &, const GValue *v, std::string *) {
+colortrack::Status checkPasswordValue(const PropertyStore &, const GValue *v) {
   return checkMqttString(textOf(v), "the password");
 }
 
-std::string checkTagsValue(const PropertyStore &, const GValue *v, std::string *) {
+colortrack::Status checkTagsValue(const PropertyStore &, const GValue *v) {
   const std::string tags = textOf(v);
-  return tags.empty() ? "" : checkTags(tags);
+  return tags.empty() ? colortrack::Status() : checkTags(tags);
 }
 
-const char *refuseEmptyRoiType(const GValue *v) {
-  return textOf(v).empty() ? "it names the type of the regions to publish (e.g. colortrack, object)"
-                           : nullptr;
+colortrack::Status refuseEmptyRoiType(const GValue *v) {
+  if (!textOf(v).empty()) return {};
+  return colortrack::Status::failure("it names the type of the regions to publish (e.g. colortrack, object)");
 }
 
 // Where documents go, and what they hold.

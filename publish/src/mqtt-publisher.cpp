@@ -104,8 +104,11 @@ MqttPublisher::~MqttPublisher() {
 }
 
 bool MqttPublisher::start(std::string &why) {
-  why = checkAddress(config_.address);
-  if (!why.empty() || !createClient(why)) return false;
+  if (const colortrack::Status address = checkAddress(config_.address); !address) {
+    why = address.message();
+    return false;
+  }
+  if (!createClient(why)) return false;
   nextAttempt_ = Clock::now();
   worker_ = std::thread([this] { run(); });
   return true;

@@ -82,20 +82,21 @@ bool looksLikeUrl(const std::string &location) {
   return true;
 }
 
-std::string checkOutputPath(const std::string &path) {
-  if (path.empty()) return "it is empty";
+Status checkOutputPath(const std::string &path) {
+  if (path.empty()) return Status::failure("it is empty");
   struct stat st;
   if (::stat(path.c_str(), &st) == 0) {
     const mode_t kind = st.st_mode & S_IFMT;
-    if (kind == S_IFREG || kind == S_IFCHR || kind == S_IFIFO) return "";
-    return "it is a " + fileKindName(kind) + ", not a regular file, character device or FIFO";
+    if (kind == S_IFREG || kind == S_IFCHR || kind == S_IFIFO) return {};
+    return Status::failure("it is a " + fileKindName(kind) +
+                           ", not a regular file, character device or FIFO");
   }
-  if (errno != ENOENT) return errnoText(errno);
+  if (errno != ENOENT) return Status::failure(errnoText(errno));
   std::filesystem::path folder = std::filesystem::path(path).parent_path();
   if (folder.empty()) folder = ".";
   std::error_code error;
-  return std::filesystem::is_directory(folder, error) ? ""
-                                                      : "its folder '" + folder.string() + "' does not exist";
+  if (std::filesystem::is_directory(folder, error)) return {};
+  return Status::failure("its folder '" + folder.string() + "' does not exist");
 }
 
 }  // namespace colortrack

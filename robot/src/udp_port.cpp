@@ -32,13 +32,15 @@ bool isUdpLocation(const std::string &location) {
   return location.rfind(kUdpScheme, 0) == 0;
 }
 
-std::string checkLocation(const std::string &location) {
+colortrack::Status checkLocation(const std::string &location) {
   std::string why;
-  if (isUdpLocation(location)) return parseUdpLocation(location, why) ? "" : why;
-  if (!colortrack::looksLikeUrl(location)) return "";
-  return "it looks like a URL (or a drive letter), but the only address robotctl sends to is udp://HOST:PORT "
-         "(e.g. udp://127.0.0.1:14550); a file whose name has a colon is written ./" +
-         location;
+  if (isUdpLocation(location))
+    return parseUdpLocation(location, why) ? colortrack::Status() : colortrack::Status::failure(why);
+  if (!colortrack::looksLikeUrl(location)) return {};
+  return colortrack::Status::failure(
+      "it looks like a URL (or a drive letter), but the only address robotctl sends to is udp://HOST:PORT "
+      "(e.g. udp://127.0.0.1:14550); a file whose name has a colon is written ./" +
+      location);
 }
 
 std::optional<UdpEndpoint> parseUdpLocation(const std::string &location, std::string &why) {

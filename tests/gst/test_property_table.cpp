@@ -27,18 +27,20 @@ using Def = gstglue::PropertyDef<Settings>;
 using Core = gstglue::ElementCore<Settings>;
 using Rule = gstglue::StartRule<Settings>;
 
-const char *refuseNegative(const GValue *v) {
-  return g_value_get_int(v) < 0 ? "it must not be negative" : nullptr;
+using colortrack::Status;
+
+Status refuseNegative(const GValue *v) {
+  return g_value_get_int(v) < 0 ? Status::failure("it must not be negative") : Status();
 }
-std::string checkPath(const Store &, const GValue *v, std::string *) {
-  return gstglue::textOf(v).rfind("bad", 0) == 0 ? "it is bad" : "";
+Status checkPath(const Store &, const GValue *v) {
+  return gstglue::textOf(v).rfind("bad", 0) == 0 ? Status::failure("it is bad") : Status();
 }
 
-std::string fixedWithBadPath(const Settings &s) {
-  return s.fixed && s.path == "clash" ? "'fixed' and 'path' clash" : "";
+Status fixedWithBadPath(const Settings &s) {
+  return s.fixed && s.path == "clash" ? Status::failure("'fixed' and 'path' clash") : Status();
 }
-std::string gainOfNine(const Settings &s) {
-  return s.gain == 9 ? "a gain of 9 is loud" : "";
+Status gainOfNine(const Settings &s) {
+  return s.gain == 9 ? Status::failure("a gain of 9 is loud") : Status();
 }
 
 const gstglue::PropertyTable<Settings> kTable(

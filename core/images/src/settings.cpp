@@ -49,9 +49,8 @@ std::optional<std::array<T, N>> parseList(const std::string &text) {
   return values;
 }
 
-std::nullopt_t fail(std::string *error, const std::string &message) {
-  if (error) *error = message;
-  return std::nullopt;
+Status fail(const std::string &message) {
+  return Status::failure(message);
 }
 
 std::string quoted(const std::string &text) {
@@ -68,12 +67,12 @@ std::string formatWeight(double value) {
 
 }  // namespace
 
-std::optional<BinLayout> parseBins(const std::string &text, std::string *error) {
+Result<BinLayout> parseBins(const std::string &text) {
   const auto values = parseList<int, 3>(text);
-  if (!values) return fail(error, "expected three integers 1..256 separated by commas, got " + quoted(text));
+  if (!values) return fail("expected three integers 1..256 separated by commas, got " + quoted(text));
   for (int n : *values)
     if (n < 1 || n > 256)
-      return fail(error, "bins per channel must be 1..256, got " + std::to_string(n) + " in " + quoted(text));
+      return fail("bins per channel must be 1..256, got " + std::to_string(n) + " in " + quoted(text));
   BinLayout layout;
   layout.bins = *values;
   return layout;
@@ -81,31 +80,31 @@ std::optional<BinLayout> parseBins(const std::string &text, std::string *error) 
 
 constexpr double kMinWeightSum = 1e-3;
 
-std::optional<ChannelWeights> parseWeights(const std::string &text, std::string *error) {
+Result<ChannelWeights> parseWeights(const std::string &text) {
   const auto values = parseList<double, 3>(text);
-  if (!values) return fail(error, "expected three numbers 0..1 separated by commas, got " + quoted(text));
+  if (!values) return fail("expected three numbers 0..1 separated by commas, got " + quoted(text));
   for (double w : *values)
     if (!(w >= 0.0 && w <= 1.0))  // also rejects NaN
-      return fail(error, "channel weights must be in [0, 1], got " + quoted(text));
+      return fail("channel weights must be in [0, 1], got " + quoted(text));
   // A weight too small to count (1e-320) is as good as zero: the weights must add up to something.
   if ((*values)[0] + (*values)[1] + (*values)[2] < kMinWeightSum)
-    return fail(error,
-                "the channel weights must add up to at least 0.001 (all zero would make every window a "
-                "perfect match), got " +
-                    quoted(text));
+    return fail(
+        "the channel weights must add up to at least 0.001 (all zero would make every window a "
+        "perfect match), got " +
+        quoted(text));
   ChannelWeights weights;
   for (int c = 0; c < 3; ++c) weights.w[c] = (*values)[c] + 0.0;  // -0 reads back as 0
   return weights;
 }
 
-std::optional<cv::Rect> parseBox(const std::string &text, std::string *error) {
+Result<cv::Rect> parseBox(const std::string &text) {
   const auto values = parseList<int, 4>(text);
-  if (!values) return fail(error, "expected four integers x,y,w,h separated by commas, got " + quoted(text));
+  if (!values) return fail("expected four integers x,y,w,h separated by commas, got " + quoted(text));
   const auto [x, y, w, h] = *values;
-  if (x < 0 || y < 0) return fail(error, "box x and y must be >= 0, got " + quoted(text));
-  if (w <= 0 || h <= 0) return fail(error, "box width and height must be > 0, got " + quoted(text));
+  if (x < 0 || y < 0) return fail("box x and y must be >= 0, got " + quoted(text));
+  if (w <= 0 || h <= 0) return fail("box width and height must be > 0, got " + quoted(text));
   if (x > std::numeric_limits<int>::max() - w || y > std::numeric_limits<int>::max() - h)
-    return fail(error, "box extends past the largest coordinate, got " + quoted(text));
+    return fail("box extends past the largest coordinate, got " + quoted(text));
   return cv::Rect(x, y, w, h);
 }
 
@@ -130,20 +129,19 @@ std::string formatNumber(double value) {
   return std::string(buffer.data(), result.ptr);
 }
 
-std::optional<Hsv> parseHsv(const std::string &text, std::string *error) {
+Result<Hsv> parseHsv(const std::string &text) {
   const auto fields = splitFields(text);
   std::array<double, 3> values{};
   bool numbers = fields.size() == 3;
   for (std::size_t i = 0; numbers && i < 3; ++i)
     numbers = parseNumber(fields[i], values[i]) && std::isfinite(values[i]);
-  if (!numbers)
-    return fail(error, "expected \"h,s,v\" (h in degrees 0-360, s and v 0-1), got \"" + text + "\"");
+  if (!numbers) return fail("expected \"h,s,v\" (h in degrees 0-360, s and v 0-1), got \"" + text + "\"");
   if (values[0] < 0 || values[0] > 360)
-    return fail(error, "hue must be 0-360 degrees, got " + formatNumber(values[0]) + " in \"" + text + "\"");
+    return fail("hue must be 0-360 degrees, got " + formatNumber(values[0]) + " in \"" + text + "\"");
   if (values[1] < 0 || values[1] > 1)
-    return fail(error, "saturation must be 0-1, got " + formatNumber(values[1]) + " in \"" + text + "\"");
+    return fail("saturation must be 0-1, got " + formatNumber(values[1]) + " in \"" + text + "\"");
   if (values[2] < 0 || values[2] > 1)
-    return fail(error, "value must be 0-1, got " + formatNumber(values[2]) + " in \"" + text + "\"");
+    return fail("value must be 0-1, got " + formatNumber(values[2]) + " in \"" + text + "\"");
   return Hsv{values[0], values[1], values[2]};
 }
 

@@ -50,18 +50,17 @@ void Tracker::setSettings(const TrackerSettings &settings) {
     impl_->method->forget();
 }
 
-std::string templateSizeProblem(cv::Size size) {
-  if (size.width >= kMinTemplateSide && size.height >= kMinTemplateSide) return "";
-  return "the template is " + std::to_string(size.width) + "x" + std::to_string(size.height) +
-         " pixels; it must be at least " + std::to_string(kMinTemplateSide) + "x" +
-         std::to_string(kMinTemplateSide);
+Status checkTemplateSize(cv::Size size) {
+  if (size.width >= kMinTemplateSide && size.height >= kMinTemplateSide) return {};
+  return Status::failure("the template is " + std::to_string(size.width) + "x" + std::to_string(size.height) +
+                         " pixels; it must be at least " + std::to_string(kMinTemplateSide) + "x" +
+                         std::to_string(kMinTemplateSide));
 }
 
 void Tracker::setTemplate(const cv::Mat &bgr, const cv::Mat &mask) {
   if (bgr.empty() || bgr.type() != CV_8UC3)
     throw TrackerError("the template must be a non-empty 8-bit colour image");
-  if (const std::string problem = templateSizeProblem(bgr.size()); !problem.empty())
-    throw TrackerError(problem);
+  if (const Status size = checkTemplateSize(bgr.size()); !size) throw TrackerError(size.message());
   if (!mask.empty() && (mask.size() != bgr.size() || mask.type() != CV_8UC1))
     throw TrackerError("the template mask must be 8-bit, one channel, the template's size");
   if (!mask.empty() && cv::countNonZero(mask) == 0) throw TrackerError("the template mask selects no pixel");

@@ -49,13 +49,13 @@ bool HsvRange::contains(const Hsv &hsv) const {
   return hsv.h >= lower.h || hsv.h <= upper.h;  // wraps through 0
 }
 
-std::string validateRange(const HsvRange &range) {
+Status validateRange(const HsvRange &range) {
   if (range.lower.s > range.upper.s)
-    return "lower saturation " + formatNumber(range.lower.s) + " exceeds upper saturation " +
-           formatNumber(range.upper.s);
+    return Status::failure("lower saturation " + formatNumber(range.lower.s) + " exceeds upper saturation " +
+                           formatNumber(range.upper.s));
   if (range.lower.v > range.upper.v)
-    return "lower value " + formatNumber(range.lower.v) + " exceeds upper value " +
-           formatNumber(range.upper.v);
+    return Status::failure("lower value " + formatNumber(range.lower.v) + " exceeds upper value " +
+                           formatNumber(range.upper.v));
   return {};
 }
 

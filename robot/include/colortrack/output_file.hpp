@@ -7,6 +7,8 @@
 
 #include <string>
 
+#include "colortrack/status.hpp"
+
 namespace colortrack {
 
 // "regular file", "FIFO", "character device", ... for the S_IFMT bits of a mode.
@@ -26,8 +28,8 @@ bool looksLikeUrl(const std::string &location);
 
 // Why `path` cannot be an output location, judged without opening or creating anything (so it may be
 // checked when the property is set): it exists and is not a regular file, character device or FIFO, or it
-// does not exist and neither does its folder. Empty when it may be: whether a FIFO has a reader, or a file
+// does not exist and neither does its folder. Ok when it may be: whether a FIFO has a reader, or a file
 // can be written, is known only when it is opened.
-std::string checkOutputPath(const std::string &path);
+Status checkOutputPath(const std::string &path);
 
 }  // namespace colortrack

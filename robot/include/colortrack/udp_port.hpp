@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "colortrack/robot_port.hpp"
+#include "colortrack/status.hpp"
 
 typedef struct _GSocket GSocket;
 
@@ -19,11 +20,11 @@ constexpr const char *kUdpScheme = "udp://";
 // True when `location` names a UDP destination (it starts with udp://).
 bool isUdpLocation(const std::string &location);
 
-// Why `location` cannot be used as written, or empty when it can: a valid udp://HOST:PORT, or a path. A
+// Whether `location` can be used as written, or why not: a valid udp://HOST:PORT, or a path. A
 // string that starts like a URL or a drive letter (looksLikeUrl: "udp:127.0.0.1:14550", "C:\\robot.txt")
 // but is not a valid udp:// one is refused rather than taken as a file name, which would quietly write the
 // robot's commands into a new file; a file whose name really has a colon is written "./udp:x".
-std::string checkLocation(const std::string &location);
+colortrack::Status checkLocation(const std::string &location);
 
 // HOST and PORT of "udp://HOST:PORT" (HOST a name, an IPv4 address or an IPv6 address in brackets; PORT
 // 1-65535), or none with `why` saying what is wrong. Resolves nothing.

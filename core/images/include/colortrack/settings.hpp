@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
-// Parsing of the user-facing setting strings. Errors come back as text naming what is wrong, so the
-// GStreamer layer can report them against the property.
+// Parsing of the user-facing setting strings. A failure comes back as a Result's Status naming what is wrong,
+// so the GStreamer layer can report it against the property.
 #pragma once
 
 #include <optional>
@@ -10,18 +10,19 @@
 
 #include "colortrack/color.hpp"
 #include "colortrack/histogram.hpp"
+#include "colortrack/status.hpp"
 
 namespace colortrack {
 
 // "16,16,8": three integers in 1..256.
-std::optional<BinLayout> parseBins(const std::string &text, std::string *error = nullptr);
+Result<BinLayout> parseBins(const std::string &text);
 // "1,1,0.3": three numbers in [0,1], not all zero.
-std::optional<ChannelWeights> parseWeights(const std::string &text, std::string *error = nullptr);
+Result<ChannelWeights> parseWeights(const std::string &text);
 // "x,y,w,h": integers, x,y >= 0, w,h > 0.
-std::optional<cv::Rect> parseBox(const std::string &text, std::string *error = nullptr);
+Result<cv::Rect> parseBox(const std::string &text);
 
 // "h,s,v" with h in 0..360 and s, v in 0..1 (threshold mode's hsv-lower / hsv-upper).
-std::optional<Hsv> parseHsv(const std::string &text, std::string *error = nullptr);
+Result<Hsv> parseHsv(const std::string &text);
 
 std::string formatBins(const BinLayout &layout);
 std::string formatWeights(const ChannelWeights &weights);

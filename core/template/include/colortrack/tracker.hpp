@@ -18,14 +18,15 @@
 #include "colortrack/search.hpp"
 #include "colortrack/track.hpp"
 #include "colortrack/track_output.hpp"
+#include "colortrack/status.hpp"
 #include "colortrack/tracker_settings.hpp"
 
 namespace colortrack {
 
 // The smallest template side: smaller boxes hold too few pixels for a histogram or a shape filter.
 constexpr int kMinTemplateSide = 8;
-// Why a template (or init box) of `size` cannot be used, or "" when it can.
-std::string templateSizeProblem(cv::Size size);
+// Whether a template (or init box) of `size` can be used, or why not.
+Status checkTemplateSize(cv::Size size);
 
 // Thrown for unusable input (a template larger than the frame, an empty box ...). The text names the problem.
 class TrackerError : public std::runtime_error {

@@ -12,6 +12,7 @@
 
 #include "colortrack/color.hpp"
 #include "colortrack/image_source.hpp"
+#include "colortrack/status.hpp"
 
 namespace colortrack {
 
@@ -25,8 +26,8 @@ struct HsvRange {
   bool wrapsHue() const { return lower.h > upper.h; }
 };
 
-// Both ends together: s and v of `lower` must not exceed those of `upper` (hue may wrap). Empty when valid.
-std::string validateRange(const HsvRange &range);
+// Both ends together: s and v of `lower` must not exceed those of `upper` (hue may wrap).
+Status validateRange(const HsvRange &range);
 
 // Inside/outside for every colour, in a table indexed by the top 6 bits of each channel (256 KiB). A cell
 // is decided by its centre colour, so a range edge is resolved to +-2 of 255 per channel: the price of one
