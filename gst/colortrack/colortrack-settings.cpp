@@ -54,7 +54,10 @@ Status checkInitBox(const PropertyStore &, const GValue *v) {
 void initBoxAccepted(PropertyStore &store) {
   Requests &requests = store.shared.requests;
   const colortrack::Result<cv::Rect> box = parseInitBox(store.settings.initBox);
-  if (!box) return requests.initBox.reset();
+  if (!box) {
+    requests.initBox.reset();
+    return;
+  }
   requests.initBox = *box;
   requests.initBoxWhileStreaming = store.running;
   requests.click.reset();  // the latest request wins

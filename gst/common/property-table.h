@@ -101,7 +101,7 @@ class PropertyTable {
     def.get(store.settings, &before);
     colortrack::Status verdict = def.refuse ? def.refuse(value) : colortrack::Status();
     if (verdict && def.check) verdict = def.check(store, value);
-    std::string why = verdict ? std::string() : verdict.message();
+    std::string why = verdict ? std::string() : verdict.message();  // a failure's message is never empty
     if (why.empty() && def.apply == Apply::BeforeStart && store.running && !sameValue(&before, value))
       why = "it cannot change while the element is started; set it before";
     if (!why.empty()) {

@@ -194,8 +194,9 @@ std::unique_ptr<robotctl::Port> openPort(GstRobotCtl *self, const robotctl::Sett
   const robotctl::PortKind kind = robotctl::portKind(s.device, s.location);
   std::unique_ptr<robotctl::Port> port =
       robotctl::makePort(s.device, robotctl::toSerialConfig(s), s.location);
-  std::string why;
-  if (!port->open(why)) {
+  const colortrack::Status opened = port->open();
+  if (!opened) {
+    const std::string &why = opened.message();
     if (kind == robotctl::PortKind::Udp)
       GST_ELEMENT_ERROR(self, RESOURCE, OPEN_WRITE,
                         ("Cannot send to '%s' (property 'location'): %s",

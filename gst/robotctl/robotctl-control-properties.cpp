@@ -13,8 +13,6 @@ using colortrack::ControllerSettings;
 using colortrack::FailsafeSettings;
 using Change = Settings::Change;
 
-// Why `controller` cannot drive what the protocol drives (zone and a gimbal), or empty: a start rule, and
-// checked again when `controller` is set while running.
 }  // namespace
 
 colortrack::Status controllerMismatch(const Settings &s) {

@@ -45,7 +45,6 @@ colortrack::Status refuseEmptyRoiType(const GValue *v) {
   return colortrack::Status::failure("it names the type of the regions to follow (e.g. colortrack, object)");
 }
 
-// Where the commands go and how they are encoded: read at start.
 // The serial port (read at start).
 std::vector<Def> serialRows() {
   return {

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
-// robotctl's settings, what its properties say, and the table that declares those properties.
+// robotctl's settings (the property values), and the rows of its table for where commands go and which target
+// to follow with their start rules (the table itself: robotctl-properties.h).
 #pragma once
 
 #include <string>

@@ -240,11 +240,10 @@ std::unique_ptr<DocumentOutput> openMqttOutput(const OutputContext &c) {
   const std::string topic = replaceAll(s.topic, "{source}", c.source);
   if (!checkMqttSettings(c.element, s, config, topic, c.source)) return nullptr;
   auto output = std::make_unique<MqttOutput>(c.element, config, topic, s.maxQueued);
-  std::string why;
-  if (!output->publisher().start(why)) {
+  if (const colortrack::Status started = output->publisher().start(); !started) {
     GST_ELEMENT_ERROR(c.element, RESOURCE, SETTINGS,
                       ("Invalid MQTT address '%s' (property 'address'): %s.",
-                       gstglue::validUtf8(redactedAddress(s.address)).c_str(), why.c_str()),
+                       gstglue::validUtf8(redactedAddress(s.address)).c_str(), started.message().c_str()),
                       (nullptr));
     return nullptr;
   }

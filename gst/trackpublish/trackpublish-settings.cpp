@@ -21,7 +21,8 @@ using gstglue::setValue;
 using gstglue::textOf;
 using Def = gstglue::PropertyDef<Settings>;
 
-// Every property is read at start: a change while running warns and applies from the next start.
+// Every property is read at start (Def::atStart): a change while running warns and applies from the next
+// start, so no row marks a change.
 
 colortrack::Status checkLocationValue(const PropertyStore &, const GValue *v) {
   const std::string location = textOf(v);
@@ -72,10 +73,9 @@ colortrack::Status checkClientIdValue(const PropertyStore &, const GValue *v) {
 // as "cannot reach the broker", blamed on the address.
 colortrack::Status checkPemFile(const std::string &path, const char *what) {
   if (path.empty()) return {};
-  std::vector<unsigned char> bytes;
-  std::string why;
-  if (!colortrack::readRegularFile(path, 1 << 20, bytes, why)) return colortrack::Status::failure(why);
-  const std::string text(bytes.begin(), bytes.end());
+  const colortrack::Result<std::vector<unsigned char>> bytes = colortrack::readRegularFile(path, 1 << 20);
+  if (!bytes) return bytes.status();
+  const std::string text(bytes->begin(), bytes->end());
   if (text.find("-----BEGIN ") == std::string::npos || text.find(what) == std::string::npos)
     return colortrack::Status::failure(std::string("'") + path + "' is not a PEM file with a " + what +
                                        " (-----BEGIN ..." + what + "-----)");

@@ -17,6 +17,7 @@
 #include <thread>
 
 #include "mqtt-checks.h"  // checkAddress, checkTopic, ... (the settings check with them)
+#include "colortrack/status.hpp"
 #include "send-queue.h"
 
 namespace trackpublish {
@@ -63,9 +64,9 @@ class MqttPublisher {
   MqttPublisher(const MqttPublisher &) = delete;
   MqttPublisher &operator=(const MqttPublisher &) = delete;
 
-  // Creates the client and starts connecting (in the background). False with `why` when the configuration
-  // cannot work at all (a bad address).
-  bool start(std::string &why);
+  // Creates the client and starts connecting (in the background); why not when the configuration cannot work
+  // at all (a bad address).
+  colortrack::Status start();
   // Waits up to `timeout` for the first connection attempt to end; true when connected.
   bool waitFirstAttempt(std::chrono::milliseconds timeout, ConnectFailure &failure);
   // Queues a document; never waits for the network.

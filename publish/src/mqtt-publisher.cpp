@@ -103,15 +103,13 @@ MqttPublisher::~MqttPublisher() {
   stop(milliseconds(0));
 }
 
-bool MqttPublisher::start(std::string &why) {
-  if (const colortrack::Status address = checkAddress(config_.address); !address) {
-    why = address.message();
-    return false;
-  }
-  if (!createClient(why)) return false;
+colortrack::Status MqttPublisher::start() {
+  if (const colortrack::Status address = checkAddress(config_.address); !address) return address;
+  std::string why;
+  if (!createClient(why)) return colortrack::Status::failure(why);
   nextAttempt_ = Clock::now();
   worker_ = std::thread([this] { run(); });
-  return true;
+  return {};
 }
 
 bool MqttPublisher::createClient(std::string &why) {

@@ -13,6 +13,7 @@
 
 #include "balls.hpp"
 #include "colortrack/blobs.hpp"
+#include "support/status_helpers.hpp"
 
 using namespace colortrack;
 using balls::Ball;
@@ -20,13 +21,6 @@ using balls::BallScene;
 using balls::BallSceneConfig;
 
 namespace {
-
-// Whether `parsed` holds a value; its error, if any, in `why` (as the parsers' old out-parameter did).
-template <typename T>
-bool okOr(const colortrack::Result<T> &parsed, std::string &why) {
-  why = parsed.error();
-  return parsed.ok();
-}
 
 HsvRange rangeOf(Hsv lower, Hsv upper) {
   HsvRange r;

@@ -6,15 +6,9 @@
 #include <string>
 
 #include "colortrack/settings.hpp"
+#include "support/status_helpers.hpp"
 
 using namespace colortrack;
-
-// Whether `parsed` holds a value; its error, if any, in `why` (as the parsers' old out-parameter did).
-template <typename T>
-bool okOr(const colortrack::Result<T> &parsed, std::string &why) {
-  why = parsed.error();
-  return parsed.ok();
-}
 
 TEST(ParseBins, AcceptsThreeIntegersWithSpaces) {
   auto bins = parseBins("16,16,8");

@@ -8,16 +8,10 @@
 #include <vector>
 
 #include "colortrack/protocol.hpp"
+#include "support/status_helpers.hpp"
 
 namespace colortrack {
 namespace {
-
-// Whether `parsed` holds a value; its error, if any, in `why` (as the parsers' old out-parameter did).
-template <typename T>
-bool okOr(const colortrack::Result<T> &parsed, std::string &why) {
-  why = parsed.error();
-  return parsed.ok();
-}
 
 using Bytes = std::vector<std::uint8_t>;
 

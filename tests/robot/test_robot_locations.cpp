@@ -11,22 +11,22 @@
 
 #include "colortrack/output_file.hpp"
 #include "colortrack/udp_port.hpp"
+#include "support/status_helpers.hpp"
 
 namespace robotctl {
 namespace {
 
 TEST(UdpLocation, ParsesHostsAndPorts) {
-  std::string why;
-  const auto v4 = parseUdpLocation("udp://127.0.0.1:14550", why);
-  ASSERT_TRUE(v4) << why;
+  const auto v4 = parseUdpLocation("udp://127.0.0.1:14550");
+  ASSERT_TRUE(v4) << v4.error();
   EXPECT_EQ(v4->host, "127.0.0.1");
   EXPECT_EQ(v4->port, 14550);
-  const auto v6 = parseUdpLocation("udp://[::1]:1", why);
-  ASSERT_TRUE(v6) << why;
+  const auto v6 = parseUdpLocation("udp://[::1]:1");
+  ASSERT_TRUE(v6) << v6.error();
   EXPECT_EQ(v6->host, "::1");
   EXPECT_EQ(v6->port, 1);
-  const auto name = parseUdpLocation("udp://flight-controller.local:65535", why);
-  ASSERT_TRUE(name) << why;
+  const auto name = parseUdpLocation("udp://flight-controller.local:65535");
+  ASSERT_TRUE(name) << name.error();
   EXPECT_EQ(name->port, 65535);
 }
 
@@ -35,7 +35,7 @@ TEST(UdpLocation, RefusesWhatIsNotHostAndPort) {
                           "udp://127.0.0.1:14550x", "udp://:14550", "udp://::1:14550", "udp://[::1]14550",
                           "udp://[::1", "udp://127.0.0.1:-1", "udp://127.0.0.1:999999"}) {
     std::string why;
-    EXPECT_FALSE(parseUdpLocation(bad, why)) << bad;
+    EXPECT_FALSE(okOr(parseUdpLocation(bad), why)) << bad;
     EXPECT_FALSE(why.empty()) << bad;
     EXPECT_FALSE(checkLocation(bad)) << bad;
   }
@@ -46,12 +46,12 @@ TEST(UdpLocation, RefusesWhatIsNotHostAndPort) {
 TEST(UdpLocation, RefusesMulticastGroups) {
   for (const char *group : {"udp://224.0.0.1:14550", "udp://239.255.255.250:1900", "udp://[ff02::1]:14550"}) {
     std::string why;
-    EXPECT_FALSE(parseUdpLocation(group, why)) << group;
+    EXPECT_FALSE(okOr(parseUdpLocation(group), why)) << group;
     EXPECT_NE(why.find("multicast"), std::string::npos) << why;
     EXPECT_NE(checkLocation(group).message().find("multicast"), std::string::npos) << group;
   }
   std::string why;
-  EXPECT_TRUE(parseUdpLocation("udp://223.255.255.255:14550", why)) << why;
+  EXPECT_TRUE(okOr(parseUdpLocation("udp://223.255.255.255:14550"), why)) << why;
 }
 
 TEST(Location, UrlLikeAndDriveLettersAreNeverFiles) {

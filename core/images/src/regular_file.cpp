@@ -29,43 +29,37 @@ class Descriptor {
 
 }  // namespace
 
-bool readRegularFile(const std::string &path, std::size_t maxBytes, std::vector<unsigned char> &bytes,
-                     std::string &why) {
+Result<std::vector<unsigned char>> readRegularFile(const std::string &path, std::size_t maxBytes) {
   const Descriptor fd(::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC));
   if (fd.get() < 0) {
-    why = std::strerror(errno);
-    return false;
+    return Status::failure(std::strerror(errno));
   }
   struct stat st;
   if (fstat(fd.get(), &st) != 0) {
-    why = std::strerror(errno);
-    return false;
+    return Status::failure(std::strerror(errno));
   }
   if (!S_ISREG(st.st_mode)) {
-    why = S_ISFIFO(st.st_mode)  ? "it is a FIFO, not a regular file"
-          : S_ISDIR(st.st_mode) ? "it is a directory, not a regular file"
-                                : "it is a device or socket, not a regular file";
-    return false;
+    return Status::failure(S_ISFIFO(st.st_mode)  ? "it is a FIFO, not a regular file"
+                           : S_ISDIR(st.st_mode) ? "it is a directory, not a regular file"
+                                                 : "it is a device or socket, not a regular file");
   }
   if (static_cast<std::size_t>(st.st_size) > maxBytes) {
-    why = "it is " + std::to_string(st.st_size) + " bytes, more than the " + std::to_string(maxBytes) +
-          " accepted";
-    return false;
+    return Status::failure("it is " + std::to_string(st.st_size) + " bytes, more than the " +
+                           std::to_string(maxBytes) + " accepted");
   }
-  bytes.resize(static_cast<std::size_t>(st.st_size));
+  std::vector<unsigned char> bytes(static_cast<std::size_t>(st.st_size));
   std::size_t done = 0;
   while (done < bytes.size()) {
     const ssize_t n = ::read(fd.get(), bytes.data() + done, bytes.size() - done);
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) {
-      why = std::strerror(errno);
-      return false;
+      return Status::failure(std::strerror(errno));
     }
     if (n == 0) break;  // shortened while being read
     done += static_cast<std::size_t>(n);
   }
   bytes.resize(done);
-  return true;
+  return bytes;
 }
 
 }  // namespace colortrack

@@ -154,10 +154,9 @@ constexpr std::size_t kMaxTemplateFileBytes = 64u << 20;
 
 void loadTemplate(const std::string &path, cv::Mat &bgr, cv::Mat &mask) {
   // Read here rather than by cv::imread, which would wait in open() for ever on a FIFO without a writer.
-  std::vector<unsigned char> bytes;
-  std::string why;
-  if (!readRegularFile(path, kMaxTemplateFileBytes, bytes, why))
-    throw TrackerError("cannot read the template image \"" + path + "\": " + why);
+  const Result<std::vector<unsigned char>> read = readRegularFile(path, kMaxTemplateFileBytes);
+  if (!read) throw TrackerError("cannot read the template image \"" + path + "\": " + read.error());
+  const std::vector<unsigned char> &bytes = *read;
   cv::Mat image;
   try {
     if (!bytes.empty()) image = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);

@@ -6,12 +6,12 @@
 #include <string>
 #include <vector>
 
+#include "colortrack/status.hpp"
+
 namespace colortrack {
 
-// Reads the whole of `path` into `bytes`. The open never waits (O_NONBLOCK: a FIFO without a writer would
-// otherwise hold the caller in open() for ever), and anything but a regular file of at most `maxBytes` is
-// refused. Returns false with the reason in `why`.
-bool readRegularFile(const std::string &path, std::size_t maxBytes, std::vector<unsigned char> &bytes,
-                     std::string &why);
+// The whole of `path`, or why not. The open never waits (O_NONBLOCK: a FIFO without a writer would otherwise
+// hold the caller in open() for ever), and anything but a regular file of at most `maxBytes` is refused.
+Result<std::vector<unsigned char>> readRegularFile(const std::string &path, std::size_t maxBytes);
 
 }  // namespace colortrack

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 // The one way code that can fail on what a user gave it says so, in core/, robot/, publish/ and the elements
-// alike: a Status (ok, or a message saying what is wrong and what to do, with the property it names when one
-// does), or a Result<T> (a value, or the Status why there is none). A message is whole: the caller adds only
-// where it came from. Exceptions stay for what no setting can cause (an OpenCV failure, a broken invariant);
-// a GStreamer vfunc still answers FALSE once it has posted the Status as an element error.
+// alike: a Status (ok, or a message saying what is wrong and what to do), or a Result<T> (a value, or the
+// Status why there is none). The message does not name the property: the caller that knows it (the
+// element's property table, a start rule) puts it around the message. Exceptions stay for what no setting
+// can cause (an OpenCV failure, a broken invariant); a GStreamer vfunc still answers FALSE once it has posted
+// a failure as an element error.
 #pragma once
 
 #include <optional>
@@ -15,30 +16,29 @@ namespace colortrack {
 class Status {
  public:
   Status() = default;  // ok
-  static Status failure(std::string message, std::string property = {}) {
+  // A failure always says something, so that a caller testing for an empty message cannot take it for ok.
+  static Status failure(std::string message) {
     Status status;
     status.failed_ = true;
-    status.message_ = std::move(message);
-    status.property_ = std::move(property);
+    status.message_ = message.empty() ? "failed, for no reason given" : std::move(message);
     return status;
   }
 
   bool ok() const { return !failed_; }
   explicit operator bool() const { return ok(); }
-  const std::string &message() const { return message_; }
-  // The property the failure is about, or empty.
-  const std::string &property() const { return property_; }
+  const std::string &message() const { return message_; }  // empty when ok
 
  private:
   bool failed_ = false;
-  std::string message_, property_;
+  std::string message_;
 };
 
 template <typename T>
 class Result {
  public:
   Result(T value) : value_(std::move(value)) {}  // NOLINT: a value converts, as std::optional's does
-  Result(Status failure) : status_(std::move(failure)) {}  // NOLINT: so does a failure
+  // NOLINTNEXTLINE: so does a failure; an ok Status with no value is made a failure rather than "ok, empty".
+  Result(Status failure) : status_(failure ? Status::failure("no value") : std::move(failure)) {}
 
   bool ok() const { return value_.has_value(); }
   explicit operator bool() const { return ok(); }
