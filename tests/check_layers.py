@@ -2,10 +2,17 @@
 # SPDX-License-Identifier: LGPL-2.1-or-later
 """The include layers, kept by the suite (test include-layers).
 
-The folders are floors, each on the ones below: core/ (the tracker) < robot/ (control laws, protocols,
-links) < gst/ (the elements). Inside a folder, a module is a source file with its header (one stem: x.cpp
+The folders are layers, each on the ones below:
+
+    core/maths (boxes, tracks, Kalman)  <  core/images (pixel formats, colour, histograms, the tracker interface)
+      <  core/threshold (blobs), core/template (the histogram tracker and its methods)
+      <  robot/ (control laws, protocols, links), publish/ (trackpublish's file and MQTT outputs)
+      <  gst/ (the elements)
+
+Folders on one layer (threshold and template; robot and publish) know nothing of each other. Inside a folder, a module is a source file with its header (one stem: x.cpp
 and x.h or colortrack/x.hpp); its floor is one above the highest module it includes, and a module on floor 0
-includes none. A breach: an include from a lower folder up to a higher one, or modules that include each
+includes none. A breach: an include from a lower folder up to a higher one or across to a sibling, a source file of
+core/ outside its concept folders, or modules that include each
 other (a circle, so no floor can be told). Prints each folder's floors and exits 1 on a breach.
 
     check_layers.py SOURCE_ROOT [--verbose]
@@ -15,25 +22,49 @@ import re
 import sys
 from collections import defaultdict
 
-FOLDERS = ("core", "robot", "gst")  # bottom to top
+# Each layered folder with its layer, bottom to top; folders on one layer may not include each other.
+LAYERS = {
+    "core/maths": 0,
+    "core/images": 1,
+    "core/threshold": 2,
+    "core/template": 2,
+    "robot": 3,
+    "publish": 3,
+    "gst": 4,
+}
+FOLDERS = tuple(LAYERS)
+ROOTS = ("core", "robot", "publish", "gst")  # walked whole, so that a file outside every folder is seen
 SUFFIXES = (".cpp", ".hpp", ".h")
 INCLUDE = re.compile(r'^\s*#\s*include\s*"([^"]+)"', re.M)
 
 
-def modules(root):
-    """{(folder, stem): [paths]} for every source file of the layered folders."""
-    found = defaultdict(list)
+def folder_of(relative):
+    """The layered folder a path (relative to the source root) is in, or None."""
     for folder in FOLDERS:
-        for directory, _, files in os.walk(os.path.join(root, folder)):
+        if relative == folder or relative.startswith(folder + "/"):
+            return folder
+    return None
+
+
+def modules(root, strays):
+    """{(folder, stem): [paths]} for every source file of the layered folders; the others go to strays."""
+    found = defaultdict(list)
+    for top in ROOTS:
+        for directory, _, files in os.walk(os.path.join(root, top)):
             for f in files:
                 if f.endswith(SUFFIXES):
-                    found[(folder, os.path.splitext(f)[0])].append(os.path.join(directory, f))
+                    path = os.path.join(directory, f)
+                    folder = folder_of(os.path.relpath(path, root))
+                    if folder is None:
+                        strays.append(os.path.relpath(path, root))
+                    else:
+                        found[(folder, os.path.splitext(f)[0])].append(path)
     return found
 
 
 def resolve(include, folder, found):
     """The module an include names: in the including folder first, then in the others (a colortrack/x.hpp
-    header may be core's or robot's)."""
+    header may be in any of core's folders or robot's)."""
     stem = os.path.splitext(os.path.basename(include))[0]
     for f in (folder,) + FOLDERS:
         if (f, stem) in found:
@@ -41,8 +72,8 @@ def resolve(include, folder, found):
     return None  # a system or generated header
 
 
-def graph(root):
-    found = modules(root)
+def graph(root, strays):
+    found = modules(root, strays)
     edges = defaultdict(dict)  # module -> {included module: "path:line"}
     for module, paths in found.items():
         for path in paths:
@@ -107,12 +138,15 @@ def floors(nodes, edges):
 def main():
     args = [a for a in sys.argv[1:] if not a.startswith("--")]
     root = args[0] if args else "."
-    nodes, edges = graph(root)
-    breaches = []
+    strays = []
+    nodes, edges = graph(root, strays)
+    breaches = [f"{stray}: in no layered folder ({', '.join(FOLDERS)})" for stray in sorted(strays)]
     for module, targets in edges.items():
         for target, where in targets.items():
-            if FOLDERS.index(target[0]) > FOLDERS.index(module[0]):
-                breaches.append(f"{where}: {module[0]}/ includes {target[0]}/'s {target[1]}, a floor above it")
+            if LAYERS[target[0]] > LAYERS[module[0]]:
+                breaches.append(f"{where}: {module[0]}/ includes {target[0]}/'s {target[1]}, a layer above it")
+            elif LAYERS[target[0]] == LAYERS[module[0]] and target[0] != module[0]:
+                breaches.append(f"{where}: {module[0]}/ includes {target[0]}/'s {target[1]}, a folder beside it")
     found_circles = circles(nodes, edges)
     for circle in found_circles:
         members = set(circle)

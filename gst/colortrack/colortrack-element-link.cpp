@@ -57,15 +57,14 @@ bool ElementLink::takeResetRequest() const {
   return reset;
 }
 
-colortrack::BlobSettings ElementLink::writeLearntRange(const colortrack::HsvRange &range,
-                                                       guint64 &generation) const {
+colortrack::BlobSettings ElementLink::writeLearntRange(const colortrack::HsvRange &range) const {
   GST_OBJECT_LOCK(element_);
-  PropertyStore &store = priv_->store;
+  PropertyStore &store = priv_->core.store();
   store.settings.blobs.range = range;
   store.settings.hsvLower = colortrack::formatHsv(range.lower);
   store.settings.hsvUpper = colortrack::formatHsv(range.upper);
   const colortrack::BlobSettings blobs = store.settings.blobs;
-  generation = ++store.versions[kBlobsVersion];
+  store.changed.remove(Settings::Change::Blobs);  // what the mode applies now
   GST_OBJECT_UNLOCK(element_);
   g_object_notify(G_OBJECT(element_), "hsv-lower");
   g_object_notify(G_OBJECT(element_), "hsv-upper");
@@ -74,7 +73,7 @@ colortrack::BlobSettings ElementLink::writeLearntRange(const colortrack::HsvRang
 
 void ElementLink::restoreTemplateLocation(const std::string &refused, const std::string &inUse) const {
   GST_OBJECT_LOCK(element_);
-  std::string &location = priv_->store.settings.templateLocation;
+  std::string &location = priv_->core.store().settings.templateLocation;
   const bool unchanged = location == refused;
   if (unchanged) location = inUse;
   GST_OBJECT_UNLOCK(element_);

@@ -24,8 +24,7 @@ class ElementLink final : public ElementSink {
   void stopped() const override;
   void tracksReset() const override;
   bool takeResetRequest() const override;
-  colortrack::BlobSettings writeLearntRange(const colortrack::HsvRange &range,
-                                            guint64 &generation) const override;
+  colortrack::BlobSettings writeLearntRange(const colortrack::HsvRange &range) const override;
   void restoreTemplateLocation(const std::string &refused, const std::string &inUse) const override;
 
  private:

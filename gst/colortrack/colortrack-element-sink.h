@@ -49,9 +49,8 @@ class ElementSink {
   virtual bool takeResetRequest() const = 0;
 
   // Writes a colour range learnt from the video to hsv-lower/hsv-upper (and notifies); returns the blob
-  // settings as they now are and their counter, which the mode has thereby applied.
-  virtual colortrack::BlobSettings writeLearntRange(const colortrack::HsvRange &range,
-                                                    guint64 &generation) const = 0;
+  // settings as they now are, which the mode thereby applies (no longer a change for the next frame).
+  virtual colortrack::BlobSettings writeLearntRange(const colortrack::HsvRange &range) const = 0;
   // template-location reads back as `inUse` when the value `refused` could not be used (unless it was set
   // again meanwhile).
   virtual void restoreTemplateLocation(const std::string &refused, const std::string &inUse) const = 0;

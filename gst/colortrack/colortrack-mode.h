@@ -19,9 +19,9 @@
 
 namespace colortrack_gst {
 
-// The settings as one frame sees them, with the store's counters at that moment.
+// The settings as one frame sees them, with what changed since the frame before.
 struct Snapshot : Settings {
-  guint64 trackerGeneration = 0, templateGeneration = 0, blobsGeneration = 0, rangeGeneration = 0;
+  gstglue::ChangeSet<Change> changed;
 };
 
 class Mode {
@@ -30,7 +30,7 @@ class Mode {
   // The settings of the start, and what is read once then (template mode: the template file); false, with an
   // error posted, when streaming cannot start.
   virtual bool start(const Snapshot &snapshot) = 0;
-  // The frame's settings (those whose counters moved), a reset, then the init-box and click waiting for it;
+  // The frame's settings (the parts that changed), a reset, then the init-box and click waiting for it;
   // false, with an error posted, when streaming must stop.
   virtual bool prepare(const Snapshot &snapshot, const Requests &requests, const FrameView &view) = 0;
   // Whether the tracker can take a frame of `frame`'s size: Waiting passes the video through (template mode

@@ -10,13 +10,21 @@
 #include "colortrack/settings.hpp"
 #include "colortrack/tracker.hpp"
 #include "colortrack-enums.h"
-#include "property-table.h"
+#include "element-core.h"
 
 namespace colortrack_gst {
 
 // Read by the streaming thread as a snapshot, under the object lock. Text properties keep what the user
 // wrote, also a value refused before start (the error comes at start).
 struct Settings {
+  // What a change of a property marks (PropertyDef::changes), so the mode applies just that.
+  enum class Change : unsigned {
+    Tracker,   // `tracker`
+    Template,  // template-location
+    Blobs,     // `blobs`
+    Range,     // hsv-lower/hsv-upper (a new target: ends idle)
+  };
+
   colortrack::TrackingMode mode = colortrack::TrackingMode::Template;
   colortrack::TrackerSettings tracker;
   std::string bins = colortrack::formatBins(tracker.bins);
@@ -34,26 +42,10 @@ struct Settings {
   std::string hsvUpper = colortrack::formatHsv(blobs.range.upper);
 };
 
-// The store's counters (PropertyStore::versions).
-enum Version : unsigned {
-  kTrackerVersion,   // `tracker` changed
-  kTemplateVersion,  // template-location set
-  kBlobsVersion,     // `blobs` changed
-  kRangeVersion,     // hsv-lower/hsv-upper set (a new target: ends idle)
-};
-
 using PropertyStore = gstglue::PropertyStore<Settings, Shared>;
+using ElementCore = gstglue::ElementCore<Settings, Shared>;
 
 // In the order gst-inspect-1.0 lists them.
 const gstglue::PropertyTable<Settings, Shared> &properties();
-
-// Why properties that each define the object contradict each other, for start() to refuse; empty when they
-// do not: a template file with an init-box (the box would replace the file's template on the first frame),
-// or in threshold mode (which never reads it).
-std::string objectDefinitionConflict(const Settings &s);
-
-// The properties whose refused value start() reports, in the order it checks them.
-inline constexpr const char *kCheckedAtStart[] = {"bins", "channel-weights", "init-box", "hsv-lower",
-                                                  "hsv-upper"};
 
 }  // namespace colortrack_gst

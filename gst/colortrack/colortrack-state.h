@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
-// colortrack's private data, shared by the files of the element: the property store (settings and requests,
+// colortrack's private data, shared by the files of the element: the element core (settings and requests,
 // under the object lock) and what the streaming thread owns.
 #pragma once
 
@@ -38,7 +38,9 @@ struct State {
 
 typedef struct _GstColorTrackPrivate GstColorTrackPrivate;  // (also declared by gstcolortrack.h)
 struct _GstColorTrackPrivate {
-  colortrack_gst::PropertyStore store;
+  explicit _GstColorTrackPrivate(GstElement *element)
+      : core(element, gst_color_track_debug, colortrack_gst::properties()) {}
+  colortrack_gst::ElementCore core;
   colortrack_gst::State state;
   std::atomic<bool> resetRequested{false};
 };

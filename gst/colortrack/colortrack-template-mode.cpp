@@ -31,13 +31,14 @@ bool loadTemplateFile(const std::string &path, cv::Mat &bgr, cv::Mat &mask, std:
   }
 }
 
-// Why `image` cannot be the template of `frame`-sized video, or empty.
-std::string templateFitProblem(cv::Size image, cv::Size frame) {
-  if (std::string problem = colortrack::templateSizeProblem(image); !problem.empty()) return problem;
-  if (image.width <= frame.width && image.height <= frame.height) return "";
-  return "the template is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
-         " pixels, larger than the " + std::to_string(frame.width) + "x" + std::to_string(frame.height) +
-         " frame";
+// Whether `image` can be the template of `frame`-sized video, or why not.
+colortrack::Status checkTemplateFit(cv::Size image, cv::Size frame) {
+  if (const colortrack::Status size = colortrack::checkTemplateSize(image); !size) return size;
+  if (image.width <= frame.width && image.height <= frame.height) return {};
+  return colortrack::Status::failure("the template is " + std::to_string(image.width) + "x" +
+                                     std::to_string(image.height) + " pixels, larger than the " +
+                                     std::to_string(frame.width) + "x" + std::to_string(frame.height) +
+                                     " frame");
 }
 
 std::string fromFile(const std::string &location) {
@@ -61,7 +62,6 @@ class TemplateMode : public Mode {
 
   std::unique_ptr<ElementSink> sink_;
   std::optional<colortrack::Tracker> tracker_;
-  guint64 appliedTrackerGeneration_ = 0, appliedTemplateGeneration_ = 0;
   std::string templateOrigin_;    // "the image 'x.png' (...)" or "the box '1,2,3,4' (...)", for messages
   std::string templateLocation_;  // the template-location last loaded (what a refused one reads back as)
   bool warnedNoTemplate_ = false;
@@ -69,8 +69,6 @@ class TemplateMode : public Mode {
 
 bool TemplateMode::start(const Snapshot &snapshot) {
   tracker_.emplace(snapshot.tracker);
-  appliedTrackerGeneration_ = snapshot.trackerGeneration;
-  appliedTemplateGeneration_ = snapshot.templateGeneration;
   // (Threshold mode makes no TemplateMode: a template-location is not even read there.)
   if (snapshot.templateLocation.empty()) return true;
   const std::string shown = gstglue::validUtf8(snapshot.templateLocation);
@@ -88,10 +86,10 @@ bool TemplateMode::start(const Snapshot &snapshot) {
           "Could not read the template image '" + shown + "' (property 'template-location'): " + why);
     return false;
   }
-  if (const std::string problem = colortrack::templateSizeProblem(bgr.size()); !problem.empty()) {
-    sink_->error(
-        GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_SETTINGS,
-        "Cannot use the template image '" + shown + "' (property 'template-location'): " + problem + ".");
+  if (const colortrack::Status size = colortrack::checkTemplateSize(bgr.size()); !size) {
+    sink_->error(GST_RESOURCE_ERROR, GST_RESOURCE_ERROR_SETTINGS,
+                 "Cannot use the template image '" + shown +
+                     "' (property 'template-location'): " + size.message() + ".");
     return false;
   }
   tracker_->setTemplate(bgr, mask);
@@ -101,14 +99,9 @@ bool TemplateMode::start(const Snapshot &snapshot) {
 }
 
 bool TemplateMode::prepare(const Snapshot &snapshot, const Requests &requests, const FrameView &view) {
-  if (snapshot.trackerGeneration != appliedTrackerGeneration_) {
-    tracker_->setSettings(snapshot.tracker);
-    appliedTrackerGeneration_ = snapshot.trackerGeneration;
-  }
-  if (snapshot.templateGeneration != appliedTemplateGeneration_) {
-    appliedTemplateGeneration_ = snapshot.templateGeneration;
-    if (!snapshot.templateLocation.empty()) reloadTemplate(snapshot.templateLocation, view.size());
-  }
+  if (snapshot.changed.has(Settings::Change::Tracker)) tracker_->setSettings(snapshot.tracker);
+  if (snapshot.changed.has(Settings::Change::Template) && !snapshot.templateLocation.empty())
+    reloadTemplate(snapshot.templateLocation, view.size());
   resetIfRequested(*sink_, *tracker_);
   if (requests.initBox) {
     const InitBoxFit fit = checkInitBox(*sink_, *requests.initBox, view.size(),
@@ -155,8 +148,9 @@ void TemplateMode::reloadTemplate(const std::string &location, cv::Size frame) {
   std::string why;
   bool missing = false;
   if (loadTemplateFile(location, bgr, mask, why, missing)) {
-    why = templateFitProblem(bgr.size(), frame);
-    if (why.empty()) {
+    const colortrack::Status fit = checkTemplateFit(bgr.size(), frame);
+    why = fit.message();
+    if (fit) {
       try {
         tracker_->setTemplate(bgr, mask);
         templateLocation_ = location;

@@ -27,8 +27,6 @@ class ThresholdMode : public Mode {
 
   bool start(const Snapshot &snapshot) override {
     tracker_.emplace(snapshot.blobs);
-    appliedBlobsGeneration_ = snapshot.blobsGeneration;
-    appliedRangeGeneration_ = snapshot.rangeGeneration;
     return true;
   }
   bool prepare(const Snapshot &snapshot, const Requests &requests, const FrameView &view) override;
@@ -42,7 +40,6 @@ class ThresholdMode : public Mode {
 
   std::unique_ptr<ElementSink> sink_;
   std::optional<colortrack::ThresholdTracker> tracker_;
-  guint64 appliedBlobsGeneration_ = 0, appliedRangeGeneration_ = 0;
 };
 
 bool ThresholdMode::prepare(const Snapshot &snapshot, const Requests &requests, const FrameView &view) {
@@ -54,12 +51,8 @@ bool ThresholdMode::prepare(const Snapshot &snapshot, const Requests &requests, 
                      std::to_string(size.area()) + " pixels): nothing can be found.");
     return false;
   }
-  if (snapshot.blobsGeneration != appliedBlobsGeneration_) {
-    tracker_->setBlobSettings(snapshot.blobs);
-    appliedBlobsGeneration_ = snapshot.blobsGeneration;
-  }
-  if (snapshot.rangeGeneration != appliedRangeGeneration_) {
-    appliedRangeGeneration_ = snapshot.rangeGeneration;
+  if (snapshot.changed.has(Settings::Change::Blobs)) tracker_->setBlobSettings(snapshot.blobs);
+  if (snapshot.changed.has(Settings::Change::Range)) {
     sink_->resumed();  // a new range is a new target for the tracks there are
   }
   tracker_->setTrackSettings(multiTrackerSettings(snapshot));
@@ -79,7 +72,7 @@ bool ThresholdMode::prepare(const Snapshot &snapshot, const Requests &requests, 
 // launch line.
 void ThresholdMode::learnRange(const FrameView &view, const cv::Rect &box, const std::string &origin) {
   const colortrack::HsvRange learnt = colortrack::learnRange(view, box);
-  tracker_->setBlobSettings(sink_->writeLearntRange(learnt, appliedBlobsGeneration_));
+  tracker_->setBlobSettings(sink_->writeLearntRange(learnt));
   tracker_->reset();
   sink_->targetChanged();
   sink_->info("learnt hsv-lower " + colortrack::formatHsv(learnt.lower) + " hsv-upper " +

@@ -60,6 +60,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -113,18 +114,12 @@ GST_ELEMENT_REGISTER_DEFINE(colortrack, "colortrack", GST_RANK_NONE, GST_TYPE_CO
 
 namespace {
 
-colortrack_gst::PropertyStore &storeOf(GstColorTrack *self) {
-  return self->priv->store;
+colortrack_gst::ElementCore &coreOf(GstColorTrack *self) {
+  return self->priv->core;
 }
 // Call with the object lock held.
-Snapshot snapshotOf(const colortrack_gst::PropertyStore &store) {
-  Snapshot snapshot;
-  static_cast<Settings &>(snapshot) = store.settings;
-  snapshot.trackerGeneration = store.versions[colortrack_gst::kTrackerVersion];
-  snapshot.templateGeneration = store.versions[colortrack_gst::kTemplateVersion];
-  snapshot.blobsGeneration = store.versions[colortrack_gst::kBlobsVersion];
-  snapshot.rangeGeneration = store.versions[colortrack_gst::kRangeVersion];
-  return snapshot;
+colortrack_gst::PropertyStore &storeOf(GstColorTrack *self) {
+  return coreOf(self).store();
 }
 
 State &stateOf(GstColorTrack *self) {
@@ -152,12 +147,12 @@ static void gst_color_track_reset_action(GstColorTrack *self) {
 static void gst_color_track_set_property(GObject *object, guint prop_id, const GValue *value,
                                          GParamSpec *pspec) {
   GstColorTrack *self = GST_COLOR_TRACK(object);
-  colortrack_gst::properties().set(GST_ELEMENT(self), GST_CAT_DEFAULT, storeOf(self), prop_id, value, pspec);
+  coreOf(self).set(prop_id, value, pspec);
 }
 
 static void gst_color_track_get_property(GObject *object, guint prop_id, GValue *value, GParamSpec *pspec) {
   GstColorTrack *self = GST_COLOR_TRACK(object);
-  colortrack_gst::properties().get(GST_ELEMENT(self), storeOf(self), prop_id, value, pspec);
+  coreOf(self).get(prop_id, value, pspec);
 }
 
 static void gst_color_track_finalize(GObject *object) {
@@ -170,80 +165,35 @@ static void gst_color_track_finalize(GObject *object) {
 // ---------------------------------------------------------------------------------------------------------
 // Streaming
 
-// The first value refused before start, in the order the checks have always run; empty when none. Call with
-// the object lock held.
-static std::string first_refusal(GstColorTrack *self) {
-  const colortrack_gst::PropertyStore &store = storeOf(self);
-  for (const char *name : colortrack_gst::kCheckedAtStart) {
-    const GParamSpec *pspec = g_object_class_find_property(G_OBJECT_GET_CLASS(self), name);
-    const auto refused = store.refused.find(pspec->param_id);
-    if (refused != store.refused.end()) return refused->second;
-  }
-  return store.firstRefusal();
-}
-
-// Validates what was set before streaming, loads the template file and creates the tracker.
+// What was set before streaming is judged by the element core; then the tracker is made, with the mode's
+// template file.
 static gboolean gst_color_track_start(GstBaseTransform *trans) {
   GstColorTrack *self = GST_COLOR_TRACK(trans);
   State &state = stateOf(self);
-
-  // Running from the snapshot on: the start-only properties (mode) are refused from here, so what reads
-  // back is what runs. A failed start clears it again.
-  GST_OBJECT_LOCK(self);
-  const Snapshot snapshot = snapshotOf(storeOf(self));
-  colortrack_gst::properties().recheckRefused(storeOf(self));
-  const std::string refusal = first_refusal(self);
-  storeOf(self).running = true;
-  GST_OBJECT_UNLOCK(self);
-  const auto failed = [self, &state]() {
-    state = State{};
-    GST_OBJECT_LOCK(self);
-    storeOf(self).running = false;
-    GST_OBJECT_UNLOCK(self);
-    return FALSE;
-  };
-
-  if (!refusal.empty()) {
-    gstglue::postStartRefusal(GST_ELEMENT(self), GST_CAT_DEFAULT, refusal);
-    return failed();
-  }
-
-  const std::string rangeError = colortrack::validateRange(snapshot.blobs.range);
-  if (!rangeError.empty()) {
-    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                      ("Properties 'hsv-lower' '%s' and 'hsv-upper' '%s' do not make a range: %s",
-                       gstglue::validUtf8(snapshot.hsvLower).c_str(),
-                       gstglue::validUtf8(snapshot.hsvUpper).c_str(), gstglue::validUtf8(rangeError).c_str()),
-                      (nullptr));
-    return failed();
-  }
-
-  const std::string conflict = colortrack_gst::objectDefinitionConflict(snapshot);
-  if (!conflict.empty()) {
-    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("Contradicting settings: %s.", conflict.c_str()), (nullptr));
-    return failed();
-  }
-
+  const std::optional<Settings> settings = coreOf(self).start();
+  if (!settings) return FALSE;
+  Snapshot snapshot;
+  static_cast<Settings &>(snapshot) = *settings;
   try {
     state = State{};
     colortrack::startWorkerThreads();  // here rather than on the first frame
     auto link = std::make_unique<colortrack_gst::ElementLink>(GST_ELEMENT(self), self->priv);
     state.mode = colortrack_gst::makeMode(snapshot.mode, std::move(link));
-    if (!state.mode->start(snapshot)) return failed();
+    if (state.mode->start(snapshot)) {
+      self->priv->resetRequested = false;
+      return TRUE;
+    }
   } catch (const std::exception &e) {
     GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("Could not set up the tracker: %s", e.what()), (nullptr));
-    return failed();
   }
-  self->priv->resetRequested = false;
-  return TRUE;
+  state = State{};
+  coreOf(self).stop();
+  return FALSE;
 }
 
 static gboolean gst_color_track_stop(GstBaseTransform *trans) {
-  GstColorTrack *self = GST_COLOR_TRACK(trans);
-  GST_OBJECT_LOCK(self);
-  storeOf(self).running = false;
-  GST_OBJECT_UNLOCK(self);
-  stateOf(self) = State{};
+  GST_COLOR_TRACK(trans)->priv->core.stop();
+  stateOf(GST_COLOR_TRACK(trans)) = State{};
   return TRUE;
 }
 
@@ -334,7 +284,9 @@ static double frame_step(GstColorTrack *self, GstVideoFilter *filter, GstBuffer 
 static Snapshot take_frame_inputs(GstColorTrack *self, colortrack_gst::Requests &requests) {
   GST_OBJECT_LOCK(self);
   colortrack_gst::PropertyStore &store = storeOf(self);
-  const Snapshot snapshot = snapshotOf(store);
+  Snapshot snapshot;
+  static_cast<Settings &>(snapshot) = store.settings;
+  snapshot.changed = coreOf(self).takeChanges();
   requests = std::exchange(store.shared.requests, {});
   if (requests.initBox) store.settings.initBox.clear();  // init-box reads back empty once used
   GST_OBJECT_UNLOCK(self);
@@ -494,5 +446,5 @@ static void gst_color_track_class_init(GstColorTrackClass *klass) {
 }
 
 static void gst_color_track_init(GstColorTrack *self) {
-  self->priv = new GstColorTrackPrivate();
+  self->priv = new GstColorTrackPrivate(GST_ELEMENT(self));
 }

@@ -1,9 +1,15 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
 #include "property-table.h"
 
+#include <cmath>
 #include <cstdio>
 
 namespace gstglue {
+
+colortrack::Status refuseNotFinite(const GValue *value) {
+  if (std::isfinite(g_value_get_double(value))) return {};
+  return colortrack::Status::failure("the value must be a number");
+}
 
 std::string textOf(const GValue *value) {
   const gchar *text = g_value_get_string(value);
@@ -88,6 +94,13 @@ void postStartRefusal(GstElement *element, GstDebugCategory *category, const std
 }
 void logRefusedBeforeStart(GstElement *element, GstDebugCategory *category, const std::string &refusal) {
   GST_WARNING_OBJECT(element, "%s: the element will fail to start", refusal.c_str());
+}
+void postStartProblem(GstElement *element, GstDebugCategory *category, GstResourceError code, bool error,
+                      const std::string &text) {
+  const std::string valid = validUtf8(text);
+  GST_WARNING_OBJECT(element, "start: %s", valid.c_str());
+  gst_element_message_full(element, error ? GST_MESSAGE_ERROR : GST_MESSAGE_WARNING, GST_RESOURCE_ERROR, code,
+                           g_strdup(valid.c_str()), nullptr, __FILE__, GST_FUNCTION, __LINE__);
 }
 #undef GST_CAT_DEFAULT
 

@@ -80,14 +80,17 @@
 
 #include "gstrobotctl.h"
 #include "property-table.h"
+#include "robotctl-controller-stage.h"
 #include "robotctl-listener.h"
 #include "robotctl-output.h"
+#include "robotctl-properties.h"
 #include "robotctl-settings.h"
 #include "track-params.h"
 
 #include <algorithm>
 #include <atomic>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -114,19 +117,17 @@ double monotonicSeconds() {
 
 // What the streaming thread owns (and start()/stop(), which never run concurrently with it).
 struct State {
-  std::unique_ptr<colortrack::RobotController> controller;
-  colortrack::ControllerKind controllerKind = colortrack::ControllerKind::Zone;  // of `controller`
-  colortrack::ControlAxes axes = colortrack::ControlAxes::TurnDrive;  // from the protocol, read at start
-  guint64 appliedControllerGeneration = 0;
+  std::unique_ptr<robotctl::ControllerStage> stage;  // the controller and the target lock
   cv::Size frameSize;
   std::string roiType;
-  colortrack::TargetLock lock;  // the track followed; released on a flush
 };
 
 }  // namespace
 
 struct _GstRobotCtlPrivate {
-  robotctl::PropertyStore properties;
+  explicit _GstRobotCtlPrivate(GstElement *element)
+      : core(element, gst_robot_ctl_debug, robotctl::properties()) {}
+  robotctl::ElementCore core;
   State state;
   std::unique_ptr<robotctl::ElementListener> listener;  // outlives the writer
   std::unique_ptr<CommandWriter> writer;                // between start() and stop()
@@ -147,7 +148,7 @@ GST_ELEMENT_REGISTER_DEFINE(robotctl, "robotctl", GST_RANK_NONE, GST_TYPE_ROBOT_
 namespace {
 
 robotctl::PropertyStore &storeOf(GstRobotCtl *self) {
-  return self->priv->properties;
+  return self->priv->core.store();
 }
 State &stateOf(GstRobotCtl *self) {
   return self->priv->state;
@@ -158,12 +159,12 @@ State &stateOf(GstRobotCtl *self) {
 static void gst_robot_ctl_set_property(GObject *object, guint prop_id, const GValue *value,
                                        GParamSpec *pspec) {
   GstRobotCtl *self = GST_ROBOT_CTL(object);
-  robotctl::properties().set(GST_ELEMENT(self), GST_CAT_DEFAULT, storeOf(self), prop_id, value, pspec);
+  self->priv->core.set(prop_id, value, pspec);
 }
 
 static void gst_robot_ctl_get_property(GObject *object, guint prop_id, GValue *value, GParamSpec *pspec) {
   GstRobotCtl *self = GST_ROBOT_CTL(object);
-  robotctl::properties().get(GST_ELEMENT(self), storeOf(self), prop_id, value, pspec);
+  self->priv->core.get(prop_id, value, pspec);
 }
 
 // Whatever happens, a robot that was moving is told to stop before the element goes away.
@@ -193,8 +194,9 @@ std::unique_ptr<robotctl::Port> openPort(GstRobotCtl *self, const robotctl::Sett
   const robotctl::PortKind kind = robotctl::portKind(s.device, s.location);
   std::unique_ptr<robotctl::Port> port =
       robotctl::makePort(s.device, robotctl::toSerialConfig(s), s.location);
-  std::string why;
-  if (!port->open(why)) {
+  const colortrack::Status opened = port->open();
+  if (!opened) {
+    const std::string &why = opened.message();
     if (kind == robotctl::PortKind::Udp)
       GST_ELEMENT_ERROR(self, RESOURCE, OPEN_WRITE,
                         ("Cannot send to '%s' (property 'location'): %s",
@@ -215,78 +217,23 @@ std::unique_ptr<robotctl::Port> openPort(GstRobotCtl *self, const robotctl::Sett
   return port;
 }
 
-// The settings as start() needs them, or false with an error posted. `refusal`: the first value refused
-// before start.
-bool checkSettings(GstRobotCtl *self, const robotctl::Settings &s, const std::string &refusal) {
-  if (s.device.empty() && s.location.empty()) {
-    GST_ELEMENT_ERROR(
-        self, RESOURCE, NOT_FOUND,
-        ("No output: set 'device' (a serial port) or 'location' (a file, FIFO, pseudo-terminal, "
-         "udp://HOST:PORT, or '-' for stdout)."),
-        (nullptr));
-    return false;
-  }
-  if (!s.device.empty() && !s.location.empty()) {
-    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                      ("Set either 'device' ('%s') or 'location' ('%s'), not both.",
-                       gstglue::validUtf8(s.device).c_str(), gstglue::validUtf8(s.location).c_str()),
-                      (nullptr));
-    return false;
-  }
-  if (!s.device.empty() && !robotctl::isStandardBaudRate(s.baudRate)) {
-    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                      ("Unsupported baud rate %u (property 'baud-rate'): use a standard rate such as 9600, "
-                       "19200, 38400, 57600 or 115200.",
-                       s.baudRate),
-                      (nullptr));
-    return false;
-  }
-  if (!refusal.empty()) {
-    gstglue::postStartRefusal(GST_ELEMENT(self), GST_CAT_DEFAULT, refusal);
-    return false;
-  }
-  const std::string mismatch = robotctl::controllerMismatch(s);
-  if (!mismatch.empty()) {
-    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("%s", mismatch.c_str()), (nullptr));
-    return false;
-  }
-  const std::string unused = robotctl::serialSettingsUnused(s);
-  if (!unused.empty())
-    GST_ELEMENT_WARNING(self, RESOURCE, SETTINGS, ("%s.", gstglue::validUtf8(unused).c_str()), (nullptr));
-  return true;
-}
-
 }  // namespace
 
 static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
   GstRobotCtl *self = GST_ROBOT_CTL(sink);
-  GST_OBJECT_LOCK(self);
-  robotctl::PropertyStore &store = storeOf(self);
-  robotctl::properties().recheckRefused(store);
-  const robotctl::Settings s = store.settings;
-  const guint64 version = store.versions[0];
-  const std::string refusal = store.firstRefusal();
-  GST_OBJECT_UNLOCK(self);
-
-  if (!checkSettings(self, s, refusal)) return FALSE;
-  std::string zoneCharsError;
-  const std::optional<colortrack::ZoneChars> zoneChars =
-      colortrack::parseZoneChars(s.zoneChars, &zoneCharsError);
-  if (!zoneChars) {
-    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
-                      ("Invalid value '%s' for property 'zone-chars': %s",
-                       gstglue::validUtf8(s.zoneChars).c_str(), zoneCharsError.c_str()),
-                      (nullptr));
+  const std::optional<robotctl::Settings> settings = self->priv->core.start();
+  if (!settings) return FALSE;
+  const robotctl::Settings &s = *settings;
+  std::unique_ptr<robotctl::Port> port = openPort(self, s);
+  if (!port) {
+    self->priv->core.stop();
     return FALSE;
   }
-
-  std::unique_ptr<robotctl::Port> port = openPort(self, s);
-  if (!port) return FALSE;
   GST_INFO_OBJECT(self, "writing to %s", port->describe().c_str());
 
   robotctl::WriterConfig config;
   config.protocol.protocol = s.protocol;
-  config.protocol.zoneChars = *zoneChars;
+  config.protocol.zoneChars = *colortrack::parseZoneChars(s.zoneChars);  // a start rule checked it
   config.protocol.outputScale = s.outputScale;
   config.protocol.mavlink = robotctl::toMavlinkSettings(s);
   config.rate = s.rate;
@@ -295,11 +242,7 @@ static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
 
   State &state = stateOf(self);
   state = State{};
-  const colortrack::ControllerSettings controller = robotctl::controllerSettings(s);
-  state.controller = std::make_unique<colortrack::RobotController>(controller, s.failsafe);
-  state.controllerKind = controller.kind;
-  state.axes = controller.axes;
-  state.appliedControllerGeneration = version;
+  state.stage = std::make_unique<robotctl::ControllerStage>(s);
   self->priv->resetRequested = false;
 
   // The robot hears stop from the start, at the rate, until there is something to follow.
@@ -307,17 +250,12 @@ static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
                                                                      s.postMessages, config.protocol);
   self->priv->writer = std::make_unique<CommandWriter>(std::move(port), config, *self->priv->listener);
   self->priv->writer->start();
-  GST_OBJECT_LOCK(self);
-  storeOf(self).running = true;
-  GST_OBJECT_UNLOCK(self);
   return TRUE;
 }
 
 static gboolean gst_robot_ctl_stop(GstBaseSink *sink) {
   GstRobotCtl *self = GST_ROBOT_CTL(sink);
-  GST_OBJECT_LOCK(self);
-  storeOf(self).running = false;
-  GST_OBJECT_UNLOCK(self);
+  self->priv->core.stop();
   if (self->priv->writer) {
     self->priv->writer->shutdown();  // sends the final stop
     self->priv->writer.reset();
@@ -417,37 +355,18 @@ static GstFlowReturn gst_robot_ctl_render(GstBaseSink *sink, GstBuffer *buffer) 
   GstRobotCtl *self = GST_ROBOT_CTL(sink);
   State &state = stateOf(self);
   CommandWriter *writer = self->priv->writer.get();
-  if (!writer || !state.controller) {
+  if (!writer || !state.stage) {
     GST_ELEMENT_ERROR(self, CORE, FAILED, ("robotctl was not started."), (nullptr));
     return GST_FLOW_ERROR;
   }
 
   GST_OBJECT_LOCK(self);
-  const robotctl::Settings &shared = storeOf(self).settings;
-  const guint64 generation = storeOf(self).versions[0];
-  colortrack::ControllerSettings controllerSettings = shared.controller;
-  const colortrack::FailsafeSettings failsafeSettings = shared.failsafe;
-  const GQuark roiType = g_quark_from_string(shared.roiType.c_str());
-  const gint targetId = shared.targetId;
-  state.lock.setPolicy(shared.lockOn);
+  const robotctl::Settings now = storeOf(self).settings;
+  const bool changed = self->priv->core.takeChanges().has(robotctl::Settings::Change::Controller);
   GST_OBJECT_UNLOCK(self);
-
-  controllerSettings.axes = state.axes;  // the protocol's, as it was at start
-  if (generation != state.appliedControllerGeneration) {
-    // A new gain or limit keeps the ramp and the lost-target hold; only another controller starts afresh.
-    if (controllerSettings.kind != state.controllerKind) {
-      state.controller = std::make_unique<colortrack::RobotController>(controllerSettings, failsafeSettings);
-      state.controllerKind = controllerSettings.kind;
-    } else {
-      state.controller->setSettings(controllerSettings, failsafeSettings);
-    }
-    writer->setStallTimeout(failsafeSettings.lostTimeout);
-    state.appliedControllerGeneration = generation;
-  }
-  if (self->priv->resetRequested.exchange(false)) {
-    state.controller->reset();
-    state.lock.release();
-  }
+  state.stage->apply(now, changed);
+  if (changed) writer->setStallTimeout(now.failsafe.lostTimeout);
+  if (self->priv->resetRequested.exchange(false)) state.stage->reset();
 
   colortrack::Observation o;
   o.frameSize = state.frameSize;
@@ -457,10 +376,10 @@ static GstFlowReturn gst_robot_ctl_render(GstBaseSink *sink, GstBuffer *buffer) 
                                    ? gst_segment_to_running_time(&sink->segment, GST_FORMAT_TIME, pts)
                                    : GST_CLOCK_TIME_NONE;
   o.time = GST_CLOCK_TIME_IS_VALID(running) ? static_cast<double>(running) / GST_SECOND : monotonicSeconds();
-  readTarget(buffer, roiType, targetId, state.lock, o);
+  readTarget(buffer, g_quark_from_string(now.roiType.c_str()), now.targetId, state.stage->lock(), o);
 
   Command command;
-  command.output = state.controller->update(o);
+  command.output = state.stage->decide(o);
   command.timestamp = pts;
   command.reason = command.output.targetVisible ? "target" : "no-target";
   GST_LOG_OBJECT(self, "%s: %s left %.3f right %.3f", o.box ? "target" : "no target",
@@ -545,5 +464,5 @@ static void gst_robot_ctl_class_init(GstRobotCtlClass *klass) {
 }
 
 static void gst_robot_ctl_init(GstRobotCtl *self) {
-  self->priv = new GstRobotCtlPrivate();
+  self->priv = new GstRobotCtlPrivate(GST_ELEMENT(self));
 }

@@ -9,9 +9,6 @@
 
 namespace robotctl {
 
-// A rate a serial port can be set to portably (termios' Bxxx constants).
-bool isStandardBaudRate(guint rate);
-
 SerialConfig toSerialConfig(const Settings &s);
 // The MAVLink ids, mode and bounds (hfov, max-rate in deg/s, max-speed) as the encoder takes them.
 colortrack::MavlinkSettings toMavlinkSettings(const Settings &s);

@@ -1,14 +1,16 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
-// robotctl's settings, what its properties say, and the table that declares those properties.
+// robotctl's settings (the property values), and the rows of its table for where commands go and which target
+// to follow with their start rules (the table itself: robotctl-properties.h).
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "colortrack/controller.hpp"
 #include "colortrack/protocol.hpp"
 #include "colortrack/target_lock.hpp"
 #include "robotctl-enums.h"
-#include "property-table.h"
+#include "element-core.h"
 #include "colortrack/robot_port.hpp"
 
 namespace robotctl {
@@ -16,6 +18,11 @@ namespace robotctl {
 // Copied under the object lock by start() and by the streaming thread; never touched by the writer thread
 // (it gets its own copy at start).
 struct Settings {
+  // What a change of a property marks (PropertyDef::changes).
+  enum class Change : unsigned {
+    Controller,  // `controller` or `failsafe`: the controller takes them from the next buffer
+  };
+
   std::string device, location;
   guint baudRate = 9600;
   gint dataBits = 8;
@@ -35,7 +42,7 @@ struct Settings {
   gdouble maxSpeed = 2.0;      // m/s, every forward velocity sent
   guint linkTimeoutMs = 3000;  // without the vehicle's HEARTBEAT (0: off); MAVLink's usual 3 s
   gdouble rate = 10.0;
-  // A change of these (a versioned property) bumps the store's version: the controller takes it.
+  // A change of these marks Change::Controller.
   colortrack::ControllerSettings controller;
   colortrack::FailsafeSettings failsafe;
   std::string roiType = "colortrack";
@@ -45,19 +52,19 @@ struct Settings {
 };
 
 using PropertyStore = gstglue::PropertyStore<Settings>;
+using ElementCore = gstglue::ElementCore<Settings>;
 
 // The MAVLink commands drive a gimbal: the controller pans and tilts (and is proportional).
 bool drivesGimbal(const Settings &settings);
 // The controller's settings as the protocol needs them (a gimbal: PanTilt).
 colortrack::ControllerSettings controllerSettings(const Settings &settings);
-// Why `controller` cannot drive what the protocol drives (zone and a gimbal), or empty.
-std::string controllerMismatch(const Settings &settings);
+// A rate a serial port can be set to portably (termios' Bxxx constants).
+bool isStandardBaudRate(guint rate);
 
-// A warning when serial-port properties are set away from their defaults while the output is 'location'
-// (a file, a pty, a FIFO, UDP or stdout: none of them has a baud rate); empty otherwise.
-std::string serialSettingsUnused(const Settings &settings);
-
-// In the order gst-inspect-1.0 lists them.
-const gstglue::PropertyTable<Settings> &properties();
+// The rows of robotctl's table for where commands go and how (read at start), and for which target to follow;
+// and the start rules between them (robotctl-properties.cpp assembles the table).
+std::vector<gstglue::PropertyDef<Settings>> linkRows();
+std::vector<gstglue::PropertyDef<Settings>> targetRows();
+std::vector<gstglue::StartRule<Settings>> linkRules();
 
 }  // namespace robotctl

@@ -42,6 +42,7 @@
 
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <vector>
 #include <string>
 
@@ -67,7 +68,9 @@ struct State {
 }  // namespace
 
 struct _GstTrackPublishPrivate {
-  trackpublish::PropertyStore properties;
+  explicit _GstTrackPublishPrivate(GstElement *element)
+      : core(element, gst_track_publish_debug, trackpublish::properties()) {}
+  trackpublish::ElementCore core;
   State state;
 };
 
@@ -83,13 +86,12 @@ GST_ELEMENT_REGISTER_DEFINE(trackpublish, "trackpublish", GST_RANK_NONE, GST_TYP
 static void gst_track_publish_set_property(GObject *object, guint prop_id, const GValue *value,
                                            GParamSpec *pspec) {
   GstTrackPublish *self = GST_TRACK_PUBLISH(object);
-  trackpublish::properties().set(GST_ELEMENT(self), GST_CAT_DEFAULT, self->priv->properties, prop_id, value,
-                                 pspec);
+  self->priv->core.set(prop_id, value, pspec);
 }
 
 static void gst_track_publish_get_property(GObject *object, guint prop_id, GValue *value, GParamSpec *pspec) {
   GstTrackPublish *self = GST_TRACK_PUBLISH(object);
-  trackpublish::properties().get(GST_ELEMENT(self), self->priv->properties, prop_id, value, pspec);
+  self->priv->core.get(prop_id, value, pspec);
 }
 
 static void gst_track_publish_finalize(GObject *object) {
@@ -110,22 +112,12 @@ void closeOutputs(State &state) {
 
 static gboolean gst_track_publish_start(GstBaseTransform *trans) {
   GstTrackPublish *self = GST_TRACK_PUBLISH(trans);
-  GST_OBJECT_LOCK(self);
-  trackpublish::PropertyStore &store = self->priv->properties;
-  const trackpublish::Settings s = store.settings;
-  trackpublish::properties().recheckRefused(store);
-  const std::string refusal = store.firstRefusal();
-  GST_OBJECT_UNLOCK(self);
-  if (!refusal.empty()) {
-    gstglue::postStartRefusal(GST_ELEMENT(self), GST_CAT_DEFAULT, refusal);
-    return FALSE;
-  }
-  if (s.location.empty() && s.address.empty()) {
-    GST_ELEMENT_ERROR(
-        self, RESOURCE, NOT_FOUND,
-        ("No output: set 'location' (a file, or '-' for stdout) and/or 'address' (an MQTT broker, "
-         "tcp://HOST:PORT)."),
-        (nullptr));
+  const std::optional<trackpublish::Settings> settings = self->priv->core.start();
+  if (!settings) return FALSE;
+  const trackpublish::Settings &s = *settings;
+  if (const colortrack::Status output = trackpublish::checkSomeOutput(s); !output) {
+    GST_ELEMENT_ERROR(self, RESOURCE, NOT_FOUND, ("%s", output.message().c_str()), (nullptr));
+    self->priv->core.stop();
     return FALSE;
   }
 
@@ -149,21 +141,17 @@ static gboolean gst_track_publish_start(GstBaseTransform *trans) {
         kind.open(trackpublish::OutputContext{GST_ELEMENT(self), s, source});
     if (!output) {
       closeOutputs(state);
+      self->priv->core.stop();
       return FALSE;
     }
     state.outputs.push_back(std::move(output));
   }
-  GST_OBJECT_LOCK(self);
-  store.running = true;
-  GST_OBJECT_UNLOCK(self);
   return TRUE;
 }
 
 static gboolean gst_track_publish_stop(GstBaseTransform *trans) {
   GstTrackPublish *self = GST_TRACK_PUBLISH(trans);
-  GST_OBJECT_LOCK(self);
-  self->priv->properties.running = false;
-  GST_OBJECT_UNLOCK(self);
+  self->priv->core.stop();
   closeOutputs(self->priv->state);
   return TRUE;
 }
@@ -237,7 +225,7 @@ static void gst_track_publish_class_init(GstTrackPublishClass *klass) {
 }
 
 static void gst_track_publish_init(GstTrackPublish *self) {
-  self->priv = new GstTrackPublishPrivate();
+  self->priv = new GstTrackPublishPrivate(GST_ELEMENT(self));
   gst_base_transform_set_passthrough(GST_BASE_TRANSFORM(self), TRUE);
   gst_base_transform_set_in_place(GST_BASE_TRANSFORM(self), TRUE);
 }

@@ -88,7 +88,7 @@ std::string trackDocument(GstBuffer *buffer, GQuark roiType, const FrameFacts &f
   return document.dump(-1, ' ', false, Json::error_handler_t::replace);
 }
 
-std::string checkTags(const std::string &tags) {
+colortrack::Status checkTags(const std::string &tags) {
   // What JSON allows but a consumer would trip on: a key given twice (which one wins differs between
   // readers) and a NUL character (which C strings cut).
   std::string problem;
@@ -106,9 +106,11 @@ std::string checkTags(const std::string &tags) {
     return true;
   };
   const Json parsed = Json::parse(tags, check, false);
-  if (parsed.is_discarded()) return "it is not JSON (expected an object such as {\"site\":\"dock-3\"})";
-  if (!parsed.is_object()) return "it must be a JSON object such as {\"site\":\"dock-3\"}";
-  return problem;
+  if (parsed.is_discarded())
+    return colortrack::Status::failure("it is not JSON (expected an object such as {\"site\":\"dock-3\"})");
+  if (!parsed.is_object())
+    return colortrack::Status::failure("it must be a JSON object such as {\"site\":\"dock-3\"}");
+  return problem.empty() ? colortrack::Status() : colortrack::Status::failure(problem);
 }
 
 }  // namespace trackpublish

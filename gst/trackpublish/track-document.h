@@ -12,6 +12,8 @@
 
 #include <string>
 
+#include "colortrack/status.hpp"
+
 namespace trackpublish {
 
 struct FrameFacts {
@@ -28,7 +30,7 @@ struct FrameFacts {
 // unless facts.addEmptyResults.
 std::string trackDocument(GstBuffer *buffer, GQuark roiType, const FrameFacts &facts);
 
-// Why `tags` is not a JSON object, or empty when it is.
-std::string checkTags(const std::string &tags);
+// Whether `tags` is a JSON object a consumer can read (no key twice, no NUL), or why not.
+colortrack::Status checkTags(const std::string &tags);
 
 }  // namespace trackpublish

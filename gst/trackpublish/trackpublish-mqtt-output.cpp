@@ -98,23 +98,23 @@ class ElementMqttListener : public MqttListener {
 // TLS files only where TLS is used (with tcp:// they would be ignored, and the link not encrypted).
 bool checkMqttSettings(GstElement *self, const Settings &s, const MqttConfig &config,
                        const std::string &topic, const std::string &source) {
-  const std::string badTopic = checkTopic(topic);
-  if (!badTopic.empty()) {
-    // Text too long to show is cut; `badTopic` gives the topic's length.
+  const colortrack::Status topicCheck = checkTopic(topic);
+  if (!topicCheck) {
+    // Text too long to show is cut; the check's message gives the topic's length.
     const auto shown = [](const std::string &text) {
       return text.size() > 200 ? text.substr(0, 200) + "..." : text;
     };
     GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
                       ("Invalid topic '%s' (property 'topic', with source '%s'): %s.",
                        gstglue::validUtf8(shown(topic)).c_str(), gstglue::validUtf8(shown(source)).c_str(),
-                       badTopic.c_str()),
+                       topicCheck.message().c_str()),
                       (nullptr));
     return false;
   }
-  const std::string badClientId = checkClientId(config.clientId);
-  if (!badClientId.empty()) {
-    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS, ("Invalid property 'client-id': %s.", badClientId.c_str()),
-                      (nullptr));
+  const colortrack::Status clientIdCheck = checkClientId(config.clientId);
+  if (!clientIdCheck) {
+    GST_ELEMENT_ERROR(self, RESOURCE, SETTINGS,
+                      ("Invalid property 'client-id': %s.", clientIdCheck.message().c_str()), (nullptr));
     return false;
   }
   const bool tls = usesTls(s.address);
@@ -240,11 +240,10 @@ std::unique_ptr<DocumentOutput> openMqttOutput(const OutputContext &c) {
   const std::string topic = replaceAll(s.topic, "{source}", c.source);
   if (!checkMqttSettings(c.element, s, config, topic, c.source)) return nullptr;
   auto output = std::make_unique<MqttOutput>(c.element, config, topic, s.maxQueued);
-  std::string why;
-  if (!output->publisher().start(why)) {
+  if (const colortrack::Status started = output->publisher().start(); !started) {
     GST_ELEMENT_ERROR(c.element, RESOURCE, SETTINGS,
                       ("Invalid MQTT address '%s' (property 'address'): %s.",
-                       gstglue::validUtf8(redactedAddress(s.address)).c_str(), why.c_str()),
+                       gstglue::validUtf8(redactedAddress(s.address)).c_str(), started.message().c_str()),
                       (nullptr));
     return nullptr;
   }

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "colortrack/status.hpp"
+
 #include "trackpublish-settings.h"
 
 GST_DEBUG_CATEGORY_EXTERN(gst_track_publish_debug);
@@ -37,6 +39,7 @@ struct OutputContext {
 
 struct OutputKind {
   const char *property;                      // the property that asks for it
+  const char *what;                          // what the property names, for the "no output" error
   bool (*wanted)(const Settings &settings);  // asked for by these settings
   // The output, or null with an error posted that names what to fix.
   std::unique_ptr<DocumentOutput> (*open)(const OutputContext &context);
@@ -44,5 +47,7 @@ struct OutputKind {
 
 // The table of output kinds (trackpublish-outputs.cpp).
 const std::vector<OutputKind> &outputKinds();
+// Whether some kind is asked for; the start's error when none is, naming each kind's property.
+colortrack::Status checkSomeOutput(const Settings &settings);
 
 }  // namespace trackpublish

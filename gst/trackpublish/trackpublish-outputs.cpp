@@ -10,10 +10,21 @@ std::unique_ptr<DocumentOutput> openMqttOutput(const OutputContext &context);  /
 
 const std::vector<OutputKind> &outputKinds() {
   static const std::vector<OutputKind> kinds = {
-      {"location", [](const Settings &s) { return !s.location.empty(); }, openFileOutput},
-      {"address", [](const Settings &s) { return !s.address.empty(); }, openMqttOutput},
+      {"location", "a file, or '-' for stdout", [](const Settings &s) { return !s.location.empty(); },
+       openFileOutput},
+      {"address", "an MQTT broker, tcp://HOST:PORT", [](const Settings &s) { return !s.address.empty(); },
+       openMqttOutput},
   };
   return kinds;
+}
+
+colortrack::Status checkSomeOutput(const Settings &settings) {
+  std::string asked;
+  for (const OutputKind &kind : outputKinds()) {
+    if (kind.wanted(settings)) return {};
+    asked += std::string(asked.empty() ? "" : " and/or ") + "'" + kind.property + "' (" + kind.what + ")";
+  }
+  return colortrack::Status::failure("No output: set " + asked + ".");
 }
 
 }  // namespace trackpublish

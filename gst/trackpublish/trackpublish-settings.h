@@ -5,11 +5,13 @@
 
 #include <string>
 
-#include "property-table.h"
+#include "element-core.h"
 
 namespace trackpublish {
 
 struct Settings {
+  enum class Change : unsigned {};  // every property is read at start: nothing changes while running
+
   std::string location;  // a file of JSON lines, "-" for stdout; empty: none
   std::string address;   // MQTT broker, tcp://HOST:PORT or ssl://HOST:PORT; empty: none
   std::string topic = "colortrack/{source}";
@@ -28,6 +30,7 @@ struct Settings {
 };
 
 using PropertyStore = gstglue::PropertyStore<Settings>;
+using ElementCore = gstglue::ElementCore<Settings>;
 
 // In the order gst-inspect-1.0 lists them.
 const gstglue::PropertyTable<Settings> &properties();

@@ -221,8 +221,9 @@ bool CommandWriter::receiveAll() {
 // Reopens a lost port once its back-off has passed and sends stop; true when `command` should follow.
 bool CommandWriter::reopen(const Command &command, Clock::time_point deadline) {
   if (Clock::now() < retryAt_) return false;
-  std::string why;
-  if (!port_->open(why)) {
+  const colortrack::Status opened = port_->open();
+  if (!opened) {
+    const std::string &why = opened.message();
     retryDelay_ = std::min(retryDelay_ * 2, std::chrono::duration_cast<Clock::duration>(kLongestRetry));
     retryAt_ = Clock::now() + retryDelay_;
     // Said once per outage (and again if the reason changes), not at every attempt.

@@ -26,11 +26,8 @@ char ZoneChars::of(DriveCommand command) const {
   return stop;
 }
 
-std::optional<ZoneChars> parseZoneChars(const std::string &text, std::string *error) {
-  auto fail = [&](const std::string &why) -> std::optional<ZoneChars> {
-    if (error) *error = why;
-    return std::nullopt;
-  };
+Result<ZoneChars> parseZoneChars(const std::string &text) {
+  const auto fail = [](const std::string &why) { return Status::failure(why); };
   // Each command goes out as one byte: anything but printable ASCII (a UTF-8 letter is several bytes) is
   // refused before the count, which is then a count of characters.
   for (unsigned char c : text)

@@ -44,7 +44,12 @@ void consumeSigpipe() {
 // ---------------------------------------------------------------------------------------------------------
 // FilePort
 
-bool FilePort::open(std::string &why) {
+colortrack::Status FilePort::open() {
+  std::string why;
+  return openWithReason(why) ? colortrack::Status() : colortrack::Status::failure(why);
+}
+
+bool FilePort::openWithReason(std::string &why) {
   if (path_ == "-") {
     fd_ = dup(STDOUT_FILENO);  // our own descriptor, so closing it leaves stdout alone
     if (fd_ < 0) return fail(why);
@@ -185,7 +190,12 @@ std::string notASerialPort(const std::string &path) {
 
 }  // namespace
 
-bool SerialPort::open(std::string &why) {
+colortrack::Status SerialPort::open() {
+  std::string why;
+  return openWithReason(why) ? colortrack::Status() : colortrack::Status::failure(why);
+}
+
+bool SerialPort::openWithReason(std::string &why) {
   // libserialport looks a port up by its /dev name: a link (/dev/serial/by-id/...) is followed first.
   char *resolved = realpath(config_.device.c_str(), nullptr);
   const std::string name = resolved ? resolved : config_.device;

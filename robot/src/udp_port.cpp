@@ -32,64 +32,66 @@ bool isUdpLocation(const std::string &location) {
   return location.rfind(kUdpScheme, 0) == 0;
 }
 
-std::string checkLocation(const std::string &location) {
-  std::string why;
-  if (isUdpLocation(location)) return parseUdpLocation(location, why) ? "" : why;
-  if (!colortrack::looksLikeUrl(location)) return "";
-  return "it looks like a URL (or a drive letter), but the only address robotctl sends to is udp://HOST:PORT "
-         "(e.g. udp://127.0.0.1:14550); a file whose name has a colon is written ./" +
-         location;
+colortrack::Status checkLocation(const std::string &location) {
+  if (isUdpLocation(location)) return parseUdpLocation(location).status();
+  if (!colortrack::looksLikeUrl(location)) return {};
+  return colortrack::Status::failure(
+      "it looks like a URL (or a drive letter), but the only address robotctl sends to is udp://HOST:PORT "
+      "(e.g. udp://127.0.0.1:14550); a file whose name has a colon is written ./" +
+      location);
 }
 
-std::optional<UdpEndpoint> parseUdpLocation(const std::string &location, std::string &why) {
+colortrack::Result<UdpEndpoint> parseUdpLocation(const std::string &location) {
   const std::string rest = location.substr(std::string(kUdpScheme).size());
   UdpEndpoint endpoint;
   std::string port;
   if (!rest.empty() && rest[0] == '[') {
     const std::size_t close = rest.find(']');
     if (close == std::string::npos || close + 1 >= rest.size() || rest[close + 1] != ':') {
-      why = "expected udp://[IPV6-ADDRESS]:PORT";
-      return std::nullopt;
+      return colortrack::Status::failure("expected udp://[IPV6-ADDRESS]:PORT");
     }
     endpoint.host = rest.substr(1, close - 1);
     port = rest.substr(close + 2);
   } else {
     const std::size_t colon = rest.rfind(':');
     if (colon == std::string::npos) {
-      why = "expected udp://HOST:PORT (e.g. udp://127.0.0.1:14550): no port";
-      return std::nullopt;
+      return colortrack::Status::failure("expected udp://HOST:PORT (e.g. udp://127.0.0.1:14550): no port");
     }
     endpoint.host = rest.substr(0, colon);
     port = rest.substr(colon + 1);
     if (endpoint.host.find(':') != std::string::npos) {
-      why = "an IPv6 address goes in brackets: udp://[ADDRESS]:PORT";
-      return std::nullopt;
+      return colortrack::Status::failure("an IPv6 address goes in brackets: udp://[ADDRESS]:PORT");
     }
   }
   if (endpoint.host.empty()) {
-    why = "expected udp://HOST:PORT: no host";
-    return std::nullopt;
+    return colortrack::Status::failure("expected udp://HOST:PORT: no host");
   }
   if (port.empty() || port.size() > 5 || port.find_first_not_of("0123456789") != std::string::npos ||
       std::atoi(port.c_str()) < 1 || std::atoi(port.c_str()) > 65535) {
-    why = "the port '" + port + "' is not a number from 1 to 65535";
-    return std::nullopt;
+    return colortrack::Status::failure("the port '" + port + "' is not a number from 1 to 65535");
   }
   endpoint.port = static_cast<std::uint16_t>(std::atoi(port.c_str()));
   if (GInetAddress *literal = g_inet_address_new_from_string(endpoint.host.c_str())) {
     const bool multicast = isMulticast(literal);
     g_object_unref(literal);
     if (multicast) {
-      why = "'" + endpoint.host + "' " + kMulticastRefused;
-      return std::nullopt;
+      return colortrack::Status::failure("'" + endpoint.host + "' " + kMulticastRefused);
     }
   }
   return endpoint;
 }
 
-bool UdpPort::open(std::string &why) {
-  const std::optional<UdpEndpoint> endpoint = parseUdpLocation(location_, why);
-  if (!endpoint) return false;
+colortrack::Status UdpPort::open() {
+  std::string why;
+  return openWithReason(why) ? colortrack::Status() : colortrack::Status::failure(why);
+}
+
+bool UdpPort::openWithReason(std::string &why) {
+  const colortrack::Result<UdpEndpoint> endpoint = parseUdpLocation(location_);
+  if (!endpoint) {
+    why = endpoint.error();
+    return false;
+  }
   GError *error = nullptr;
   GSocketConnectable *connectable = g_network_address_new(endpoint->host.c_str(), endpoint->port);
   GSocketAddressEnumerator *addresses = g_socket_connectable_enumerate(connectable);

@@ -78,14 +78,14 @@ SampledFrame sampledI420(const cv::Mat &i420, cv::Size size) {
   return f;
 }
 
-struct Result {
+struct BenchResult {
   double meanMs = 0, medianMs = 0, maxMs = 0;
   double segmentMs = 0, cleanMs = 0, labelMs = 0;  // medians of the stages, measured separately
   double cameraMs = 0;                             // median of the camera's motion (in the total)
   double meanReported = 0;
 };
 
-Result run(cv::Size size, int objects, bool i420, int frames) {
+BenchResult run(cv::Size size, int objects, bool i420, int frames) {
   const balls::BallScene scene = sceneFor(size, objects);
   std::vector<cv::Mat> rendered;
   for (int i = 0; i < kDistinctFrames; ++i) {
@@ -99,7 +99,7 @@ Result run(cv::Size size, int objects, bool i420, int frames) {
   BlobDetector detector(settings);
   MultiTracker tracker;
   GlobalMotion camera(kCameraCopyWidth);  // as ThresholdTracker
-  Result r;
+  BenchResult r;
   std::vector<double> total, seg, clean, label, cameraCost;
   const int d = autoDecimation(size);
   const RangeLut lut(settings.range, i420 ? PixelEncoding::Yuv : PixelEncoding::Rgb);
@@ -178,7 +178,7 @@ int main(int argc, char **argv) {
   for (const cv::Size size : sizes) {
     for (int objects : {1, 8}) {
       for (bool i420 : {false, true}) {
-        const Result r = run(size, objects, i420, frames);
+        const BenchResult r = run(size, objects, i420, frames);
         const bool hasTarget = size == cv::Size(1920, 1080);
         const bool ok = !hasTarget || r.medianMs <= kTargetMs;
         missed = missed || !ok;

@@ -13,6 +13,7 @@
 
 #include "balls.hpp"
 #include "colortrack/blobs.hpp"
+#include "support/status_helpers.hpp"
 
 using namespace colortrack;
 using balls::Ball;
@@ -75,12 +76,12 @@ TEST(ParseHsv, RejectsMalformedAndOutOfRangeWithReasons) {
   };
   for (const auto &[text, reason] : cases) {
     std::string error;
-    EXPECT_FALSE(parseHsv(text, &error)) << text;
+    EXPECT_FALSE(okOr(parseHsv(text), error)) << text;
     EXPECT_NE(error.find(reason), std::string::npos) << text << " -> " << error;
   }
-  EXPECT_NE(validateRange(rangeOf({0, 0.8, 0}, {10, 0.5, 1})), "");
-  EXPECT_NE(validateRange(rangeOf({0, 0, 0.9}, {10, 1, 0.2})), "");
-  EXPECT_EQ(validateRange(rangeOf({340, 0.5, 0.2}, {20, 1, 1})), "");
+  EXPECT_FALSE(validateRange(rangeOf({0, 0.8, 0}, {10, 0.5, 1})));
+  EXPECT_FALSE(validateRange(rangeOf({0, 0, 0.9}, {10, 1, 0.2})));
+  EXPECT_TRUE(validateRange(rangeOf({340, 0.5, 0.2}, {20, 1, 1})));
 }
 
 TEST(HsvRange, HueWrapsThroughZero) {
@@ -398,7 +399,7 @@ TEST(LearnRange, FromABoxAndUnderBrightnessChange) {
   std::printf("learnt range %s .. %s\n", formatHsv(learnt.lower).c_str(), formatHsv(learnt.upper).c_str());
   EXPECT_TRUE(learnt.wrapsHue());
   EXPECT_TRUE(learnt.contains({2, 0.85, 0.7}));
-  EXPECT_EQ(validateRange(learnt), "");
+  EXPECT_TRUE(validateRange(learnt));
   BlobSettings settings;
   settings.range = learnt;
   BlobDetector detector(settings);

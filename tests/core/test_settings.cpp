@@ -6,6 +6,7 @@
 #include <string>
 
 #include "colortrack/settings.hpp"
+#include "support/status_helpers.hpp"
 
 using namespace colortrack;
 
@@ -22,13 +23,13 @@ TEST(ParseBins, RejectsMalformedWithAReason) {
   for (const char *bad : {"", "16", "16,16", "16,16,8,4", "16,x,8", "16,,8", "16,16,8,", "0,16,8", "16,257,8",
                           "-1,16,8", "16.5,16,8", "16 16 8", "1e1,16,8", "16,16,8x", "99999999999,1,1"}) {
     std::string error;
-    EXPECT_FALSE(parseBins(bad, &error)) << '"' << bad << '"';
+    EXPECT_FALSE(okOr(parseBins(bad), error)) << '"' << bad << '"';
     EXPECT_FALSE(error.empty()) << '"' << bad << '"';
   }
   std::string error;
-  parseBins("16,x", &error);
+  okOr(parseBins("16,x"), error);
   EXPECT_EQ(error, "expected three integers 1..256 separated by commas, got \"16,x\"");
-  parseBins("16,300,8", &error);
+  okOr(parseBins("16,300,8"), error);
   EXPECT_NE(error.find("300"), std::string::npos) << error;
   EXPECT_FALSE(parseBins("0,1,1"));  // no error pointer: still fine
 }
@@ -46,15 +47,15 @@ TEST(ParseWeights, RejectsMalformedWithAReason) {
   for (const char *bad : {"", "1,1", "1,1,1,1", "1,,1", "1,1,a", "1,1,1.5", "-0.1,1,1", "1,1,nan", "1,1,inf",
                           "1;1;1", "0,5,1,1"}) {
     std::string error;
-    EXPECT_FALSE(parseWeights(bad, &error)) << '"' << bad << '"';
+    EXPECT_FALSE(okOr(parseWeights(bad), error)) << '"' << bad << '"';
     EXPECT_FALSE(error.empty()) << '"' << bad << '"';
   }
   std::string error;
-  parseWeights("1,2,0", &error);
+  okOr(parseWeights("1,2,0"), error);
   EXPECT_NE(error.find("[0, 1]"), std::string::npos) << error;
   // As good as zero: refused like all zero.
   for (const char *zero : {"0,0,0", "-0,0,1e-320", "0.0001,0.0001,0.0001"}) {
-    EXPECT_FALSE(parseWeights(zero, &error)) << zero;
+    EXPECT_FALSE(okOr(parseWeights(zero), error)) << zero;
     EXPECT_NE(error.find("add up"), std::string::npos) << error;
   }
   const auto negativeZero = parseWeights("-0,0,1");
@@ -75,13 +76,13 @@ TEST(ParseBox, RejectsMalformedWithAReason) {
   for (const char *bad : {"", "1,2,3", "1,2,3,4,5", "-1,0,5,5", "0,-1,5,5", "0,0,0,5", "0,0,5,0", "0,0,-5,5",
                           "a,0,5,5", "0,0,5.5,5", "0 0 5 5", "2147483647,0,1,1"}) {
     std::string error;
-    EXPECT_FALSE(parseBox(bad, &error)) << '"' << bad << '"';
+    EXPECT_FALSE(okOr(parseBox(bad), error)) << '"' << bad << '"';
     EXPECT_FALSE(error.empty()) << '"' << bad << '"';
   }
   std::string error;
-  parseBox("0,0,0,5", &error);
+  okOr(parseBox("0,0,0,5"), error);
   EXPECT_NE(error.find("width"), std::string::npos) << error;
-  parseBox("-3,0,5,5", &error);
+  okOr(parseBox("-3,0,5,5"), error);
   EXPECT_NE(error.find(">= 0"), std::string::npos) << error;
 }
 

@@ -36,7 +36,7 @@ struct Record {
 };
 
 // Writes back into `store` as the element writes into its property store: the next frame's snapshot carries
-// a learnt range with its counter moved.
+// the learnt range, not marked as a change (the mode has applied it).
 class FakeSink final : public ElementSink {
  public:
   FakeSink(Record &record, Snapshot &store) : r_(record), store_(store) {}
@@ -55,11 +55,10 @@ class FakeSink final : public ElementSink {
   void stopped() const override { ++r_.stopped; }
   void tracksReset() const override { ++r_.tracksReset; }
   bool takeResetRequest() const override { return std::exchange(r_.resetRequested, false); }
-  colortrack::BlobSettings writeLearntRange(const colortrack::HsvRange &range,
-                                            guint64 &generation) const override {
+  colortrack::BlobSettings writeLearntRange(const colortrack::HsvRange &range) const override {
     r_.learnt.push_back(range);
     store_.blobs.range = range;
-    generation = ++store_.blobsGeneration;
+    store_.changed.remove(colortrack_gst::Settings::Change::Blobs);
     return store_.blobs;
   }
   void restoreTemplateLocation(const std::string &, const std::string &inUse) const override {

@@ -83,7 +83,7 @@ GST_START_TEST(test_yuv_read_as_videoconvert_converts) {
     const double error = meanAbsDifference(read, reference);
     const double worst = cv::norm(read, reference, cv::NORM_INF);
     GST_INFO("%s%s: mean |difference| %.2f, largest %.0f", format, colorimetry, error, worst);
-    // colortrack applies the matrix with videoconvert's own integer maths (core/src/yuv_image.cpp): the
+    // colortrack applies the matrix with videoconvert's own integer maths (core/images/src/yuv_image.cpp): the
     // same bytes, so a tracker fed YUV sees what it would see behind `videoconvert ! BGRx`. (With the
     // standard matrix it read 1-2 levels apart, 2-4 at limited range, and the answer moved with them.)
     fail_unless(worst == 0, "%s%s: read with mean |difference| %.2f (largest %.0f) from videoconvert's BGRx",

@@ -1,51 +1,69 @@
 // SPDX-License-Identifier: LGPL-2.1-or-later
-// gstglue::PropertyTable on an element of its own (three properties, one of each kind of apply): a value
+// gstglue::PropertyTable and ElementCore on an element of its own (three properties, one of each kind of
+// apply, and two start rules): a value
 // refused before start is remembered (and, for text, kept so it reads back) for the start to fail on; a
 // value refused while started warns, names the property and keeps the old one; a read-at-start property
 // changed while started says so; a fixed-while-started one refuses a change but not the same value; every
-// message is valid UTF-8. GoogleTest, no pipeline.
+// message is valid UTF-8; the change set holds what an accepted value marks until it is taken; the start
+// reports a refusal first, then the rules, and counts as running from its snapshot. GoogleTest, no pipeline.
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "property-table.h"
+#include "element-core.h"
 
 namespace {
 
 struct Settings {
+  enum class Change : unsigned { Gain, Fixed };
   gint gain = 1;            // Live: negatives refused
   std::string path = "ok";  // AtStart: "bad" refused, kept so it reads back
   gboolean fixed = FALSE;   // BeforeStart
 };
 using Store = gstglue::PropertyStore<Settings>;
 using Def = gstglue::PropertyDef<Settings>;
+using Core = gstglue::ElementCore<Settings>;
+using Rule = gstglue::StartRule<Settings>;
 
-const char *refuseNegative(const GValue *v) {
-  return g_value_get_int(v) < 0 ? "it must not be negative" : nullptr;
+using colortrack::Status;
+
+Status refuseNegative(const GValue *v) {
+  return g_value_get_int(v) < 0 ? Status::failure("it must not be negative") : Status();
 }
-std::string checkPath(const Store &, const GValue *v, std::string *) {
-  return gstglue::textOf(v).rfind("bad", 0) == 0 ? "it is bad" : "";
+Status checkPath(const Store &, const GValue *v) {
+  return gstglue::textOf(v).rfind("bad", 0) == 0 ? Status::failure("it is bad") : Status();
 }
 
-const Def kDefs[] = {
-    {gstglue::Apply::Live, true,
-     [](GParamFlags f) { return g_param_spec_int("gain", "Gain", "A gain", -10, 10, 1, f); },
-     gstglue::getValue<&Settings::gain>, gstglue::setValue<&Settings::gain>, refuseNegative},
-    {gstglue::Apply::AtStart, false,
-     [](GParamFlags f) { return g_param_spec_string("path", "Path", "A path", "ok", f); },
-     gstglue::getText<&Settings::path>, gstglue::setText<&Settings::path>, nullptr, checkPath, true},
-    {gstglue::Apply::BeforeStart, false,
-     [](GParamFlags f) { return g_param_spec_boolean("fixed", "Fixed", "Fixed while started", FALSE, f); },
-     [](const Settings &s, GValue *v) { g_value_set_boolean(v, s.fixed); },
-     [](Settings &s, const GValue *v) { s.fixed = g_value_get_boolean(v); }},
-};
-const gstglue::PropertyTable<Settings> kTable(kDefs);
+Status fixedWithBadPath(const Settings &s) {
+  return s.fixed && s.path == "clash" ? Status::failure("'fixed' and 'path' clash") : Status();
+}
+Status gainOfNine(const Settings &s) {
+  return s.gain == 9 ? Status::failure("a gain of 9 is loud") : Status();
+}
+
+const gstglue::PropertyTable<Settings> kTable(
+    {Def::live([](GParamFlags f) { return g_param_spec_int("gain", "Gain", "A gain", -10, 10, 1, f); })
+         .marks({Settings::Change::Gain})
+         .field<&Settings::gain>()
+         .refusing(refuseNegative),
+     Def::atStart([](GParamFlags f) { return g_param_spec_string("path", "Path", "A path", "ok", f); })
+         .text<&Settings::path>()
+         .checking(checkPath)
+         .keepingRefused(),
+     Def::beforeStart([](GParamFlags f) {
+       return g_param_spec_boolean("fixed", "Fixed", "Fixed while started", FALSE, f);
+     })
+         .marks({Settings::Change::Fixed})
+         .accessors([](const Settings &s, GValue *v) { g_value_set_boolean(v, s.fixed); },
+                    [](Settings &s, const GValue *v) { s.fixed = g_value_get_boolean(v); })},
+    {{fixedWithBadPath}, {gainOfNine, Rule::Severity::Warning}});
 
 // A plain GstElement whose properties are the table's.
 struct TableElement {
   GstElement parent;
-  Store *store;
+  Core *core;
 };
 struct TableElementClass {
   GstElementClass parent;
@@ -55,14 +73,14 @@ GST_DEBUG_CATEGORY_STATIC(table_debug);
 
 void tableSet(GObject *object, guint id, const GValue *value, GParamSpec *pspec) {
   auto *self = reinterpret_cast<TableElement *>(object);
-  kTable.set(GST_ELEMENT(object), table_debug, *self->store, id, value, pspec);
+  self->core->set(id, value, pspec);
 }
 void tableGet(GObject *object, guint id, GValue *value, GParamSpec *pspec) {
   auto *self = reinterpret_cast<TableElement *>(object);
-  kTable.get(GST_ELEMENT(object), *self->store, id, value, pspec);
+  self->core->get(id, value, pspec);
 }
 void tableFinalize(GObject *object) {
-  delete reinterpret_cast<TableElement *>(object)->store;
+  delete reinterpret_cast<TableElement *>(object)->core;
   G_OBJECT_CLASS(table_element_parent_class)->finalize(object);
 }
 void table_element_class_init(TableElementClass *klass) {
@@ -73,7 +91,7 @@ void table_element_class_init(TableElementClass *klass) {
   kTable.install(gobject);
 }
 void table_element_init(TableElement *self) {
-  self->store = new Store();
+  self->core = new Core(GST_ELEMENT(self), table_debug, kTable);
 }
 
 // The element on a bus of its own; `warnings` takes what it posted.
@@ -90,12 +108,18 @@ struct Rig {
     gst_object_unref(bus);
     gst_object_unref(element);
   }
-  Store &store() { return *reinterpret_cast<TableElement *>(element)->store; }
-  std::vector<std::string> warnings() {
+  Core &core() { return *reinterpret_cast<TableElement *>(element)->core; }
+  Store &store() { return core().store(); }
+  std::vector<std::string> warnings() { return messages(GST_MESSAGE_WARNING); }
+  std::vector<std::string> errors() { return messages(GST_MESSAGE_ERROR); }
+  std::vector<std::string> messages(GstMessageType type) {
     std::vector<std::string> texts;
-    while (GstMessage *m = gst_bus_pop_filtered(bus, GST_MESSAGE_WARNING)) {
+    while (GstMessage *m = gst_bus_pop_filtered(bus, type)) {
       GError *error = nullptr;
-      gst_message_parse_warning(m, &error, nullptr);
+      if (type == GST_MESSAGE_WARNING)
+        gst_message_parse_warning(m, &error, nullptr);
+      else
+        gst_message_parse_error(m, &error, nullptr);
       texts.push_back(error->message);
       g_error_free(error);
       gst_message_unref(m);
@@ -127,7 +151,7 @@ TEST(PropertyTable, BeforeStartARefusalIsRememberedForTheStart) {
   g_object_set(rig.element, "gain", 3, nullptr);  // a good value clears the refusal
   EXPECT_EQ(rig.gain(), 3);
   EXPECT_TRUE(rig.store().refused.empty());
-  EXPECT_EQ(rig.store().versions[0], 1u);
+  EXPECT_TRUE(rig.core().takeChanges().has(Settings::Change::Gain));
   g_object_set(rig.element, "path", "bad1", nullptr);  // text reads back as written, still refused
   EXPECT_EQ(rig.path(), "bad1");
   EXPECT_EQ(rig.store().refused.size(), 1u);
@@ -171,6 +195,52 @@ TEST(PropertyTable, WhileStartedReadAtStartAndFixedPropertiesSaySo) {
   g_object_set(rig.element, "gain", 5, nullptr);  // live: applied, nothing said
   EXPECT_EQ(rig.gain(), 5);
   EXPECT_TRUE(rig.warnings().empty());
+}
+
+TEST(ElementCore, ChangesAreMarkedByTheRowAndTakenOnce) {
+  Rig rig;
+  EXPECT_TRUE(rig.core().takeChanges().empty());
+  g_object_set(rig.element, "path", "other", nullptr);  // marks nothing
+  EXPECT_TRUE(rig.core().takeChanges().empty());
+  g_object_set(rig.element, "gain", -3, nullptr);  // refused: marks nothing
+  EXPECT_TRUE(rig.core().takeChanges().empty());
+  g_object_set(rig.element, "gain", 4, "fixed", TRUE, nullptr);
+  const Core::Changes changes = rig.core().takeChanges();
+  EXPECT_TRUE(changes.has(Settings::Change::Gain));
+  EXPECT_TRUE(changes.has(Settings::Change::Fixed));
+  EXPECT_TRUE(rig.core().takeChanges().empty());
+}
+
+TEST(ElementCore, StartReportsARefusalThenTheRulesAndRunsFromItsSnapshot) {
+  Rig rig;
+  g_object_set(rig.element, "gain", -1, "fixed", TRUE, "path", "clash", nullptr);
+  EXPECT_FALSE(rig.core().start());
+  std::vector<std::string> errors = rig.errors();
+  ASSERT_EQ(errors.size(), 1u);  // the refusal only, not the rule too
+  EXPECT_NE(errors[0].find("'gain'"), std::string::npos) << errors[0];
+  EXPECT_FALSE(rig.store().running);
+
+  g_object_set(rig.element, "gain", 9, nullptr);
+  EXPECT_FALSE(rig.core().start());
+  errors = rig.errors();
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors[0], "'fixed' and 'path' clash");
+  EXPECT_FALSE(rig.store().running);
+
+  g_object_set(rig.element, "path", "fine", nullptr);
+  const std::optional<Settings> started = rig.core().start();
+  ASSERT_TRUE(started);
+  EXPECT_EQ(started->gain, 9);
+  // (Popping one type from the bus discards the others: the warnings first.)
+  const std::vector<std::string> warnings = rig.warnings();
+  ASSERT_EQ(warnings.size(), 1u);  // a warning rule does not stop the start
+  EXPECT_EQ(warnings[0], "a gain of 9 is loud");
+  EXPECT_TRUE(rig.store().running);
+  EXPECT_TRUE(rig.core().takeChanges().empty());       // what was set before is in the snapshot
+  g_object_set(rig.element, "fixed", FALSE, nullptr);  // fixed while started
+  EXPECT_EQ(rig.warnings().size(), 1u);
+  rig.core().stop();
+  EXPECT_FALSE(rig.store().running);
 }
 
 }  // namespace

@@ -118,16 +118,15 @@ class FakePort : public Port {
   std::size_t receivedAtFailure = 0;
   std::vector<Clock::time_point> openAttempts;
 
-  bool open(std::string &why) override {
+  colortrack::Status open() override {
     std::lock_guard<std::mutex> lock(wire_.mutex);
     openAttempts.push_back(Clock::now());
     if (refusals_ > 0) {
       --refusals_;
-      why = "fake: not there";
-      return false;
+      return colortrack::Status::failure("fake: not there");
     }
     open_ = true;
-    return true;
+    return {};
   }
   void close() override { open_ = false; }
   bool isOpen() const override { return open_; }
@@ -226,8 +225,7 @@ struct Rig {
   explicit Rig(const WriterConfig &config) {
     auto fake = std::make_unique<FakePort>(wire);
     port = fake.get();
-    std::string why;
-    port->open(why);  // as the element does before it creates the writer
+    port->open();  // as the element does before it creates the writer
     writer = std::make_unique<CommandWriter>(std::move(fake), config, recorder);
     writer->start();
   }

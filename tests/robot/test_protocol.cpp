@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "colortrack/protocol.hpp"
+#include "support/status_helpers.hpp"
 
 namespace colortrack {
 namespace {
@@ -45,14 +46,14 @@ TEST(Protocol, ZoneCharDefaultAndCustom) {
 
 TEST(Protocol, ZoneCharsRejected) {
   std::string why;
-  EXPECT_FALSE(parseZoneChars("FBLR", &why));
+  EXPECT_FALSE(okOr(parseZoneChars("FBLR"), why));
   EXPECT_NE(why.find("five"), std::string::npos);
-  EXPECT_FALSE(parseZoneChars("FFLRS", &why));
+  EXPECT_FALSE(okOr(parseZoneChars("FFLRS"), why));
   EXPECT_NE(why.find("differ"), std::string::npos);
-  EXPECT_FALSE(parseZoneChars("F LRS", &why));
+  EXPECT_FALSE(okOr(parseZoneChars("F LRS"), why));
   EXPECT_TRUE(parseZoneChars("12345"));
   // Five letters of ten UTF-8 bytes: refused as not one byte each, not as "got 10".
-  EXPECT_FALSE(parseZoneChars("\u0109\u011d\u0125\u0135\u015d", &why));
+  EXPECT_FALSE(okOr(parseZoneChars("\u0109\u011d\u0125\u0135\u015d"), why));
   EXPECT_NE(why.find("ASCII"), std::string::npos) << why;
   EXPECT_EQ(why.find("10"), std::string::npos) << why;
 }

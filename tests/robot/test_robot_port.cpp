@@ -18,6 +18,7 @@
 
 #include "colortrack/port_choice.hpp"
 #include "colortrack/robot_port.hpp"
+#include "support/status_helpers.hpp"
 
 namespace {
 
@@ -59,11 +60,11 @@ TEST(FilePort, FirstOpenEmptiesAFileAndAReopenAppends) {
   FilePort port(path);
   std::string why;
   std::size_t written = 0;
-  ASSERT_TRUE(port.open(why)) << why;
+  ASSERT_TRUE(okOr(port.open(), why)) << why;
   ASSERT_EQ(write(port, "F\n", written, why), WriteResult::Written) << why;
   EXPECT_EQ(written, 2u);
   port.close();
-  ASSERT_TRUE(port.open(why)) << why;
+  ASSERT_TRUE(okOr(port.open(), why)) << why;
   ASSERT_EQ(write(port, "S\n", written, why), WriteResult::Written) << why;
   port.close();
   EXPECT_EQ(contents(path), "F\nS\n");
@@ -75,7 +76,7 @@ TEST(FilePort, AFifoWithoutAReaderIsRefusedAtOnce) {
   ASSERT_EQ(mkfifo(path.c_str(), 0600), 0);
   FilePort port(path);
   std::string why;
-  EXPECT_FALSE(port.open(why));
+  EXPECT_FALSE(okOr(port.open(), why));
   EXPECT_NE(why.find("no process has it open for reading"), std::string::npos) << why;
 }
 
@@ -89,7 +90,7 @@ TEST(FilePort, AFullFifoIsBusyNotBlocking) {
   ASSERT_GE(reader, 0);
   FilePort port(path);
   std::string why;
-  ASSERT_TRUE(port.open(why)) << why;
+  ASSERT_TRUE(okOr(port.open(), why)) << why;
   const std::vector<std::uint8_t> block(1 << 20, 'x');  // more than any pipe buffer holds
   std::size_t written = 0;
   EXPECT_EQ(port.write(block, 50, written, why), WriteResult::Busy);
@@ -107,14 +108,14 @@ TEST(FilePort, AReopenWaitsForTheKindOfFileItLost) {
   const int reader = ::open(path.c_str(), O_RDONLY | O_NONBLOCK);
   FilePort port(path);
   std::string why;
-  ASSERT_TRUE(port.open(why)) << why;
+  ASSERT_TRUE(okOr(port.open(), why)) << why;
   port.close();
   ::close(reader);
   unlink(path.c_str());
-  EXPECT_FALSE(port.open(why));
+  EXPECT_FALSE(okOr(port.open(), why));
   EXPECT_NE(why.find("it is gone"), std::string::npos) << why;
   std::ofstream(path) << "";
-  EXPECT_FALSE(port.open(why));
+  EXPECT_FALSE(okOr(port.open(), why));
   EXPECT_NE(why.find("regular file"), std::string::npos) << why;
   EXPECT_EQ(contents(path), "");
 }
@@ -123,7 +124,7 @@ TEST(FilePort, ADirectoryIsRefused) {
   TempDir dir;
   FilePort port(dir.path);
   std::string why;
-  EXPECT_FALSE(port.open(why));
+  EXPECT_FALSE(okOr(port.open(), why));
   EXPECT_FALSE(why.empty());
 }
 
@@ -135,7 +136,7 @@ TEST(SerialPort, AMissingDeviceIsNamedInTheError) {
   config.device = "/dev/ttyNO-SUCH-ADAPTER";
   SerialPort port(config);
   std::string why;
-  EXPECT_FALSE(port.open(why));
+  EXPECT_FALSE(okOr(port.open(), why));
   EXPECT_EQ(why, "no such serial port");
   EXPECT_FALSE(port.isOpen());
   EXPECT_NE(port.describe().find("/dev/ttyNO-SUCH-ADAPTER"), std::string::npos);
@@ -156,7 +157,7 @@ TEST(SerialPort, APseudoTerminalOrAFileIsSentToLocation) {
     config.device = device;
     SerialPort port(config);
     std::string why;
-    EXPECT_FALSE(port.open(why)) << device;
+    EXPECT_FALSE(okOr(port.open(), why)) << device;
     EXPECT_NE(why.find("'location'"), std::string::npos) << device << ": " << why;
   }
   std::filesystem::remove(file);

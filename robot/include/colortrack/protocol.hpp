@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "colortrack/choice.hpp"
+#include "colortrack/status.hpp"
 #include "colortrack/controller.hpp"
 #include "colortrack/mavlink.hpp"
 
@@ -63,7 +64,7 @@ struct ZoneChars {
   char of(DriveCommand command) const;
 };
 // Exactly five distinct printable characters in the order forward, backward, left, right, stop.
-std::optional<ZoneChars> parseZoneChars(const std::string &text, std::string *error = nullptr);
+Result<ZoneChars> parseZoneChars(const std::string &text);
 std::string formatZoneChars(const ZoneChars &chars);
 
 struct ProtocolSettings {

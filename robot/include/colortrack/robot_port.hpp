@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "colortrack/choice.hpp"
+#include "colortrack/status.hpp"
 
 struct sp_port;
 
@@ -21,7 +22,8 @@ enum class WriteResult { Written, Busy, Failed };
 class Port {
  public:
   virtual ~Port() = default;
-  virtual bool open(std::string &why) = 0;
+  // Opens (or reopens) the port; why not, naming what to fix.
+  virtual colortrack::Status open() = 0;
   virtual void close() = 0;
   virtual bool isOpen() const = 0;
   // Writes all of `bytes` within `timeoutMs` (> 0). Busy: the reader did not take them all in time; `written`
@@ -47,7 +49,7 @@ class FilePort : public Port {
   explicit FilePort(std::string path) : path_(std::move(path)) {}
   ~FilePort() override { close(); }
 
-  bool open(std::string &why) override;
+  colortrack::Status open() override;
   void close() override;
   bool isOpen() const override { return fd_ >= 0; }
   WriteResult write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::size_t &written,
@@ -55,6 +57,8 @@ class FilePort : public Port {
   std::string describe() const override;
 
  private:
+  bool openWithReason(std::string &why);
+
   std::string path_;
   int fd_ = -1;
   bool openedBefore_ = false;
@@ -89,7 +93,7 @@ class SerialPort : public Port {
   explicit SerialPort(SerialConfig config) : config_(std::move(config)) {}
   ~SerialPort() override { close(); }
 
-  bool open(std::string &why) override;
+  colortrack::Status open() override;
   void close() override;
   bool isOpen() const override { return port_ != nullptr; }
   WriteResult write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::size_t &written,
@@ -97,6 +101,7 @@ class SerialPort : public Port {
   std::string describe() const override { return "serial port '" + config_.device + "' (property 'device')"; }
 
  private:
+  bool openWithReason(std::string &why);
   SerialConfig config_;
   sp_port *port_ = nullptr;
 };

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "colortrack/robot_port.hpp"
+#include "colortrack/status.hpp"
 
 typedef struct _GSocket GSocket;
 
@@ -19,19 +20,19 @@ constexpr const char *kUdpScheme = "udp://";
 // True when `location` names a UDP destination (it starts with udp://).
 bool isUdpLocation(const std::string &location);
 
-// Why `location` cannot be used as written, or empty when it can: a valid udp://HOST:PORT, or a path. A
+// Whether `location` can be used as written, or why not: a valid udp://HOST:PORT, or a path. A
 // string that starts like a URL or a drive letter (looksLikeUrl: "udp:127.0.0.1:14550", "C:\\robot.txt")
 // but is not a valid udp:// one is refused rather than taken as a file name, which would quietly write the
 // robot's commands into a new file; a file whose name really has a colon is written "./udp:x".
-std::string checkLocation(const std::string &location);
+colortrack::Status checkLocation(const std::string &location);
 
 // HOST and PORT of "udp://HOST:PORT" (HOST a name, an IPv4 address or an IPv6 address in brackets; PORT
-// 1-65535), or none with `why` saying what is wrong. Resolves nothing.
+// 1-65535), or why not. Resolves nothing.
 struct UdpEndpoint {
   std::string host;
   std::uint16_t port = 0;
 };
-std::optional<UdpEndpoint> parseUdpLocation(const std::string &location, std::string &why);
+colortrack::Result<UdpEndpoint> parseUdpLocation(const std::string &location);
 
 // Sends from an ephemeral local port (nothing is bound, so no local port can be in use) to the first address
 // the host resolves to. UDP is fire-and-forget, as MAVLink over UDP expects: whether anything listens there
@@ -47,7 +48,7 @@ class UdpPort : public Port {
 
   // Resolves the host (blocking: at start, or in the writer thread on a reopen; never the streaming
   // thread).
-  bool open(std::string &why) override;
+  colortrack::Status open() override;
   void close() override;
   bool isOpen() const override { return socket_ != nullptr; }
   WriteResult write(const std::vector<std::uint8_t> &bytes, int timeoutMs, std::size_t &written,
@@ -57,6 +58,8 @@ class UdpPort : public Port {
   std::string describe() const override { return "'" + location_ + "' (property 'location')"; }
 
  private:
+  bool openWithReason(std::string &why);
+
   std::string location_;
   GSocket *socket_ = nullptr;  // connected to the destination
 };

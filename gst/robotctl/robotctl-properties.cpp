@@ -1,0 +1,18 @@
+// SPDX-License-Identifier: LGPL-2.1-or-later
+#include "robotctl-properties.h"
+
+#include "robotctl-control-properties.h"
+
+namespace robotctl {
+
+const gstglue::PropertyTable<Settings> &properties() {
+  static const gstglue::PropertyTable<Settings> table = [] {
+    std::vector<gstglue::StartRule<Settings>> rules = linkRules();
+    rules.push_back({controllerMismatch});
+    return gstglue::PropertyTable<Settings>(
+        gstglue::rowsOf<gstglue::PropertyDef<Settings>>(linkRows(), controlRows(), targetRows()), rules);
+  }();
+  return table;
+}
+
+}  // namespace robotctl
