@@ -74,6 +74,7 @@
 #include "colortrack-meta.h"
 #include "colortrack-element-link.h"
 #include "colortrack-mode.h"
+#include "colortrack-preset.h"
 #include "colortrack-settings.h"
 #include "colortrack-state.h"
 #include "frame-view.h"
@@ -106,7 +107,10 @@ static GstStaticPadTemplate src_template =
     GST_STATIC_PAD_TEMPLATE("src", GST_PAD_SRC, GST_PAD_ALWAYS, GST_STATIC_CAPS(VIDEO_CAPS));
 
 #define gst_color_track_parent_class parent_class
-G_DEFINE_TYPE(GstColorTrack, gst_color_track, GST_TYPE_VIDEO_FILTER);
+// GstPreset: GStreamer's default implementation (presets in GstColorTrack.prs), with colortrack's own list of
+// saved properties (colortrack-preset.cpp).
+G_DEFINE_TYPE_WITH_CODE(GstColorTrack, gst_color_track, GST_TYPE_VIDEO_FILTER,
+                        G_IMPLEMENT_INTERFACE(GST_TYPE_PRESET, gst_color_track_preset_init));
 GST_ELEMENT_REGISTER_DEFINE(colortrack, "colortrack", GST_RANK_NONE, GST_TYPE_COLOR_TRACK);
 
 // ---------------------------------------------------------------------------------------------------------
