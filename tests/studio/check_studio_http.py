@@ -10,15 +10,19 @@ Usage: check_studio_http.py COLORTRACK-STUDIO
 2. Token: the studio listening on 0.0.0.0 refuses every request without the token (403), from loopback and
    from the machine's other address, and serves it with the token (header or ?token=).
 3. Template mode: /select on the ball gives a track on it (IoU >= 0.5); threshold settings are refused (409).
+5. Presets: /save with --preset-out writes colortrack's GstPreset file there (gst_preset_save_preset) and
+   nowhere else; a studio started with --preset studio has the saved settings.
 4. Latency: capture to receipt of /video.mjpg parts by an HTTP client on this machine, and /select to the
    first tracked frame; printed.
 Exit code 77 (skipped) without PyGObject.
 """
 import json
+import os
 import random
 import socket
 import statistics
 import sys
+import tempfile
 import threading
 import time
 import urllib.error
@@ -298,6 +302,28 @@ def check_template(program, failures):
         studio.close()
 
 
+def check_preset(program, failures):
+    """/save writes a GstPreset under --preset-out only; --preset loads it into a new studio."""
+    chosen = {"hsv-lower": "350,0.4,0.3", "hsv-upper": "25,1,0.9", "min-area": 77, "morph-size": 3}
+    with tempfile.TemporaryDirectory() as out:
+        studio = Studio(program, "--preset-out", out, robot=False)
+        try:
+            applied, _ = studio.post("/settings", chosen)
+            status, saved = studio.post("/save", {})
+        finally:
+            studio.close()
+        files = sorted(os.path.relpath(os.path.join(d, f), out) for d, _, fs in os.walk(out) for f in fs)
+        studio = Studio(program, "--preset-out", out, "--preset", "studio", robot=False)
+        try:
+            loaded = studio.get("/state")["settings"]
+        finally:
+            studio.close()
+    print(f"preset: /settings {applied}, /save {status} wrote {files}; loaded back {loaded}")
+    if (applied, status) != (200, 200) or files != ["gstreamer-1.0/presets/GstColorTrack.prs"] \
+            or "[studio]" not in saved.get("preset", "") or loaded != chosen:
+        failures.append(f"preset: settings {applied}, save {status} {saved}, files {files}, loaded {loaded}")
+
+
 def main():
     program = sys.argv[1]
     missing = gi_missing()
@@ -308,6 +334,7 @@ def main():
     check_fuzz(program, failures)
     check_token(program, failures)
     check_template(program, failures)
+    check_preset(program, failures)
     for f in failures:
         print("FAIL:", f)
     return 1 if failures else 0
