@@ -46,12 +46,18 @@
  * HEARTBEAT has not come back for #GstRobotCtl:link-timeout ms is sent only stop, with a warning, until it
  * answers again.
  *
+ * #GstRobotCtl:hold is a person's STOP (a button in an application, colortrack-studio's page): set to true,
+ * the robot is sent stop at once (the set wakes the writer: no tick or buffer is waited for) and only stop
+ * until it is set back to false; the pipeline keeps playing and the target stays locked, so the first
+ * decision after the release is current.
+ *
  * With #GstRobotCtl:post-messages, every command sent is also posted as an element message "robotctl" with
  * command (string), left and right (int, as sent; with MAVLink instead pitch-rate or vx and yaw-rate, as
  * sent: rad/s and m/s, yaw > 0 to the right), linear and angular (double; angular > 0 turns left, the
  * opposite sign to yaw-rate), target-visible (boolean),
  * timestamp (the buffer the decision came from, or GST_CLOCK_TIME_NONE) and reason ("target", "no-target",
- * "stalling", "stalled", "eos", "flush", "paused", "ready", "start", "reconnected", "link-lost", "shutdown").
+ * "stalling", "stalled", "eos", "flush", "paused", "ready", "start", "hold", "reconnected", "link-lost",
+ * "shutdown").
  *
  * ## Example launch lines
  * |[
@@ -154,6 +160,15 @@ State &stateOf(GstRobotCtl *self) {
   return self->priv->state;
 }
 
+// The writer `hold` reaches at once (null: none), told the hold of now: one set while starting is not lost.
+void shareWriter(GstRobotCtl *self, CommandWriter *writer) {
+  GST_OBJECT_LOCK(self);
+  robotctl::PropertyStore &store = storeOf(self);
+  store.shared.writer = writer;
+  if (writer) writer->setHeld(store.settings.hold);
+  GST_OBJECT_UNLOCK(self);
+}
+
 }  // namespace
 
 static void gst_robot_ctl_set_property(GObject *object, guint prop_id, const GValue *value,
@@ -171,6 +186,7 @@ static void gst_robot_ctl_get_property(GObject *object, guint prop_id, GValue *v
 static void gst_robot_ctl_dispose(GObject *object) {
   GstRobotCtl *self = GST_ROBOT_CTL(object);
   if (self->priv && self->priv->writer) {
+    shareWriter(self, nullptr);
     self->priv->writer->shutdown();
     self->priv->writer.reset();
   }
@@ -250,12 +266,14 @@ static gboolean gst_robot_ctl_start(GstBaseSink *sink) {
                                                                      s.postMessages, config.protocol);
   self->priv->writer = std::make_unique<CommandWriter>(std::move(port), config, *self->priv->listener);
   self->priv->writer->start();
+  shareWriter(self, self->priv->writer.get());
   return TRUE;
 }
 
 static gboolean gst_robot_ctl_stop(GstBaseSink *sink) {
   GstRobotCtl *self = GST_ROBOT_CTL(sink);
   self->priv->core.stop();
+  shareWriter(self, nullptr);
   if (self->priv->writer) {
     self->priv->writer->shutdown();  // sends the final stop
     self->priv->writer.reset();

@@ -3,12 +3,14 @@
 
 #include <cmath>
 
+#include "colortrack/command_writer.hpp"
+
 namespace robotctl {
 
 namespace {
 
 using gstglue::Apply;
-using Def = gstglue::PropertyDef<Settings>;
+using Def = Row;
 using colortrack::ControllerSettings;
 using colortrack::FailsafeSettings;
 using Change = Settings::Change;
@@ -250,10 +252,30 @@ std::vector<Def> failsafeRows() {
   };
 }
 
+// The writer is told under the object lock, which it never takes: it only holds its own lock briefly.
+void holdAccepted(PropertyStore &store) {
+  if (store.shared.writer) store.shared.writer->setHeld(store.settings.hold);
+}
+
+// A person's STOP (a button on a page, a key in an application): at once, not from the next buffer.
+std::vector<Def> holdRows() {
+  return {
+      Def::live([](GParamFlags f) {
+        return g_param_spec_boolean(
+            "hold", "Hold",
+            "Stop the robot at once and send only stop until set back to false (tracking and decisions go "
+            "on, and are sent again from the release); may be set at any time, also before start",
+            Settings{}.hold, f);
+      })
+          .field<&Settings::hold>()
+          .onAccepted(holdAccepted),
+  };
+}
+
 }  // namespace
 
-std::vector<gstglue::PropertyDef<Settings>> controlRows() {
-  return gstglue::rowsOf<Def>(controllerRows(), gainRows(), limitRows(), failsafeRows());
+std::vector<Row> controlRows() {
+  return gstglue::rowsOf<Def>(controllerRows(), gainRows(), limitRows(), failsafeRows(), holdRows());
 }
 
 }  // namespace robotctl

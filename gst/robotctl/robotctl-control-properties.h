@@ -10,9 +10,9 @@
 
 namespace robotctl {
 
-std::vector<gstglue::PropertyDef<Settings>> controlRows();
-// Whether `controller` can drive what the protocol drives (not zone and a gimbal), or why not: a start rule, and
-// checked again when `controller` is set while running.
+std::vector<Row> controlRows();
+// Whether `controller` can drive what the protocol drives (not zone and a gimbal), or why not: a start rule,
+// and checked again when `controller` is set while running.
 colortrack::Status controllerMismatch(const Settings &settings);
 
 }  // namespace robotctl

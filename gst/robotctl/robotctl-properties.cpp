@@ -5,12 +5,12 @@
 
 namespace robotctl {
 
-const gstglue::PropertyTable<Settings> &properties() {
-  static const gstglue::PropertyTable<Settings> table = [] {
+const gstglue::PropertyTable<Settings, Shared> &properties() {
+  static const gstglue::PropertyTable<Settings, Shared> table = [] {
     std::vector<gstglue::StartRule<Settings>> rules = linkRules();
     rules.push_back({controllerMismatch});
-    return gstglue::PropertyTable<Settings>(
-        gstglue::rowsOf<gstglue::PropertyDef<Settings>>(linkRows(), controlRows(), targetRows()), rules);
+    return gstglue::PropertyTable<Settings, Shared>(
+        gstglue::rowsOf<Row>(linkRows(), controlRows(), targetRows()), rules);
   }();
   return table;
 }

@@ -6,6 +6,6 @@
 
 namespace robotctl {
 
-const gstglue::PropertyTable<Settings> &properties();
+const gstglue::PropertyTable<Settings, Shared> &properties();
 
 }  // namespace robotctl

@@ -21,7 +21,7 @@ using gstglue::getValue;
 using gstglue::setText;
 using gstglue::setValue;
 using gstglue::textOf;
-using Def = gstglue::PropertyDef<Settings>;
+using Def = Row;
 using colortrack::ControllerSettings;
 using colortrack::FailsafeSettings;
 
@@ -306,11 +306,11 @@ bool isStandardBaudRate(guint rate) {
          std::end(kStandardBaudRates);
 }
 
-std::vector<gstglue::PropertyDef<Settings>> linkRows() {
+std::vector<Row> linkRows() {
   return gstglue::rowsOf<Def>(serialRows(), outputRows(), mavlinkRows(), mavlinkLimitRows());
 }
 
-std::vector<gstglue::PropertyDef<Settings>> targetRows() {
+std::vector<Row> targetRows() {
   return followRows();
 }
 

@@ -49,10 +49,20 @@ struct Settings {
   gint targetId = -1;
   colortrack::LockOn lockOn = colortrack::LockOn::FirstConfirmed;
   bool postMessages = false;
+  bool hold = false;  // a person's STOP: only stop is sent until released
 };
 
-using PropertyStore = gstglue::PropertyStore<Settings>;
-using ElementCore = gstglue::ElementCore<Settings>;
+class CommandWriter;
+
+// What the threads share besides the values: the writer of a started element (null otherwise), so that
+// `hold` acts at once rather than from the next buffer, which may never come.
+struct Shared {
+  CommandWriter *writer = nullptr;
+};
+
+using PropertyStore = gstglue::PropertyStore<Settings, Shared>;
+using ElementCore = gstglue::ElementCore<Settings, Shared>;
+using Row = gstglue::PropertyDef<Settings, Shared>;
 
 // The MAVLink commands drive a gimbal: the controller pans and tilts (and is proportional).
 bool drivesGimbal(const Settings &settings);
@@ -63,8 +73,8 @@ bool isStandardBaudRate(guint rate);
 
 // The rows of robotctl's table for where commands go and how (read at start), and for which target to follow;
 // and the start rules between them (robotctl-properties.cpp assembles the table).
-std::vector<gstglue::PropertyDef<Settings>> linkRows();
-std::vector<gstglue::PropertyDef<Settings>> targetRows();
+std::vector<Row> linkRows();
+std::vector<Row> targetRows();
 std::vector<gstglue::StartRule<Settings>> linkRules();
 
 }  // namespace robotctl

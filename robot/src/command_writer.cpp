@@ -66,18 +66,22 @@ void CommandWriter::start() {
 void CommandWriter::submit(const Command &command) {
   std::lock_guard<std::mutex> lock(mutex_);
   bufferWatchdog_.feed(monotonicSeconds());
-  if (!playing_ || flushing_) return;
+  if (!playing_ || flushing_ || held_) return;
   pending_ = command;
 }
 
 void CommandWriter::stopNow(const char *reason) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    pending_ = Command{};
-    pending_.reason = reason;
-    urgent_ = true;
+    stopAtOnce(reason);
   }
   wake_.notify_one();
+}
+
+void CommandWriter::stopAtOnce(const char *reason) {
+  pending_ = Command{};
+  pending_.reason = reason;
+  urgent_ = true;
 }
 
 void CommandWriter::setPlaying(bool playing) {
@@ -89,6 +93,17 @@ void CommandWriter::setPlaying(bool playing) {
 void CommandWriter::setFlushing(bool flushing) {
   std::lock_guard<std::mutex> lock(mutex_);
   flushing_ = flushing;
+}
+
+void CommandWriter::setHeld(bool held) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (held == held_) return;
+    held_ = held;
+    if (!held) return;
+    stopAtOnce("hold");
+  }
+  wake_.notify_one();
 }
 
 void CommandWriter::setStallTimeout(double seconds) {

@@ -157,6 +157,28 @@ GST_START_TEST(test_pause_then_play_again_follows_at_once) {
 }
 GST_END_TEST;
 
+// hold: stop at once from the application's thread while buffers keep coming, only stop until released,
+// and the first decision after the release is sent. Set before start, the robot never moves.
+GST_START_TEST(test_hold_stops_at_once_and_until_released) {
+  Ctl ctl("rate=10 lost-timeout=5000");
+  fail_unless_equals_int(ctl.decide({roi(kRight)}).back(), 'R');
+  GstElement *element = gst_harness_find_element(ctl.h, "robotctl");
+  g_object_set(element, "hold", TRUE, nullptr);
+  checkStopsAfter(ctl, "hold", 50);
+  for (int i = 0; i < 6; ++i) ctl.push({roi(kRight)});  // tracking goes on; nothing but stop is sent
+  for (std::uint8_t b : ctl.pty.readFor(300)) fail_unless_equals_int(b, 'S');
+  g_object_set(element, "hold", FALSE, nullptr);
+  gst_object_unref(element);
+  fail_unless_equals_int(ctl.decide({roi(kLeft)}).back(), 'L');
+
+  Ctl heldFromTheStart("rate=50 lost-timeout=5000 hold=true");
+  for (int i = 0; i < 5; ++i) heldFromTheStart.push({roi(kRight)});
+  const Bytes bytes = heldFromTheStart.pty.readFor(200);
+  fail_unless(!bytes.empty(), "no stop while held from the start");
+  for (std::uint8_t b : bytes) fail_unless_equals_int(b, 'S');
+}
+GST_END_TEST;
+
 // With no buffer after `ctl`'s last decision (`held`): the ms until the first stop on the pty, every byte
 // before it `held`.
 long long msUntilStallStop(Ctl &ctl, char held, const char *what) {
@@ -468,6 +490,7 @@ Suite *robotctl_suite(bool withCvtracker) {
   tcase_add_test(tc, test_repeats_at_rate);
   tcase_add_test(tc, test_stop_on_eos_flush_pause_and_ready);
   tcase_add_test(tc, test_pause_then_play_again_follows_at_once);
+  tcase_add_test(tc, test_hold_stops_at_once_and_until_released);
   tcase_add_test(tc, test_stop_when_upstream_stalls);
   tcase_add_test(tc, test_stalled_turn_ends_at_the_hold_share);
   tcase_add_test(tc, test_lost_timeout_change_reaches_the_stall_watchdog);

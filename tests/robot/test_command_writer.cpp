@@ -344,6 +344,28 @@ TEST(CommandWriter, SendsOnlyStopUnlessPlayingAndNotFlushing) {
   EXPECT_TRUE(rig.waitForText(lineOf(kForward)));
 }
 
+// A person's STOP: at once (not at the next tick), only stop while held, the newest decision after release.
+TEST(CommandWriter, HeldSendsOnlyStopAtOnceUntilReleased) {
+  Rig rig(textConfig(2));  // a tick every 500 ms: a stop within it came at once
+  rig.writer->setPlaying(true);
+  rig.writer->submit(kForward);
+  ASSERT_TRUE(rig.waitForText(lineOf(kForward)));
+  const auto asked = Clock::now();
+  rig.writer->setHeld(true);
+  ASSERT_TRUE(rig.wire.waitFor([&] { return rig.wire.sentReasons.back() == "hold"; }));
+  EXPECT_LT(Clock::now() - asked, std::chrono::milliseconds(250));
+  const std::size_t heldFrom = rig.received().size();
+  for (int i = 0; i < 5; ++i) rig.writer->submit(kForward);  // decisions while held are dropped
+  rig.writer->setHeld(true);                                 // holding again changes nothing
+  ASSERT_TRUE(rig.waitForSends(rig.sends() + 3));
+  const std::string held = rig.received().substr(heldFrom);
+  EXPECT_TRUE(wholeFrames(held, {kStopLine})) << held;
+  rig.writer->setHeld(false);
+  const std::size_t releasedFrom = rig.received().size();
+  rig.writer->submit(kLeft);
+  EXPECT_TRUE(rig.waitForText(lineOf(kLeft), releasedFrom));
+}
+
 TEST(CommandWriter, StallStopsAMovingRobot) {
   WriterConfig config = textConfig(200);
   config.stallTimeout = 0.05;

@@ -67,7 +67,7 @@ def fuzz_cases(rng):
     cases = []
     bad_bodies = [b"", b"{", b"null", b"[]", b"42", b'"x"', b"{'x': 1}", b"\xff\xfe\x00", b"{" * 5000 + b"}" * 5000,
                   b'{"x": NaN}', b"[" * 100000]
-    for path in ("/select", "/settings", "/stop"):
+    for path in ("/select", "/settings", "/stop", "/save"):
         for body in bad_bodies:
             cases.append((f"{path} body {body[:12]!r}", post_bytes(path, body)))
     wrong = [None, True, False, "12", [], {}, [1, 2], 1e308, -1e308, float("inf"), -5, 10 ** 30, "1,2,3", "x" * 1000]
@@ -79,6 +79,9 @@ def fuzz_cases(rng):
             cases.append((f"/settings {key}={value!r:.20}", post_bytes("/settings", json.dumps({key: value}).encode())))
         if not isinstance(value, bool):  # true and false are /stop's two good values
             cases.append((f"/stop hold={value!r:.20}", post_bytes("/stop", json.dumps({"hold": value}).encode())))
+    # A preset name is a key-file group: nothing that could end the group, escape a folder or be empty.
+    for name in (None, True, 5, [], {}, "", "a]b", "[x]", "a\nb", "../../x", "a/b", "x" * 65, " lead", "a=b", "é"):
+        cases.append((f"/save name={name!r:.20}", post_bytes("/save", json.dumps({"name": name}).encode())))
     for body in ({"x": -500, "y": -500, "w": 20, "h": 20}, {"x": 5000, "y": 0, "w": 40, "h": 40},
                  {"x": 0, "y": 0, "w": 4, "h": 4}, {"x": 0, "y": 0}):
         cases.append((f"/select {body}", post_bytes("/select", json.dumps(body).encode())))
@@ -309,18 +312,18 @@ def check_preset(program, failures):
         studio = Studio(program, "--preset-out", out, robot=False)
         try:
             applied, _ = studio.post("/settings", chosen)
-            status, saved = studio.post("/save", {})
+            status, saved = studio.post("/save", {"name": "outdoor 2"})
         finally:
             studio.close()
         files = sorted(os.path.relpath(os.path.join(d, f), out) for d, _, fs in os.walk(out) for f in fs)
-        studio = Studio(program, "--preset-out", out, "--preset", "studio", robot=False)
+        studio = Studio(program, "--preset-out", out, "--preset", "outdoor 2", robot=False)
         try:
             loaded = studio.get("/state")["settings"]
         finally:
             studio.close()
     print(f"preset: /settings {applied}, /save {status} wrote {files}; loaded back {loaded}")
     if (applied, status) != (200, 200) or files != ["gstreamer-1.0/presets/GstColorTrack.prs"] \
-            or "[studio]" not in saved.get("preset", "") or loaded != chosen:
+            or "[outdoor 2]" not in saved.get("preset", "") or loaded != chosen:
         failures.append(f"preset: settings {applied}, save {status} {saved}, files {files}, loaded {loaded}")
 
 

@@ -72,8 +72,8 @@ class CommandWriter {
   void start();
 
   // The streaming thread's decision; replaces any command not sent yet (a queue of one: newest wins).
-  // Ignored unless playing and not flushing: a render() still running when a pause or a flush sent stop must
-  // not bring a moving command back (the stall watchdog, off while not playing, would not stop it).
+  // Ignored unless playing, not flushing and not held: a render() still running when a pause or a flush sent
+  // stop must not bring a moving command back (the stall watchdog, off while not playing, would not stop it).
   void submit(const Command &command);
   // Stop now, not at the next tick.
   void stopNow(const char *reason);
@@ -81,6 +81,9 @@ class CommandWriter {
   void setPlaying(bool playing);
   // Between flush-start and flush-stop decisions are dropped (see submit()).
   void setFlushing(bool flushing);
+  // Held: stop now, and only stop until released (a person's STOP; the decisions go on being made and
+  // dropped, so the first one after the release is current).
+  void setHeld(bool held);
   // How long a playing pipeline may go without a buffer (lost-timeout, which may change while playing).
   void setStallTimeout(double seconds);
   // Sends a last stop, ends the thread and closes the port. Idempotent.
@@ -90,6 +93,8 @@ class CommandWriter {
   using Clock = std::chrono::steady_clock;
 
   void run();
+  // The next send is stop, at once (the caller holds mutex_ and wakes the thread).
+  void stopAtOnce(const char *reason);
   void send(const Command &command, int timeoutMs);
   bool reopen(const Command &command, Clock::time_point deadline);
   bool finishUnsent(Clock::time_point deadline);
@@ -121,7 +126,7 @@ class CommandWriter {
   std::mutex mutex_;  // guards what follows; never held during I/O
   std::condition_variable wake_;
   Command pending_;
-  bool urgent_ = false, quit_ = false, playing_ = false, flushing_ = false;
+  bool urgent_ = false, quit_ = false, playing_ = false, flushing_ = false, held_ = false;
   double stallTimeout_;
   colortrack::Watchdog bufferWatchdog_;
 };
