@@ -101,6 +101,7 @@ chroot_trust_host_ca() {
 in_chroot() {
   chroot "$root" /usr/bin/env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin HOME=/root LANG=C.UTF-8 \
     TERM="${TERM:-dumb}" CI="${CI:-}" COLORTRACK_REQUIRE_NODE_MAVLINK="${COLORTRACK_REQUIRE_NODE_MAVLINK:-0}" \
+    COLORTRACK_REQUIRE_BROWSER="${COLORTRACK_REQUIRE_BROWSER:-0}" \
     COLORTRACK_MEASURING_SETUP="${COLORTRACK_MEASURING_SETUP:-}" \
     "${chroot_ca_env[@]}" /bin/bash -c "cd $src && $*"
 }
