@@ -9,15 +9,21 @@ On the built-in scene (320x240 at 30 fps, threshold mode, no robot), with the te
    (check_studio_browser.page_latency).
 2. click -> first tracked frame: /select on the ball to the element's first message about the new track
    (the studio's select_to_track_ms), three times.
+3. STOP -> stop on the wire: with robotctl writing text commands to a pty and the ball followed, the time
+   from sending POST /stop {"hold": true} to the first stop line on the pty, five times (released between).
 Exit code 77 (skipped) without PyGObject. Nothing is checked against a limit: the figures are for
-docs/studio-latency-draft.md.
+docs/benchmarks.md.
 """
 import os
+import statistics
 import sys
+import time
 
 from check_studio_browser import browser, missing_tools, page_latency
 from check_studio_http import check_latency
-from studio_harness import SKIP, Studio, gi_missing
+from studio_harness import SKIP, Studio, ball_box, gi_missing
+
+STOP_LINE = b"L=0 R=0\n"  # robotctl protocol=text's stop
 
 
 def browser_lag(studio):
@@ -37,6 +43,40 @@ def browser_lag(studio):
               f"30 fps) behind the newest frame, range {lags[0]}..{lags[-1]} over {len(lags)} samples")
 
 
+def moving(studio, seconds=3.0):
+    """True once the pty has had a command other than stop (what was read is dropped)."""
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline:
+        if studio.read_robot(0.1).replace(STOP_LINE, b""):
+            return True
+    return False
+
+
+def stop_latency(program):
+    """POST /stop {"hold": true} -> the first stop line on the robot's pty, while the robot follows the ball."""
+    studio = Studio(program, "--robot-protocol", "text")
+    times = []
+    try:
+        x, y, _, _ = ball_box(studio.get("/state")["test_frame"] + 1)
+        studio.post("/select", {"x": round(x + 8), "y": round(y + 8), "w": 24, "h": 24})
+        for _ in range(5):
+            if not moving(studio):
+                print("STOP -> stop on the wire: the robot did not move; not measured")
+                return
+            studio.read_robot()  # what was on its way before the request
+            asked = time.monotonic()
+            studio.post("/stop", {"hold": True})
+            seen = b""
+            while STOP_LINE not in seen and time.monotonic() - asked < 2:
+                seen += studio.read_robot(0.001)
+            times.append((time.monotonic() - asked) * 1000)
+            studio.post("/stop", {"hold": False})
+    finally:
+        studio.close()
+    print(f"STOP (POST /stop) -> first stop line on the robot's pty (robotctl rate 10 Hz): median "
+          f"{statistics.median(times):.1f} ms, max {max(times):.1f} ms over {len(times)} presses")
+
+
 def main():
     program = sys.argv[1]
     missing = gi_missing()
@@ -52,6 +92,7 @@ def main():
         browser_lag(studio)
     finally:
         studio.close()
+    stop_latency(program)
     for f in failures:
         print("FAIL:", f)
     return 1 if failures else 0
