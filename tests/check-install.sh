@@ -3,10 +3,10 @@
 # The install test (meson test install): `meson install --destdir` puts the build into a staging root, and
 # gst-inspect-1.0 must find colortrack, robotctl and trackpublish there, loaded from the staged file: GST_PLUGIN_PATH into
 # the staging root, no system plugin directory, a private registry.
-#   check-install.sh BUILD_DIR PLUGIN_DIR INCLUDE_DIR GST_INSPECT
-# PLUGIN_DIR and INCLUDE_DIR are the absolute install paths meson computed (prefix included).
+#   check-install.sh BUILD_DIR PLUGIN_DIR INCLUDE_DIR GST_INSPECT BIN_DIR
+# PLUGIN_DIR, INCLUDE_DIR and BIN_DIR are the absolute install paths meson computed (prefix included).
 set -euo pipefail
-build="$1" plugin_dir="$2" include_dir="$3" inspect="$4"
+build="$1" plugin_dir="$2" include_dir="$3" inspect="$4" bin_dir="$5"
 stage="$(mktemp -d)"
 trap 'rm -rf "$stage"' EXIT
 
@@ -19,6 +19,12 @@ fail() {
 plugin="$stage$plugin_dir/libgstcolortrack.so"
 [ -f "$plugin" ] || fail "no plugin at $plugin; staged files: $(cd "$stage" && find . -type f | tr '\n' ' ')"
 [ -f "$stage$include_dir/colortrack/colortrack-meta.h" ] || fail "no header under $stage$include_dir"
+# colortrack-studio looks for its page beside it, then in ../share/colortrack-studio.
+studio="$stage$bin_dir/colortrack-studio"
+[ -x "$studio" ] || fail "no executable colortrack-studio at $studio"
+[ -f "$(dirname "$studio")/../share/colortrack-studio/studio.html" ] ||
+  fail "colortrack-studio's page is not in $(dirname "$studio")/../share/colortrack-studio"
+echo "ok: colortrack-studio and its page"
 
 unset GST_PLUGIN_PATH GST_PLUGIN_SYSTEM_PATH
 export GST_PLUGIN_PATH_1_0="$stage$plugin_dir"
