@@ -125,8 +125,28 @@ double monotonicSeconds() {
 struct State {
   std::unique_ptr<robotctl::ControllerStage> stage;  // the controller and the target lock
   cv::Size frameSize;
-  std::string roiType;
+  std::string roiType;  // and its quark, made again only when it changes
+  GQuark roiQuark = 0;
 };
+
+// What render() reads of the settings for a buffer, under the lock: a few values, and all the settings only
+// when the controller's or the failsafe's changed (rarely: the strings are not copied per buffer).
+struct BufferSettings {
+  colortrack::LockOn lockOn;
+  gint targetId;
+  std::optional<robotctl::Settings> changed;
+};
+
+BufferSettings takeBufferSettings(robotctl::ElementCore &core, State &state) {
+  const robotctl::Settings &s = core.store().settings;
+  BufferSettings taken{s.lockOn, s.targetId, std::nullopt};
+  if (core.takeChanges().has(robotctl::Settings::Change::Controller)) taken.changed = s;
+  if (state.roiQuark == 0 || s.roiType != state.roiType) {
+    state.roiType = s.roiType;
+    state.roiQuark = g_quark_from_string(state.roiType.c_str());
+  }
+  return taken;
+}
 
 }  // namespace
 
@@ -379,11 +399,13 @@ static GstFlowReturn gst_robot_ctl_render(GstBaseSink *sink, GstBuffer *buffer) 
   }
 
   GST_OBJECT_LOCK(self);
-  const robotctl::Settings now = storeOf(self).settings;
-  const bool changed = self->priv->core.takeChanges().has(robotctl::Settings::Change::Controller);
+  const BufferSettings now = takeBufferSettings(self->priv->core, state);
   GST_OBJECT_UNLOCK(self);
-  state.stage->apply(now, changed);
-  if (changed) writer->setStallTimeout(now.failsafe.lostTimeout);
+  state.stage->lock().setPolicy(now.lockOn);
+  if (now.changed) {
+    state.stage->apply(*now.changed);
+    writer->setStallTimeout(now.changed->failsafe.lostTimeout);
+  }
   if (self->priv->resetRequested.exchange(false)) state.stage->reset();
 
   colortrack::Observation o;
@@ -394,7 +416,7 @@ static GstFlowReturn gst_robot_ctl_render(GstBaseSink *sink, GstBuffer *buffer) 
                                    ? gst_segment_to_running_time(&sink->segment, GST_FORMAT_TIME, pts)
                                    : GST_CLOCK_TIME_NONE;
   o.time = GST_CLOCK_TIME_IS_VALID(running) ? static_cast<double>(running) / GST_SECOND : monotonicSeconds();
-  readTarget(buffer, g_quark_from_string(now.roiType.c_str()), now.targetId, state.stage->lock(), o);
+  readTarget(buffer, state.roiQuark, now.targetId, state.stage->lock(), o);
 
   Command command;
   command.output = state.stage->decide(o);

@@ -11,9 +11,7 @@ ControllerStage::ControllerStage(const Settings &atStart) {
   lock_.setPolicy(atStart.lockOn);
 }
 
-void ControllerStage::apply(const Settings &now, bool changed) {
-  lock_.setPolicy(now.lockOn);
-  if (!changed) return;
+void ControllerStage::apply(const Settings &now) {
   colortrack::ControllerSettings controller = now.controller;
   controller.axes = axes_;
   if (controller.kind != kind_) {

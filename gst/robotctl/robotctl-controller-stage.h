@@ -16,9 +16,9 @@ class ControllerStage {
   // The controller the start's settings ask for; its axes (the protocol's) stay fixed until the next start.
   explicit ControllerStage(const Settings &atStart);
 
-  // A buffer's settings: the lock-on policy always; the controller's and the failsafe's when `changed`. A new
-  // gain or limit keeps the ramp and the lost-target hold; only another kind of controller starts afresh.
-  void apply(const Settings &now, bool changed);
+  // Settings whose controller or failsafe changed. A new gain or limit keeps the ramp and the lost-target
+  // hold; only another kind of controller starts afresh.
+  void apply(const Settings &changed);
   // After a flush or the "reset" signal: the controller forgets its past and the target is let go.
   void reset();
 
