@@ -48,7 +48,7 @@
 
 #include "track-document.h"
 #include "trackpublish-output.h"
-#include "trackpublish-settings.h"
+#include "trackpublish-properties.h"
 
 GST_DEBUG_CATEGORY(gst_track_publish_debug);
 #define GST_CAT_DEFAULT gst_track_publish_debug
@@ -115,11 +115,6 @@ static gboolean gst_track_publish_start(GstBaseTransform *trans) {
   const std::optional<trackpublish::Settings> settings = self->priv->core.start();
   if (!settings) return FALSE;
   const trackpublish::Settings &s = *settings;
-  if (const colortrack::Status output = trackpublish::checkSomeOutput(s); !output) {
-    GST_ELEMENT_ERROR(self, RESOURCE, NOT_FOUND, ("%s", output.message().c_str()), (nullptr));
-    self->priv->core.stop();
-    return FALSE;
-  }
 
   State &state = self->priv->state;
   state = State{};

@@ -275,10 +275,8 @@ std::vector<Def> deliveryRows() {
 
 }  // namespace
 
-const gstglue::PropertyTable<Settings> &properties() {
-  static const gstglue::PropertyTable<Settings> table(
-      gstglue::rowsOf<Def>(outputRows(), mqttRows(), tlsRows(), deliveryRows()));
-  return table;
+std::vector<gstglue::PropertyDef<Settings>> settingRows() {
+  return gstglue::rowsOf<Def>(outputRows(), mqttRows(), tlsRows(), deliveryRows());
 }
 
 }  // namespace trackpublish

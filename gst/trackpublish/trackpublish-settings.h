@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "element-core.h"
 
@@ -32,7 +33,7 @@ struct Settings {
 using PropertyStore = gstglue::PropertyStore<Settings>;
 using ElementCore = gstglue::ElementCore<Settings>;
 
-// In the order gst-inspect-1.0 lists them.
-const gstglue::PropertyTable<Settings> &properties();
+// Every property's row, in the order gst-inspect-1.0 lists them (the table: trackpublish-properties.h).
+std::vector<gstglue::PropertyDef<Settings>> settingRows();
 
 }  // namespace trackpublish
