@@ -19,12 +19,16 @@ fail() {
 plugin="$stage$plugin_dir/libgstcolortrack.so"
 [ -f "$plugin" ] || fail "no plugin at $plugin; staged files: $(cd "$stage" && find . -type f | tr '\n' ' ')"
 [ -f "$stage$include_dir/colortrack/colortrack-meta.h" ] || fail "no header under $stage$include_dir"
-# colortrack-studio looks for its page beside it, then in ../share/colortrack-studio.
+# colortrack-studio looks for its page and modules beside it, then in ../share/colortrack-studio.
 studio="$stage$bin_dir/colortrack-studio"
 [ -x "$studio" ] || fail "no executable colortrack-studio at $studio"
-[ -f "$(dirname "$studio")/../share/colortrack-studio/studio.html" ] ||
-  fail "colortrack-studio's page is not in $(dirname "$studio")/../share/colortrack-studio"
-echo "ok: colortrack-studio and its page"
+for part in studio.html studio_pipeline.py studio_server.py; do
+  [ -f "$(dirname "$studio")/../share/colortrack-studio/$part" ] ||
+    fail "colortrack-studio's $part is not in $(dirname "$studio")/../share/colortrack-studio"
+done
+# It starts from there: its usage (the modules imported, GStreamer not started).
+"$studio" --help >/dev/null || fail "the installed colortrack-studio does not start"
+echo "ok: colortrack-studio, its page and its modules"
 
 unset GST_PLUGIN_PATH GST_PLUGIN_SYSTEM_PATH
 export GST_PLUGIN_PATH_1_0="$stage$plugin_dir"

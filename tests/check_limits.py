@@ -21,7 +21,7 @@ import sys
 
 FILE_LIMIT = 600
 FUNCTION_LIMIT, TEST_FUNCTION_LIMIT = 80, 120
-FOLDERS = ("core", "robot", "publish", "gst", "tests", "examples")
+FOLDERS = ("core", "robot", "publish", "gst", "tests", "examples", "tools")
 HEADERS, BODIES = (".hpp", ".h"), (".cpp", ".c")
 SUFFIXES = (".cpp", ".hpp", ".h", ".c", ".py")
 
@@ -34,8 +34,17 @@ def sources(root):
     for folder in FOLDERS:
         for directory, subdirs, files in os.walk(os.path.join(root, folder)):
             subdirs[:] = [d for d in subdirs if d not in ("node_modules", "__pycache__")]
-            found += [os.path.join(directory, f) for f in files if f.endswith(SUFFIXES)]
+            found += [os.path.join(directory, f) for f in files
+                      if f.endswith(SUFFIXES) or is_script(os.path.join(directory, f))]
     return sorted(found)
+
+
+def is_script(path):
+    """A program without a suffix (tools/studio/colortrack-studio): ctags knows it by its #! line."""
+    if os.path.splitext(path)[1] or not os.access(path, os.X_OK):
+        return False
+    with open(path, "rb") as f:
+        return f.readline().startswith(b"#!/usr/bin/python3")
 
 
 def room_of(relative):
