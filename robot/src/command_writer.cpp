@@ -183,7 +183,11 @@ void CommandWriter::run() {
   send(last, kFinalStopTimeoutMs);
 }
 
-void CommandWriter::send(const Command &command, int timeoutMs) {
+void CommandWriter::send(const Command &decided, int timeoutMs) {
+  // A hold that came after the command was taken still stops it (held_ is read without the lock for this).
+  Command stop;
+  stop.reason = "hold";
+  const Command &command = held_ && !colortrack::isStill(decided.output) ? stop : decided;
   const auto deadline = Clock::now() + std::chrono::milliseconds(timeoutMs);
   if (!port_->isOpen() && !reopen(command, deadline)) return;
   // The rest of a cut frame goes first: the robot would misread a newer frame glued to a fragment.

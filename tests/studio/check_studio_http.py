@@ -4,21 +4,26 @@
 Usage: check_studio_http.py COLORTRACK-STUDIO
 1. Fuzz (studio on 127.0.0.1, robotctl writing to a pty, nothing of the default red range in the scene, so
    the robot's only command is stop): bad JSON, bodies over the limit, wrong types and out-of-range values on
-   every endpoint, broken request lines and headers, random bytes, and slow clients sending one byte at a
-   time. Every answer must be a 4xx (never 2xx for a bad request, never 5xx), the studio must stay alive and
-   answer /state promptly throughout, no track may start, and the pty must get nothing but stop.
+   every endpoint, broken request lines and headers, random bytes, requests as another site's page would
+   send them (another Host, an Origin, a form or text/plain body: 403 or 415), and slow clients sending one
+   byte at a time. Every answer must be a 4xx (never 2xx for a bad request, never 5xx), the studio must stay
+   alive, print no traceback and answer /state promptly throughout, no track may start, and the pty must get
+   nothing but stop.
 2. Token: the studio listening on 0.0.0.0 refuses every request without the token (403), from loopback and
    from the machine's other address, and serves it with the token (header or ?token=).
 3. Template mode: /select on the ball gives a track on it (IoU >= 0.5); threshold settings are refused (409).
-5. Presets: /save with --preset-out writes colortrack's GstPreset file there (gst_preset_save_preset) and
-   nowhere else; a studio started with --preset studio has the saved settings.
-4. Latency: capture to receipt of /video.mjpg parts by an HTTP client on this machine, and /select to the
+4. Presets: /save with --preset-out writes colortrack's GstPreset file there (gst_preset_save_preset) and
+   nowhere else; a studio started with --preset NAME has the saved settings.
+5. Signals: SIGTERM or SIGHUP while the robot follows the ball: the studio exits 0 and the robot's last
+   command is stop.
+6. Latency: capture to receipt of /video.mjpg parts by an HTTP client on this machine, and /select to the
    first tracked frame; printed.
 Exit code 77 (skipped) without PyGObject.
 """
 import json
 import os
 import random
+import signal
 import socket
 import statistics
 import sys
@@ -58,8 +63,13 @@ def raw_request(host, port, data, timeout=5.0, read=True):
 
 
 def post_bytes(path, body, content_type="application/json", extra=b""):
-    return (f"POST {path} HTTP/1.1\r\nHost: x\r\nContent-Type: {content_type}\r\n"
+    return (f"POST {path} HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: {content_type}\r\n"
             f"Content-Length: {len(body)}\r\n".encode() + extra + b"\r\n" + body)
+
+
+# The answer a request from another site must get, whatever else is wrong with it.
+CROSS_SITE = {"Host evil.example": 403, "GET Host evil.example": 403, "Origin evil.example": 403,
+              "text/plain body": 415, "form body": 415, "no Host": 403}
 
 
 def fuzz_cases(rng):
@@ -92,22 +102,33 @@ def fuzz_cases(rng):
     # Over the 64 KiB limit, announced and sent; announced and not sent; chunked; broken lengths.
     big = b'{"x": "' + b"a" * (70 * 1024) + b'"}'
     cases.append(("/settings 70 KiB", post_bytes("/settings", big)))
-    cases.append(("/select Content-Length 10**9", b"POST /select HTTP/1.1\r\nHost: x\r\nContent-Length: 1000000000\r\n\r\n{}"))
-    cases.append(("/stop chunked", b"POST /stop HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: chunked\r\n\r\n5\r\nhello\r\n0\r\n\r\n"))
-    cases.append(("/stop Content-Length x", b"POST /stop HTTP/1.1\r\nHost: x\r\nContent-Length: x\r\n\r\n"))
-    cases.append(("/stop Content-Length -1", b"POST /stop HTTP/1.1\r\nHost: x\r\nContent-Length: -1\r\n\r\n"))
-    cases.append(("/stop short body", b"POST /stop HTTP/1.1\r\nHost: x\r\nContent-Length: 50\r\n\r\n{\"hold\": true}"))
+    cases.append(("/select Content-Length 10**9", b"POST /select HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nContent-Length: 1000000000\r\n\r\n{}"))
+    cases.append(("/stop chunked", b"POST /stop HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nTransfer-Encoding: chunked\r\n\r\n5\r\nhello\r\n0\r\n\r\n"))
+    cases.append(("/stop Content-Length x", b"POST /stop HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nContent-Length: x\r\n\r\n"))
+    cases.append(("/stop Content-Length -1", b"POST /stop HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nContent-Length: -1\r\n\r\n"))
+    cases.append(("/stop short body", b"POST /stop HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nContent-Length: 50\r\n\r\n{\"hold\": true}"))
     # Broken requests: http.server's own parser answers them.
     cases.append(("garbage line", b"GARBAGE\r\n\r\n"))
     cases.append(("long URL", b"GET /" + b"a" * 70000 + b" HTTP/1.1\r\n\r\n"))
     cases.append(("many headers", b"GET /state HTTP/1.1\r\n" + b"X: y\r\n" * 200 + b"\r\n"))
-    cases.append(("unknown path", b"POST /shutdown HTTP/1.1\r\nContent-Length: 2\r\n\r\n{}"))
-    cases.append(("unknown method", b"DELETE /state HTTP/1.1\r\n\r\n"))
-    cases.append(("path traversal", b"GET /../../etc/passwd HTTP/1.1\r\n\r\n"))
+    cases.append(("unknown path", b"POST /shutdown HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n"
+                                  b"Content-Length: 2\r\n\r\n{}"))
+    cases.append(("unknown method", b"DELETE /state HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n"))
+    cases.append(("path traversal", b"GET /../../etc/passwd HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n"))
+    # Another site's page: a name made to point here (DNS rebinding), its Origin, a form or text/plain body
+    # (sent by a browser without asking), no Host at all.
+    # (A hold or a select let through would show in the studio's state, checked after the fuzz.)
+    release = b'{"hold": true}'
+    cases.append(("Host evil.example", post_bytes("/stop", release).replace(b"Host: 127.0.0.1", b"Host: evil.example:8550")))
+    cases.append(("GET Host evil.example", b"GET /state HTTP/1.1\r\nHost: evil.example\r\n\r\n"))
+    cases.append(("Origin evil.example", post_bytes("/stop", release, extra=b"Origin: http://evil.example\r\n")))
+    cases.append(("text/plain body", post_bytes("/stop", release, content_type="text/plain")))
+    cases.append(("form body", post_bytes("/select", b"x=1&y=1&w=30&h=30", content_type="application/x-www-form-urlencoded")))
+    cases.append(("no Host", b"POST /stop HTTP/1.1\r\nContent-Type: application/json\r\nContent-Length: 15\r\n\r\n" + release))
     for i in range(40):  # random bytes, some after a valid request line
         junk = bytes(rng.randrange(256) for _ in range(rng.randrange(1, 400)))
-        prefix = rng.choice([b"", b"POST /select HTTP/1.1\r\nContent-Length: 300\r\n\r\n",
-                             b"POST /stop HTTP/1.1\r\nContent-Length: 300\r\n\r\n"])
+        head = b" HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\nContent-Length: 300\r\n\r\n"
+        prefix = rng.choice([b"", b"POST /select" + head, b"POST /stop" + head])
         cases.append((f"random {i}", prefix + junk))
     return cases
 
@@ -140,6 +161,8 @@ def check_fuzz(program, failures):
                 unanswered.append(name)
             if not (400 <= status < 500 or status == 0):
                 failures.append(f"fuzz {name}: HTTP {status}")
+            if name in CROSS_SITE and status != CROSS_SITE[name]:
+                failures.append(f"fuzz {name}: HTTP {status}, not {CROSS_SITE[name]}")
             if not studio.alive():
                 failures.append(f"fuzz {name}: the studio died")
                 return
@@ -167,6 +190,8 @@ def check_fuzz(program, failures):
         start = time.monotonic()
         cut = half.recv(100) == b""
         half.close()
+        if not cut:
+            failures.append("a client stuck half way through its headers was not cut off")
         print(f"slow clients: answers {results}; /state meanwhile at most {worst * 1000:.0f} ms; a client stuck "
               f"half way through its headers {'cut off' if cut else 'NOT cut off'} after "
               f"{time.monotonic() - start:.1f} s more")
@@ -199,13 +224,15 @@ def check_fuzz(program, failures):
         code = studio.close()
         if code not in (0, -15):
             failures.append(f"the studio exited with {code}")
+        if studio.tracebacks() or "internal error" in studio.errors:
+            failures.append(f"the fuzz made the studio print {studio.tracebacks()} traceback(s) or an internal error")
 
 
 def check_latency(studio, host, port, failures):
     """Capture to receipt of /video.mjpg parts here; /select on the ball to its first tracked frame."""
     ages = []
     with socket.create_connection((host, port), timeout=5) as s:
-        s.sendall(b"GET /video.mjpg HTTP/1.1\r\nHost: x\r\n\r\n")
+        s.sendall(b"GET /video.mjpg HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")
         buf = b""
         while len(ages) < 90:
             chunk = s.recv(65536)
@@ -327,6 +354,28 @@ def check_preset(program, failures):
         failures.append(f"preset: settings {applied}, save {status} {saved}, files {files}, loaded {loaded}")
 
 
+def check_signals(program, failures):
+    """SIGTERM (systemd) and SIGHUP (ssh gone) while the robot follows the ball: exit 0, last command stop."""
+    for signum in (signal.SIGTERM, signal.SIGHUP):
+        studio = Studio(program)
+        try:
+            x, y, _, _ = ball_box(studio.get("/state")["test_frame"] + 1)
+            studio.post("/select", {"x": round(x + 8), "y": round(y + 8), "w": 24, "h": 24})
+            deadline = time.monotonic() + 5
+            while time.monotonic() < deadline and not studio.read_robot(0.1).replace(STOP_LINE, b""):
+                pass
+            moving = time.monotonic() < deadline
+            studio.proc.send_signal(signum)
+            code = studio.proc.wait(15)
+            last = (studio.read_robot(0.3).rstrip(b"\n").rsplit(b"\n", 1) or [b""])[-1] + b"\n"
+        finally:
+            studio.close()
+        name = signal.Signals(signum).name
+        print(f"{name} while {'moving' if moving else 'NOT moving'}: exit {code}, last command {last!r}")
+        if not moving or code != 0 or last != STOP_LINE:
+            failures.append(f"{name}: moving {moving}, exit {code}, last command {last!r}")
+
+
 def main():
     program = sys.argv[1]
     missing = gi_missing()
@@ -338,6 +387,7 @@ def main():
     check_token(program, failures)
     check_template(program, failures)
     check_preset(program, failures)
+    check_signals(program, failures)
     for f in failures:
         print("FAIL:", f)
     return 1 if failures else 0

@@ -7,6 +7,7 @@ import pty
 import select
 import subprocess
 import sys
+import tempfile
 import time
 import tty
 import urllib.error
@@ -55,7 +56,11 @@ class Studio:
             args += ["--robot-location", os.ttyname(slave)]
             self.slave = slave
         self.robot_bytes = b""
-        self.proc = subprocess.Popen(["nice", "-n", "5", *args], stdout=subprocess.PIPE, text=True)
+        # Its stderr is kept (and passed on at close) so that a test can look for tracebacks in it.
+        self.stderr = tempfile.TemporaryFile()
+        self.errors = ""
+        self.proc = subprocess.Popen(["nice", "-n", "5", *args], stdout=subprocess.PIPE, stderr=self.stderr,
+                                     text=True)
         self.url = self.token = None
         try:
             self.wait_serving()
@@ -133,4 +138,14 @@ class Studio:
         if self.robot_fd is not None:
             os.close(self.robot_fd)
             os.close(self.slave)
+            self.robot_fd = None
+        if not self.stderr.closed:
+            self.stderr.seek(0)
+            self.errors = self.stderr.read().decode(errors="replace")
+            self.stderr.close()
+            sys.stderr.write(self.errors)
         return self.proc.returncode
+
+    def tracebacks(self):
+        """After close(): how many Python tracebacks the studio printed (a bug of ours, caught or not)."""
+        return self.errors.count("Traceback (most recent call last)")

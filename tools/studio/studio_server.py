@@ -13,6 +13,8 @@ from studio_pipeline import BadRequest
 
 MAX_BODY = 64 * 1024
 MAX_STREAMS = 8          # MJPEG clients at once (each holds a thread)
+MAX_CLIENTS = 32         # connections served at once; more are answered 503 (threads are not unbounded)
+LOOPBACK_NAMES = ("127.0.0.1", "localhost", "[::1]")
 REQUEST_TIMEOUT = 10     # seconds a client may take to send its request (slow clients are cut off)
 
 
@@ -29,11 +31,24 @@ class Handler(BaseHTTPRequestHandler):
         if self.server.verbose:
             super().log_message(fmt_, *args)
 
-    def allowed(self):
-        if self.token is None:
-            return True
-        given = self.headers.get("X-Studio-Token") or parse_qs(urlsplit(self.path).query).get("token", [""])[0]
-        return secrets.compare_digest(given.encode(), self.token.encode())
+    def refusal(self):
+        """Why this request may not be served, or None. With a token (off loopback), the token. On loopback,
+        where no token is asked for: the Host must be a loopback name, so that a web page whose name was made
+        to point at 127.0.0.1 (DNS rebinding) is refused, and an Origin must be that Host (another site's
+        page)."""
+        if self.token is not None:
+            given = self.headers.get("X-Studio-Token") or parse_qs(urlsplit(self.path).query).get("token", [""])[0]
+            if secrets.compare_digest(given.encode(), self.token.encode()):
+                return None
+            return "a token is needed: X-Studio-Token header or ?token="
+        host = self.headers.get("Host", "")
+        name = host.rsplit(":", 1)[0] if not host.endswith("]") else host
+        if name not in LOOPBACK_NAMES:
+            return f"Host {host[:80]!r} is not this studio's loopback address"
+        origin = self.headers.get("Origin")
+        if origin is not None and urlsplit(origin).netloc != host:
+            return f"requests from {origin[:80]!r} are not served"
+        return None
 
     def reply(self, status, body, content_type="application/json"):
         data = body if isinstance(body, bytes) else (json.dumps(body) + "\n").encode()
@@ -41,6 +56,8 @@ class Handler(BaseHTTPRequestHandler):
         self.send_header("Content-Type", content_type)
         self.send_header("Content-Length", str(len(data)))
         self.send_header("Cache-Control", "no-store")
+        self.send_header("X-Frame-Options", "DENY")  # no other site frames the page under a user's clicks
+        self.send_header("X-Content-Type-Options", "nosniff")
         self.end_headers()
         if self.command != "HEAD":
             self.wfile.write(data)
@@ -50,8 +67,8 @@ class Handler(BaseHTTPRequestHandler):
         self.reply(status, {"error": message, "status": int(status)})
 
     def do_GET(self):
-        if not self.allowed():
-            return self.error(HTTPStatus.FORBIDDEN, "a token is needed: X-Studio-Token header or ?token=")
+        if (why := self.refusal()) is not None:
+            return self.error(HTTPStatus.FORBIDDEN, why)
         path = urlsplit(self.path).path
         if path in ("/", "/index.html"):
             return self.reply(HTTPStatus.OK, self.page, "text/html; charset=utf-8")
@@ -92,8 +109,11 @@ class Handler(BaseHTTPRequestHandler):
     do_PUT = do_DELETE = do_PATCH = do_OPTIONS = do_HEAD = refuse_method
 
     def do_POST(self):
-        if not self.allowed():
-            return self.error(HTTPStatus.FORBIDDEN, "a token is needed: X-Studio-Token header or ?token=")
+        if (why := self.refusal()) is not None:
+            return self.error(HTTPStatus.FORBIDDEN, why)
+        # JSON only: another site's page can send a form or text/plain without asking, never JSON.
+        if self.headers.get_content_type() != "application/json":
+            return self.error(HTTPStatus.UNSUPPORTED_MEDIA_TYPE, "send the body as Content-Type: application/json")
         path = urlsplit(self.path).path
         actions = {"/select": self.studio.select, "/settings": self.studio.apply_settings,
                    "/stop": self.studio.stop, "/save": self.studio.save}
@@ -142,6 +162,25 @@ def not_json(constant):
 class Server(ThreadingHTTPServer):
     daemon_threads = True
     verbose = False
+    request_queue_size = 64  # connections waiting to be accepted (the default 5 drops a burst of clients)
+    clients = threading.BoundedSemaphore(MAX_CLIENTS)
+
+    def process_request(self, request, client_address):
+        """A thread per connection, at most MAX_CLIENTS of them: one more is answered 503 and closed."""
+        if not self.clients.acquire(blocking=False):
+            try:
+                request.sendall(b"HTTP/1.1 503 Service Unavailable\r\nContent-Length: 0\r\nConnection: close\r\n\r\n")
+            except OSError:
+                pass
+            self.shutdown_request(request)
+            return
+        super().process_request(request, client_address)
+
+    def process_request_thread(self, request, client_address):
+        try:
+            super().process_request_thread(request, client_address)
+        finally:
+            self.clients.release()
 
     def handle_error(self, request, client_address):
         """A client that went away or stalled: one line, no traceback (a bug of ours is still printed)."""
@@ -154,5 +193,6 @@ class Server(ThreadingHTTPServer):
 
 
 def is_loopback(address):
-    return address in ("localhost", "::1") or address.startswith("127.")
+    """Listening here needs no token. (IPv4 only: the server is.)"""
+    return address == "localhost" or address.startswith("127.")
 

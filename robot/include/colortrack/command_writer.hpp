@@ -5,6 +5,7 @@
 // WriterListener (the element turns that into bus messages).
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -126,7 +127,8 @@ class CommandWriter {
   std::mutex mutex_;  // guards what follows; never held during I/O
   std::condition_variable wake_;
   Command pending_;
-  bool urgent_ = false, quit_ = false, playing_ = false, flushing_ = false, held_ = false;
+  bool urgent_ = false, quit_ = false, playing_ = false, flushing_ = false;
+  std::atomic<bool> held_{false};  // written under mutex_, also read by send() without it
   double stallTimeout_;
   colortrack::Watchdog bufferWatchdog_;
 };
