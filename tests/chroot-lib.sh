@@ -43,6 +43,9 @@ chroot_mount() {  # chroot_mount TARGET MOUNT-ARGS...
 }
 chroot_mount_all() {
   cp /etc/resolv.conf "$root/etc/resolv.conf"
+  # A bookworm minbase has no /etc/hosts (a machine has one): without it "localhost" does not resolve, and
+  # selenium cannot reach the chromedriver it started.
+  [ -e "$root/etc/hosts" ] || printf '127.0.0.1\tlocalhost\n::1\t\tlocalhost ip6-localhost ip6-loopback\n' >"$root/etc/hosts"
   chroot_mount /proc -t proc proc
   chroot_mount /sys -t sysfs sysfs
   chroot_mount /dev --bind /dev
