@@ -33,7 +33,7 @@ import time
 import urllib.error
 import urllib.request
 
-from studio_harness import SKIP, Studio, ball_box, gi_missing, iou
+from studio_harness import SKIP, Studio, ball_box, gi_missing, meta_iou
 
 STOP_LINE = b"L=0 R=0\n"
 
@@ -322,7 +322,7 @@ def check_template(program, failures):
         ious = []
         for _ in range(10):
             state = studio.get("/state")
-            ious.append(iou(state["box"], ball_box(state["test_frame"])) if state["box"] else 0.0)
+            ious.append(meta_iou(state))
             time.sleep(0.1)
         refused, _ = studio.post("/settings", {"min-area": 5})
         print(f"template mode: /select {status}; IoU with the ball {min(ious):.2f}..{max(ious):.2f}; /settings {refused}")

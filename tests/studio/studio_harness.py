@@ -33,6 +33,16 @@ def iou(a, b):
     return inter / union if union > 0 else 0.0
 
 
+def meta_iou(state):
+    """The IoU with the ball's true box of the best box colortrack attached to a buffer (its region-of-interest
+    metas, as /state reports them), on that buffer's frame; 0 without one."""
+    metas = state["metas"]
+    if metas.get("test_frame") is None:
+        return 0.0
+    truth = ball_box(metas["test_frame"])
+    return max((iou(box, truth) for box in metas["boxes"].values()), default=0.0)
+
+
 def gi_missing():
     """None when /usr/bin/python3-like gi with Gst is importable here, else what is missing."""
     try:

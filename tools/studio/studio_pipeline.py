@@ -14,7 +14,7 @@ import gi
 
 gi.require_version("Gst", "1.0")
 gi.require_version("GstVideo", "1.0")
-from gi.repository import Gst, GstVideo  # noqa: E402
+from gi.repository import GLib, Gst, GstVideo  # noqa: E402
 
 PRESET_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9 _.-]{0,63}")  # a key-file group name: no [ ] or new line
 # The built-in scene: videotestsrc's ball (radius 20, deterministic by frame number) in green on grey.
@@ -72,6 +72,8 @@ class Studio:
             sink = self.pipeline.get_by_name(name)
             if sink is not None:
                 sink.connect("new-sample", self.on_sample, name)
+        self.roi_type = GLib.quark_from_string("colortrack")  # colortrack's roi-type: its metas
+        self.metas = {"pts": None, "boxes": {}}
         self.ct.get_static_pad("src").add_probe(Gst.PadProbeType.BUFFER, self.on_ct_buffer)
         if args.preset:
             self.load_preset(args.preset)
@@ -115,9 +117,23 @@ class Studio:
             caps = pad.get_current_caps()
             if caps is not None:
                 # VideoInfo, not the caps' structure: GStreamer 1.26's Python wraps that in a context manager.
-                info = GstVideo.VideoInfo.new_from_caps(caps)
-                self.width, self.height = info.width, info.height
+                video = GstVideo.VideoInfo.new_from_caps(caps)
+                self.width, self.height = video.width, video.height
+        self.read_track_metas(info.get_buffer())
         return Gst.PadProbeReturn.OK
+
+    def read_track_metas(self, buffer):
+        """The boxes colortrack attached to the buffer (its region-of-interest metas) for the tracks its last
+        message listed: what any element downstream reads, shown beside the messages' boxes."""
+        with self.lock:
+            ids = [o["id"] for o in self.state["objects"]]
+        boxes = {}
+        for track_id in ids:
+            meta = GstVideo.buffer_get_video_region_of_interest_meta_id(buffer, track_id)
+            if meta is not None and meta.roi_type == self.roi_type:
+                boxes[str(track_id)] = [meta.x, meta.y, meta.w, meta.h]
+        with self.lock:
+            self.metas = {"pts": buffer.pts, "boxes": boxes}
 
     def capture_time(self, pts):
         """The pipeline clock's time (CLOCK_MONOTONIC, ns) when the frame with this PTS was captured."""
@@ -207,6 +223,7 @@ class Studio:
     def snapshot(self):
         with self.lock:
             out = dict(self.state)
+            metas = dict(self.metas)
             out.update(robot=dict(self.robot) if self.robotctl is not None else None,
                        events=list(self.events), select_to_track_ms=self.select_to_track_ms,
                        last_select=self.last_select,
@@ -215,6 +232,9 @@ class Studio:
         out["settings"] = self.settings()
         if self.args.source == "test" and out["pts"] is not None:
             out["test_frame"] = round(out["pts"] * self.args.fps / Gst.SECOND)
+        if self.args.source == "test" and metas["pts"] is not None:
+            metas["test_frame"] = round(metas["pts"] * self.args.fps / Gst.SECOND)
+        out["metas"] = metas
         return out
 
     def settings(self):
