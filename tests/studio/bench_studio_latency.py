@@ -21,9 +21,8 @@ import time
 
 from check_studio_browser import browser, missing_tools, page_latency
 from check_studio_http import check_latency
-from studio_harness import SKIP, Studio, ball_box, gi_missing
+from studio_harness import SKIP, STOP_LINE, Studio, gi_missing
 
-STOP_LINE = b"L=0 R=0\n"  # robotctl protocol=text's stop
 
 
 def browser_lag(studio):
@@ -43,24 +42,14 @@ def browser_lag(studio):
               f"30 fps) behind the newest frame, range {lags[0]}..{lags[-1]} over {len(lags)} samples")
 
 
-def moving(studio, seconds=3.0):
-    """True once the pty has had a command other than stop (what was read is dropped)."""
-    deadline = time.monotonic() + seconds
-    while time.monotonic() < deadline:
-        if studio.read_robot(0.1).replace(STOP_LINE, b""):
-            return True
-    return False
-
-
 def stop_latency(program):
     """POST /stop {"hold": true} -> the first stop line on the robot's pty, while the robot follows the ball."""
     studio = Studio(program, "--robot-protocol", "text")
     times = []
     try:
-        x, y, _, _ = ball_box(studio.get("/state")["test_frame"] + 1)
-        studio.post("/select", {"x": round(x + 8), "y": round(y + 8), "w": 24, "h": 24})
+        studio.select_ball()
         for _ in range(5):
-            if not moving(studio):
+            if not studio.wait_moving(3.0):
                 print("STOP -> stop on the wire: the robot did not move; not measured")
                 return
             studio.read_robot()  # what was on its way before the request

@@ -16,11 +16,10 @@ import shutil
 import sys
 import time
 
-from studio_harness import RADIUS, SKIP, Studio, ball_box, gi_missing, meta_iou
+from studio_harness import RADIUS, SKIP, STOP_LINE, Studio, ball_box, gi_missing, meta_iou
 
 CLICK_BOX = 24   # the page's square for a click (studio.html)
 SHOWN_WIDTH = 480  # the page shows the 320x240 video 480 px wide
-STOP_LINE = b"L=0 R=0\n"
 
 
 def missing_tools():

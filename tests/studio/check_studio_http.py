@@ -33,9 +33,8 @@ import time
 import urllib.error
 import urllib.request
 
-from studio_harness import SKIP, Studio, ball_box, gi_missing, meta_iou
+from studio_harness import SKIP, STOP_LINE, Studio, ball_box, gi_missing, meta_iou
 
-STOP_LINE = b"L=0 R=0\n"
 
 
 def raw_request(host, port, data, timeout=5.0, read=True):
@@ -260,9 +259,7 @@ def check_latency(studio, host, port, failures):
     # /select on the middle of the ball's true box (threshold mode learns its colour from it).
     times = []
     for _ in range(3):
-        state = studio.get("/state")
-        x, y, w, h = ball_box(state["test_frame"] + 1)
-        status, _ = studio.post("/select", {"x": round(x + 8), "y": round(y + 8), "w": 24, "h": 24})
+        studio.select_ball()
         deadline = time.monotonic() + 3
         while time.monotonic() < deadline and studio.get("/state")["select_to_track_ms"] is None:
             time.sleep(0.02)
@@ -359,12 +356,8 @@ def check_signals(program, failures):
     for signum in (signal.SIGTERM, signal.SIGHUP):
         studio = Studio(program)
         try:
-            x, y, _, _ = ball_box(studio.get("/state")["test_frame"] + 1)
-            studio.post("/select", {"x": round(x + 8), "y": round(y + 8), "w": 24, "h": 24})
-            deadline = time.monotonic() + 5
-            while time.monotonic() < deadline and not studio.read_robot(0.1).replace(STOP_LINE, b""):
-                pass
-            moving = time.monotonic() < deadline
+            studio.select_ball()
+            moving = studio.wait_moving()
             studio.proc.send_signal(signum)
             code = studio.proc.wait(15)
             last = (studio.read_robot(0.3).rstrip(b"\n").rsplit(b"\n", 1) or [b""])[-1] + b"\n"

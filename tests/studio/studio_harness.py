@@ -14,6 +14,7 @@ import urllib.error
 import urllib.request
 
 SKIP = 77
+STOP_LINE = b"L=0 R=0\n"  # robotctl protocol=text's stop, the studio's default protocol
 # The built-in scene is videotestsrc's ball: radius 20, its centre at frame n (gstvideotestsrc.c, motion wavy)
 # x = r + (0.5 + 0.5 sin(2 pi n / 200)) (w - 2r),  y = r + (0.5 + 0.5 sin(2 pi sqrt(2) n / 200)) (h - 2r).
 RADIUS = 20
@@ -133,6 +134,22 @@ class Studio:
             out += os.read(self.robot_fd, 4096)
         self.robot_bytes += out
         return out
+
+    def select_ball(self):
+        """POST /select on the middle of the ball where it will be next frame (threshold mode learns its
+        colour from it); the HTTP status."""
+        x, y, _, _ = ball_box(self.get("/state")["test_frame"] + 1)
+        status, _ = self.post("/select", {"x": round(x + 8), "y": round(y + 8), "w": 24, "h": 24})
+        return status
+
+    def wait_moving(self, seconds=5.0):
+        """True once the robot's pty has had a command other than stop within `seconds` (what was read is
+        kept in robot_bytes only)."""
+        deadline = time.monotonic() + seconds
+        while time.monotonic() < deadline:
+            if self.read_robot(0.1).replace(STOP_LINE, b""):
+                return True
+        return False
 
     def alive(self):
         return self.proc.poll() is None
