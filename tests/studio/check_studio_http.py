@@ -322,9 +322,12 @@ def check_template(program, failures):
             ious.append(meta_iou(state))
             time.sleep(0.1)
         refused, _ = studio.post("/settings", {"min-area": 5})
-        print(f"template mode: /select {status}; IoU with the ball {min(ious):.2f}..{max(ious):.2f}; /settings {refused}")
-        if status != 200 or min(ious) < 0.5 or refused != 409:
-            failures.append(f"template mode: select {status}, IoU {ious}, settings {refused}")
+        _, saved = studio.post("/save", {})
+        launch = saved.get("launch", "")
+        print(f"template mode: /select {status}; IoU with the ball {min(ious):.2f}..{max(ious):.2f}; /settings {refused}; "
+              f"/save gives {launch!r}")
+        if status != 200 or min(ious) < 0.5 or refused != 409 or f"init-box={round(x)},{round(y)}," not in launch:
+            failures.append(f"template mode: select {status}, IoU {ious}, settings {refused}, launch {launch!r}")
     finally:
         studio.close()
 

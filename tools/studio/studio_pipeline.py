@@ -313,6 +313,8 @@ class Studio:
         props.update(self.settings())
         props = {k: str(v) for k, v in props.items()}
         tracker = "colortrack " + " ".join(f"{k}={v}" for k, v in props.items())
+        if a.mode == "template" and self.last_select is not None:  # what it follows: the box picked last
+            tracker += " init-box=" + ",".join(str(v) for v in self.last_select["box"])
         launch = (f"gst-launch-1.0 {source_description(a.source, a.width, a.height, a.fps)} ! videoconvert ! "
                   f"{tracker} ! videoconvert ! autovideosink")
         preset = f"[{name}]\n" + "".join(f"{k}={v}\n" for k, v in props.items())
