@@ -11,9 +11,10 @@
 //   g_key_file_set_string (which doubles the backslash) and the default load reads it back with
 //   g_key_file_get_value (which does not undo that): 'hsv-lower' came back as "10\,50\,60" (GStreamer 1.22).
 //   After a load, the extra escape level is taken off the string properties. A value without a backslash is
-//   left as it is, so this does nothing where GStreamer reads what it wrote; and colortrack's strings (numbers
-//   and commas) never hold a backslash of their own, so taking one off cannot lose a character. Until then, each load logs the
-//   property table's "the element will fail to start" warning for the escaped strings it set first.
+//   left as it is, so this does nothing where GStreamer reads what it wrote; and colortrack's strings
+//   (numbers and commas) never hold a backslash of their own, so taking one off cannot lose a character.
+//   Until GStreamer does, each load logs the property table's "the element will fail to start" warning for
+//   the escaped strings it set first.
 #include "colortrack-preset.h"
 
 #include <cstring>
