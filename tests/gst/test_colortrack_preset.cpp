@@ -46,8 +46,10 @@ GST_START_TEST(test_preset_round_trip) {
   GstElement *fresh = gst_element_factory_make("colortrack", "fresh");
   fail_unless(readInt(fresh, "min-area") != 321);
   fail_unless(gst_preset_load_preset(GST_PRESET(fresh), "studio-test"));
-  fail_unless_equals_string(readString(fresh, "hsv-lower").c_str(), "10,0.5,0.6");
-  fail_unless_equals_string(readString(fresh, "hsv-upper").c_str(), "40,0.9,0.95");
+  // Kept in variables: the macro reads the text after the statement that made it (a temporary's would dangle).
+  const std::string lower = readString(fresh, "hsv-lower"), upper = readString(fresh, "hsv-upper");
+  fail_unless_equals_string(lower.c_str(), "10,0.5,0.6");
+  fail_unless_equals_string(upper.c_str(), "40,0.9,0.95");
   fail_unless_equals_int(readInt(fresh, "min-area"), 321);
   fail_unless_equals_int(readInt(fresh, "morph-size"), 7);
   fail_unless_equals_string(GST_OBJECT_NAME(fresh), "fresh");
